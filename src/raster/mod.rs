@@ -1,0 +1,1 @@
+//! Triangle rasterization (in progress).

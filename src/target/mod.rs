@@ -1,0 +1,1 @@
+//! Framebuffers (in progress).
