@@ -9,5 +9,7 @@
     rustdoc::broken_intra_doc_links
 )]
 
+pub mod num;
 pub mod raster;
 pub mod target;
+pub mod vector;

@@ -1,0 +1,267 @@
+//! The number layer: the scalar a lighting pipeline computes in.
+//!
+//! A *tier* is a type implementing [`Scalar`]. The lighting equation is written
+//! once, generic over the tier, so choosing a tier is choosing a point on the
+//! speed/accuracy trade:
+//!
+//! | tier | storage | per-pixel products | range | approximations |
+//! |---|---|---|---|---|
+//! | [`Q14<NEWTON>`](Q14) | `i32` holding Q2.14 | 16×16→32 bit (one `MULS` on a Cortex-M0) | [−2, 2) | inverse square root: 48-entry seed + `NEWTON` steps |
+//! | [`Q30<NEWTON>`](Q30) | `i32` holding Q2.30 | 32×32→64 bit | [−2, 2) | inverse square root: 48-entry seed + `NEWTON` steps |
+//! | `f32` | IEEE single | FPU (or soft float) | ±[`F32_LIMIT`] | exact (`libm`) |
+//! | [`F32Fast`] | IEEE single | FPU | ±[`F32_LIMIT`] | micromath inverse square root |
+//!
+//! Geometry (positions, distances for attenuation and fog) needs range rather than
+//! precision, so every tier names a separate [`Scalar::Geo`] type: the fixed tiers
+//! use [`Geo16`] (Q16.16, ±32768 scene units), the float tiers use `f32`.
+//!
+//! # Overflow behaviour
+//!
+//! Every operation of every tier **saturates**: it never wraps and never panics,
+//! in debug builds with overflow checks included. Conversions from `f32` map NaN to
+//! zero and clamp to the tier's range. Specular powers are exact (repeated squaring
+//! for the integer exponent), up to the rounding of each multiplication.
+
+mod float;
+mod q14;
+mod q30;
+mod rsqrt;
+
+pub use float::{F32Fast, F32_LIMIT};
+pub use q14::Q14;
+pub use q30::Q30;
+
+use crate::vector::Vec3;
+use core::fmt::Debug;
+
+/// Geometry scalar of the fixed-point tiers: Q16.16 in an `i32`
+/// ([`fixed::types::I16F16`]), range ±32768 scene units, resolution 1.5·10⁻⁵.
+pub type Geo16 = fixed::types::I16F16;
+
+/// A number tier: the scalar type the lighting equation is evaluated in.
+///
+/// Values of a tier are *unit-range* quantities: colour channels, unit-vector
+/// components, dot products, attenuation and spot factors. Positions and distances
+/// use the associated [`Scalar::Geo`] type.
+///
+/// All operations saturate at the tier's range and never panic.
+pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync + 'static {
+    /// The scalar for positions and distances (more range, less precision).
+    type Geo: Copy + Debug + PartialEq + Default + Send + Sync + 'static;
+
+    /// Zero.
+    const ZERO: Self;
+    /// One.
+    const ONE: Self;
+    /// The largest representable value; results above it saturate to it.
+    const MAX: Self;
+    /// A short human-readable name of the tier, for reports.
+    const NAME: &'static str;
+
+    /// Converts from `f32`, rounding to nearest; NaN becomes zero, values beyond
+    /// the range saturate.
+    fn from_f32(v: f32) -> Self;
+    /// Converts to `f32` (exact for the fixed tiers).
+    fn to_f32(self) -> f32;
+
+    /// `self + rhs`, saturating.
+    fn add(self, rhs: Self) -> Self;
+    /// `self − rhs`, saturating.
+    fn sub(self, rhs: Self) -> Self;
+    /// `self · rhs`, rounded, saturating.
+    fn mul(self, rhs: Self) -> Self;
+    /// `self / rhs`, saturating; a zero or negative divisor gives [`Scalar::MAX`]
+    /// for a positive dividend and zero otherwise.
+    fn div(self, rhs: Self) -> Self;
+    /// `√self`; zero for `self ≤ 0`.
+    fn sqrt(self) -> Self;
+
+    /// `max(self, 0)`.
+    #[inline(always)]
+    fn max0(self) -> Self {
+        if self > Self::ZERO {
+            self
+        } else {
+            Self::ZERO
+        }
+    }
+
+    /// `min(self, 1)`.
+    #[inline(always)]
+    fn min1(self) -> Self {
+        if self < Self::ONE {
+            self
+        } else {
+            Self::ONE
+        }
+    }
+
+    /// `self^n` by repeated squaring (exact for the integer exponent up to the
+    /// rounding of each product). `x^0 = 1` (also for `x = 0`). The base is expected
+    /// in [0, 1]; use [`Scalar::max0`] and [`Scalar::min1`] first.
+    #[inline]
+    fn powi(self, n: u16) -> Self {
+        let mut base = self;
+        let mut n = n;
+        let mut acc = Self::ONE;
+        // acc · base^n is invariant; each step consumes one bit of n.
+        while n > 0 {
+            if n & 1 == 1 {
+                acc = acc.mul(base);
+            }
+            n >>= 1;
+            if n > 0 {
+                base = base.mul(base);
+            }
+        }
+        acc
+    }
+
+    /// `round(clamp(self, 0, 1) · (2^bits − 1))` for `bits` in 1..=16 (the quantised
+    /// output channel). NaN maps to 0.
+    fn to_unorm(self, bits: u32) -> u32;
+
+    /// `v / |v|`. A zero vector (or one whose length underflows the tier) gives the
+    /// zero vector; a tiny vector keeps only the direction resolution its
+    /// components carry. Never panics.
+    fn normalize(v: Vec3<Self>) -> Vec3<Self>;
+
+    /// Converts a geometric value from `f32`: NaN becomes zero, values beyond the
+    /// geometry range saturate.
+    fn geo_from_f32(v: f32) -> Self::Geo;
+    /// Converts a geometric value to `f32`.
+    fn geo_to_f32(g: Self::Geo) -> f32;
+    /// `a + b`, saturating.
+    fn geo_add(a: Self::Geo, b: Self::Geo) -> Self::Geo;
+    /// `a − b`, saturating.
+    fn geo_sub(a: Self::Geo, b: Self::Geo) -> Self::Geo;
+    /// `a · b`, saturating.
+    fn geo_mul(a: Self::Geo, b: Self::Geo) -> Self::Geo;
+    /// `clamp(g, 0, 1)` converted to the tier.
+    fn geo_to_unit(g: Self::Geo) -> Self;
+    /// `1 / g` converted to the tier, saturating at [`Scalar::MAX`]; `g ≤ 0` gives
+    /// [`Scalar::MAX`].
+    fn geo_recip(g: Self::Geo) -> Self;
+    /// The unit vector along `v` and the length of `v`. A zero vector gives the zero
+    /// vector and length zero. Lengths beyond the geometry range saturate.
+    fn geo_direction(v: Vec3<Self::Geo>) -> (Vec3<Self>, Self::Geo);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check_tier<S: Scalar>(tol: f32, fixed: bool) {
+        let xs = [0.0f32, 0.1, 0.25, 0.5, 0.7071, 0.9, 1.0, 1.3];
+        for &a in &xs {
+            for &b in &xs {
+                let p = S::from_f32(a).mul(S::from_f32(b)).to_f32();
+                assert!((p - a * b).abs() < tol, "{} {a}*{b}={p}", S::NAME);
+            }
+            let s = S::from_f32(a).sqrt().to_f32();
+            assert!((s - libm::sqrtf(a)).abs() < tol * 4.0, "{} sqrt({a})={s}", S::NAME);
+        }
+        // saturation instead of wrapping
+        let big = S::from_f32(1.0e30);
+        assert_eq!(big, S::MAX);
+        if fixed {
+            assert!(big.add(big) == S::MAX);
+            assert!(big.mul(big) == S::MAX);
+            assert!(S::from_f32(-1.9).mul(big) == S::from_f32(-2.0));
+        }
+        assert_eq!(S::from_f32(f32::NAN), S::ZERO);
+        assert_eq!(S::ONE.div(S::ZERO), S::MAX);
+        assert_eq!(S::ZERO.div(S::ZERO), S::ZERO);
+        // unorm rounding
+        assert_eq!(S::ONE.to_unorm(8), 255);
+        assert_eq!(S::ZERO.to_unorm(8), 0);
+        assert_eq!(S::from_f32(-3.0).to_unorm(8), 0);
+        assert_eq!(S::from_f32(1.9).to_unorm(5), 31);
+        assert_eq!(S::from_f32(0.5).to_unorm(8), 128);
+        // powers
+        let p = S::from_f32(0.9).powi(16).to_f32();
+        assert!((p - libm::powf(0.9, 16.0)).abs() < tol * 16.0, "{} {p}", S::NAME);
+        assert_eq!(S::from_f32(0.3).powi(0), S::ONE);
+        assert_eq!(S::ZERO.powi(0), S::ONE);
+        assert_eq!(S::ZERO.powi(u16::MAX), S::ZERO);
+        assert!(S::ONE.powi(u16::MAX).to_f32() > 0.99);
+    }
+
+    fn check_normalize<S: Scalar>(tol: f32) {
+        let cases = [
+            [1.0f32, 0.0, 0.0],
+            [0.3, -0.4, 1.2],
+            [1.9, 1.9, -1.9],
+            [1.0e-3, 2.0e-3, -2.0e-3],
+            [0.0, 0.0, 1.0e-4],
+        ];
+        for c in cases {
+            let v = Vec3::new(S::from_f32(c[0]), S::from_f32(c[1]), S::from_f32(c[2]));
+            let n = S::normalize(v);
+            let (fx, fy, fz) = (v.x.to_f32(), v.y.to_f32(), v.z.to_f32());
+            let len = libm::sqrtf(fx * fx + fy * fy + fz * fz);
+            for (got, want) in [(n.x, fx / len), (n.y, fy / len), (n.z, fz / len)] {
+                assert!((got.to_f32() - want).abs() < tol, "{} {c:?}", S::NAME);
+            }
+        }
+        let z = S::normalize(Vec3::new(S::ZERO, S::ZERO, S::ZERO));
+        assert_eq!(z, Vec3::new(S::ZERO, S::ZERO, S::ZERO));
+    }
+
+    fn check_geo<S: Scalar>(tol: f32) {
+        let cases = [
+            [3.0f32, 4.0, 0.0],
+            [-100.0, 20.0, 7.5],
+            [0.01, 0.0, -0.02],
+            [30000.0, 30000.0, 30000.0],
+        ];
+        for c in cases {
+            let v = Vec3::new(
+                S::geo_from_f32(c[0]),
+                S::geo_from_f32(c[1]),
+                S::geo_from_f32(c[2]),
+            );
+            let (u, d) = S::geo_direction(v);
+            // compare with the direction of the quantised input
+            let c = [S::geo_to_f32(v.x), S::geo_to_f32(v.y), S::geo_to_f32(v.z)];
+            let len = libm::sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            let want_d = len.min(S::geo_to_f32(S::geo_from_f32(1.0e30)));
+            assert!(
+                (S::geo_to_f32(d) - want_d).abs() <= want_d * 2.0e-4 + 1.0e-4,
+                "{} {c:?} d={}",
+                S::NAME,
+                S::geo_to_f32(d)
+            );
+            assert!((u.x.to_f32() - c[0] / len).abs() < tol, "{} {c:?}", S::NAME);
+            assert!((u.z.to_f32() - c[2] / len).abs() < tol, "{} {c:?}", S::NAME);
+        }
+        let zero = S::geo_from_f32(0.0);
+        let (u, d) = S::geo_direction(Vec3::new(zero, zero, zero));
+        assert_eq!(u, Vec3::new(S::ZERO, S::ZERO, S::ZERO));
+        assert_eq!(d, zero);
+        assert_eq!(S::geo_recip(zero), S::MAX);
+    }
+
+    #[test]
+    fn q14_basics() {
+        check_tier::<Q14<2>>(2.0e-4, true);
+        check_normalize::<Q14<2>>(2.0e-3);
+        check_geo::<Q14<2>>(4.0e-4);
+    }
+
+    #[test]
+    fn q30_basics() {
+        check_tier::<Q30<3>>(1.0e-6, true);
+        check_normalize::<Q30<3>>(1.0e-5);
+        check_geo::<Q30<3>>(1.0e-5);
+    }
+
+    #[test]
+    fn f32_basics() {
+        check_tier::<f32>(1.0e-6, false);
+        check_normalize::<f32>(1.0e-6);
+        check_geo::<f32>(1.0e-6);
+        check_tier::<F32Fast>(1.0e-3, false);
+        check_normalize::<F32Fast>(3.0e-3);
+    }
+}
