@@ -8,6 +8,7 @@ Library use::
     r = emu.call("dot_i32", [i32s([1, 2]), i32s([3, 4]), 2])  # bytes -> pointer in RAM
     r.ret, r.insns, r.by_func        # r0, instructions executed, {symbol: instructions}
     emu.per_item("dot_i32", make_args, 64)   # (count(64) - count(0)) / 64
+    emu.slope("dot_i32", make_args, 64)      # (count(128) - count(64)) / 64
     emu.func_size("dot_i32"), emu.text_size()  # flash bytes (st_size, .text)
 
 CLI: ``python3 measure/cortex.py`` prints a table for the kernels in KERNELS;
@@ -191,6 +192,11 @@ class Emulator:
         """(count(n) - count(0)) / n, with make_args(n) -> argument list."""
         return Fraction(self.count(sym, make_args(n)) - self.count(sym, make_args(0)), n)
 
+    def slope(self, sym: str, make_args, n: int) -> Fraction:
+        """(count(2n) - count(n)) / n: the loop cost alone, without the fixed
+        cost of entering the loop (use n a multiple of the unroll factor)."""
+        return Fraction(self.count(sym, make_args(2 * n)) - self.count(sym, make_args(n)), n)
+
     # -- code size -------------------------------------------------------------
     def func_size(self, sym: str) -> int:
         """Flash bytes of one function (ELF st_size)."""
@@ -230,15 +236,17 @@ LINEAR = {"dot_i32", "dot_q16_i64"}
 
 
 def table(profile: str, n: int) -> None:
-    print(f"profile={profile}  n={n}  per-item = (count(n) - count(0)) / n")
-    print(f"{'kernel':<12} {'core':<4} {'bytes':>6} {'count(0)':>9} {f'count({n})':>10} {'per-item':>9}  callees")
+    print(f"profile={profile}  n={n}  per-item = (count(n) - count(0)) / n,"
+          f"  slope = (count({2 * n}) - count({n})) / {n}")
+    print(f"{'kernel':<12} {'core':<4} {'bytes':>6} {'count(0)':>9} {f'count({n})':>10} {'per-item':>9} {'slope':>7}"
+          "  callees at n")
     for core in CORES:
         emu = Emulator(elf_path(core, profile), core)
         for name, make in KERNELS.items():
             r0, rn = emu.call(name, make(0)), emu.call(name, make(n))
             callees = ", ".join(f"{short(k)} {v}" for k, v in rn.by_func.most_common() if k != name)
             print(f"{name:<12} {core:<4} {emu.func_size(name):>6} {r0.insns:>9} {rn.insns:>10} "
-                  f"{(rn.insns - r0.insns) / n:>9.2f}  {callees}")
+                  f"{(rn.insns - r0.insns) / n:>9.2f} {float(emu.slope(name, make, n)):>7.2f}  {callees}")
         print(f"{'.text':<12} {core:<4} {emu.text_size():>6}")
 
 
