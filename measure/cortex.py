@@ -119,10 +119,10 @@ class Emulator:
                     maps.append((s["st_value"], s.name[1]))
             maps.sort()
             text = e.get_section_by_name(".text")
-            end = text["sh_addr"] + text["sh_size"]
+            lo, end = text["sh_addr"], text["sh_addr"] + text["sh_size"]
             for (a, kind), (b, _) in zip(maps, maps[1:] + [(end, "")]):
-                if kind == "t" and a < b <= end:
-                    self._code.append((a, b))
+                if kind == "t" and lo <= a < end:
+                    self._code.append((a, min(b, end)))
         self._starts = sorted((a, n) for n, (a, _) in self.funcs.items())
         self._sizes = {n: s for n, (_, s) in self.funcs.items()}
         self.arena = (ram_end + 7) & ~7  # inputs go here, the stack at the top of RAM
