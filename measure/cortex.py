@@ -322,6 +322,7 @@ def selftest(profile: str) -> int:
             check(missed and all(m.split(".")[0].endswith(cond) for m in missed),
                   "m4f: the code hook misses only predicated (IT-block) instructions")
             sf = emu.call("scale_f32", KERNELS["scale_f32"](8)).by_func
+            check(len(emu.v6m_violations()) > 0, "m4f image: the v6-M check does flag Thumb-2")
             check(set(sf) == {"scale_f32"}, f"m4f: scale_f32 calls nothing (hard float) {dict(sf)}")
             ran = {i.mnemonic for (a, n) in emu._blocks for i in emu.cs.disasm(bytes(emu.uc.mem_read(a, n)), a)}
             check({"vmla.f32", "vmul.f32", "vfma.f32"} & ran, "m4f: an FPU multiply executed")
