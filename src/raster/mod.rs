@@ -211,7 +211,7 @@ pub trait SpanShader<const N: usize> {
 /// };
 /// let tri = [v(0, 0, 0), v(16, 0, 160), v(0, 16, 0)];
 /// let stats = draw_triangle(&mut fb, None, &tri, &RasterOptions::default(), &mut Ramp);
-/// assert_eq!(stats.pixels, 136); // 16 + 15 + … + 1
+/// assert_eq!(stats.pixels, 120); // 15 + 14 + … + 1: centres on the hypotenuse (a right edge) are out
 /// assert_eq!(fb.get(5, 0), Some(Gray8::new(55))); // centre x = 5.5: 160 · 5.5/16
 /// ```
 pub fn draw_triangle<F, S, const N: usize>(

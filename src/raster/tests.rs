@@ -200,8 +200,8 @@ fn attributes_exact_at_vertices_and_on_the_plane() {
                 ..RasterOptions::default()
             };
             draw_triangle(&mut fb, None, &v, &opts, &mut rec);
-            let range = f64::from(attrs.iter().max().unwrap() - 0)
-                - f64::from(*attrs.iter().min().unwrap());
+            let range =
+                f64::from(*attrs.iter().max().unwrap()) - f64::from(*attrs.iter().min().unwrap());
             for (y, row) in rec.0.iter().enumerate() {
                 for (x, got) in row.iter().enumerate() {
                     let Some(got) = *got else { continue };
