@@ -1,4 +1,4 @@
-//! fixshade (work in progress; crate docs are written with the lighting core).
+//! fixshade (crate docs are written at the end of the lighting core).
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -9,7 +9,33 @@
     rustdoc::broken_intra_doc_links
 )]
 
+#[cfg(test)]
+extern crate std;
+
+pub mod color;
+pub mod error;
+pub mod gl;
+pub mod light;
+pub mod lighting;
+pub mod material;
 pub mod num;
 pub mod raster;
+#[cfg(feature = "reference")]
+pub mod reference;
 pub mod target;
 pub mod vector;
+
+/// The types most programs need, for `use fixshade::prelude::*`.
+pub mod prelude {
+    pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
+    pub use crate::error::ParamError;
+    pub use crate::light::{AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight};
+    pub use crate::lighting::{
+        BlinnPhong, Full, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer, NoFog, Phong,
+        Terms,
+    };
+    pub use crate::material::{AmbientSource, Material, MaterialDesc};
+    pub use crate::num::{F32Fast, Scalar, Q14, Q30};
+    pub use crate::vector::Vec3;
+    pub use embedded_graphics_core::pixelcolor::RgbColor as _;
+}

@@ -1,0 +1,155 @@
+//! Surface materials: emission, ambient, diffuse (with brilliance), specular,
+//! Fresnel angle factor and transmission coefficients.
+
+use crate::color::Rgb;
+use crate::error::{finite, non_negative, non_negative3, ParamError};
+use crate::light::exponent_u16;
+use crate::num::Scalar;
+
+/// A plain `f32` description of a material, shared by the tiers, the OpenGL
+/// parameter set and the `f64` reference model. `Default` is OpenGL's default
+/// material (ambient 0.2, diffuse 0.8, no specular, no emission).
+///
+/// ```
+/// use fixshade::material::{AmbientSource, MaterialDesc};
+/// // seed 001: a red object, ka = 0.4 of the object colour, kd = 0.5, ks = 0.5, n = 20
+/// let d = MaterialDesc::classic([1.0, 0.0, 0.0], AmbientSource::Object, 0.4, 0.5, 0.5, 20.0);
+/// assert_eq!(d.ambient, [0.4, 0.0, 0.0]);
+/// assert_eq!(d.specular, [0.5, 0.5, 0.5]); // not tinted by the object colour
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialDesc {
+    /// Light the surface emits itself (`GL_EMISSION`).
+    pub emission: [f32; 3],
+    /// Ambient reflection per channel (`ka·Io` or `ka`).
+    pub ambient: [f32; 3],
+    /// Diffuse reflection per channel (`kd·Io`: coloured diffuse).
+    pub diffuse: [f32; 3],
+    /// Specular reflection per channel (`ks`, normally grey: not tinted).
+    pub specular: [f32; 3],
+    /// Specular exponent `n`, rounded to an integer in 0..=65535.
+    pub shininess: f32,
+    /// Diffuse brilliance exponent `b` of `(N·L)^b` (1 = Lambert); used by models
+    /// with [`Model::BRILLIANCE`](crate::lighting::Model::BRILLIANCE).
+    pub brilliance: u8,
+    /// Schlick's `F0` for the angle factor `f(β) = F0 + (1 − F0)(1 − cos β)^5`;
+    /// used by models with [`Model::FRESNEL`](crate::lighting::Model::FRESNEL).
+    pub fresnel_f0: f32,
+    /// Transmission coefficient `kst` per channel; used by models with
+    /// [`Model::TRANSMISSION`](crate::lighting::Model::TRANSMISSION).
+    pub transmission: [f32; 3],
+    /// Exponent `n''` of `(T·V)^n''`.
+    pub transmission_exponent: f32,
+    /// Relative index of refraction `n21 = n_inside / n_outside`, in 0.5..=8.
+    pub refractive_index: f32,
+}
+
+impl Default for MaterialDesc {
+    fn default() -> Self {
+        Self {
+            emission: [0.0; 3],
+            ambient: [0.2; 3],
+            diffuse: [0.8; 3],
+            specular: [0.0; 3],
+            shininess: 0.0,
+            brilliance: 1,
+            fresnel_f0: 1.0,
+            transmission: [0.0; 3],
+            transmission_exponent: 1.0,
+            refractive_index: 1.0,
+        }
+    }
+}
+
+/// What the ambient coefficient multiplies (the two variants of the seeds).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AmbientSource {
+    /// `ka·Ia`: the ambient term has the light's colour.
+    Light,
+    /// `ka·Io`: the ambient term has the object's colour (seed 001, ka ≈ 0.4).
+    Object,
+}
+
+impl MaterialDesc {
+    /// The seeds' classic parameterisation: object colour `Io`, ambient `ka`,
+    /// diffuse `kd` (coloured: `kd·Io`), specular `ks` (white), exponent `n`.
+    pub fn classic(object: [f32; 3], ambient: AmbientSource, ka: f32, kd: f32, ks: f32, n: f32) -> Self {
+        let ambient = match ambient {
+            AmbientSource::Light => [ka; 3],
+            AmbientSource::Object => object.map(|c| ka * c),
+        };
+        Self {
+            emission: [0.0; 3],
+            ambient,
+            diffuse: object.map(|c| kd * c),
+            specular: [ks; 3],
+            shininess: n,
+            ..Self::default()
+        }
+    }
+}
+
+/// A validated material in tier `S`.
+///
+/// ```
+/// use fixshade::material::{Material, MaterialDesc};
+/// use fixshade::num::Q14;
+/// let m = Material::<Q14>::new(&MaterialDesc::default()).unwrap();
+/// assert_eq!(m.shininess, 0);
+/// let bad = MaterialDesc { shininess: -1.0, ..MaterialDesc::default() };
+/// assert!(Material::<Q14>::new(&bad).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material<S> {
+    /// `GL_EMISSION`.
+    pub emission: Rgb<S>,
+    /// Ambient reflection.
+    pub ambient: Rgb<S>,
+    /// Diffuse reflection.
+    pub diffuse: Rgb<S>,
+    /// Specular reflection.
+    pub specular: Rgb<S>,
+    /// Specular exponent.
+    pub shininess: u16,
+    /// Diffuse brilliance exponent (≥ 1).
+    pub brilliance: u8,
+    /// Schlick's `F0`.
+    pub fresnel_f0: S,
+    /// Transmission coefficient.
+    pub transmission: Rgb<S>,
+    /// Transmission exponent.
+    pub transmission_exponent: u16,
+    /// `η = 1/n21` (ratio of refractive indices, outside over inside).
+    pub eta: S,
+}
+
+impl<S: Scalar> Material<S> {
+    /// Validates a description: colours finite and non-negative, exponents in
+    /// 0..=65535, brilliance ≥ 1, `F0` in [0, 1], `n21` in 0.5..=8. Values beyond the
+    /// tier's range saturate (≈ 2 for the fixed tiers).
+    pub fn new(d: &MaterialDesc) -> Result<Self, ParamError> {
+        let f0 = non_negative("fresnel F0", d.fresnel_f0)?;
+        if f0 > 1.0 {
+            return Err(ParamError::ExponentOutOfRange("fresnel F0"));
+        }
+        if d.brilliance == 0 {
+            return Err(ParamError::ExponentOutOfRange("brilliance"));
+        }
+        let n21 = finite("refractive index", d.refractive_index)?;
+        if !(0.5..=8.0).contains(&n21) {
+            return Err(ParamError::RefractiveIndex);
+        }
+        Ok(Self {
+            emission: Rgb::from_f32(non_negative3("emission", d.emission)?),
+            ambient: Rgb::from_f32(non_negative3("ambient", d.ambient)?),
+            diffuse: Rgb::from_f32(non_negative3("diffuse", d.diffuse)?),
+            specular: Rgb::from_f32(non_negative3("specular", d.specular)?),
+            shininess: exponent_u16("shininess", d.shininess)?,
+            brilliance: d.brilliance,
+            fresnel_f0: S::from_f32(f0),
+            transmission: Rgb::from_f32(non_negative3("transmission", d.transmission)?),
+            transmission_exponent: exponent_u16("transmission exponent", d.transmission_exponent)?,
+            eta: S::from_f32(1.0 / n21),
+        })
+    }
+}
