@@ -96,7 +96,11 @@ impl<S: Scalar> Rgb<S> {
     /// Each channel quantised to `bits` (clamped to [0, 1], rounded to nearest).
     #[inline(always)]
     pub fn to_unorm(self, bits: u32) -> [u32; 3] {
-        [self.r.to_unorm(bits), self.g.to_unorm(bits), self.b.to_unorm(bits)]
+        [
+            self.r.to_unorm(bits),
+            self.g.to_unorm(bits),
+            self.b.to_unorm(bits),
+        ]
     }
 
     /// 8 bits per channel, no gamma.
@@ -228,7 +232,6 @@ impl Transfer {
 /// | 256 | 6.42 | 14.95 |
 /// | 1024 | 1.93 | 7.68 |
 /// | 4096 | 0.80 | 3.88 |
-
 ///
 /// ```
 /// use fixshade::color::{GammaTable, Transfer};
@@ -271,7 +274,10 @@ impl<const N: usize> GammaTable<N> {
     #[inline(always)]
     pub fn apply<S: Scalar>(&self, v: S) -> u8 {
         // to_unorm(bits) ≤ N − 1: `get` never fails, the fallback is unreachable.
-        self.table.get(v.to_unorm(self.bits) as usize).copied().unwrap_or(255)
+        self.table
+            .get(v.to_unorm(self.bits) as usize)
+            .copied()
+            .unwrap_or(255)
     }
 }
 
@@ -301,7 +307,10 @@ mod tests {
                 }
             }
             let mean = sum as f32 / 16.0;
-            assert!((mean - v * 31.0).abs() <= 1.0 / 16.0 + 1.0e-3, "{v}: {mean}");
+            assert!(
+                (mean - v * 31.0).abs() <= 1.0 / 16.0 + 1.0e-3,
+                "{v}: {mean}"
+            );
         }
         let w = Rgb::<f32>::WHITE.to_rgb565_dithered(3, 3);
         assert_eq!((w.r(), w.g(), w.b()), (31, 63, 31));
@@ -324,9 +333,21 @@ mod tests {
         // 256: sRGB 6.42, power 2.2 14.95; 1024: 1.93, 7.68; 4096: 0.80, 3.88 LSB.
         // The worst case is always the darkest step, where the curve is steepest.
         for (n, s, p) in [
-            (256, worst::<256>(Transfer::Srgb), worst::<256>(Transfer::Power(2.2))),
-            (1024, worst::<1024>(Transfer::Srgb), worst::<1024>(Transfer::Power(2.2))),
-            (4096, worst::<4096>(Transfer::Srgb), worst::<4096>(Transfer::Power(2.2))),
+            (
+                256,
+                worst::<256>(Transfer::Srgb),
+                worst::<256>(Transfer::Power(2.2)),
+            ),
+            (
+                1024,
+                worst::<1024>(Transfer::Srgb),
+                worst::<1024>(Transfer::Power(2.2)),
+            ),
+            (
+                4096,
+                worst::<4096>(Transfer::Srgb),
+                worst::<4096>(Transfer::Power(2.2)),
+            ),
         ] {
             std::println!("gamma table {n}: sRGB {s:.2} LSB, power 2.2 {p:.2} LSB");
         }

@@ -95,12 +95,17 @@ impl GlLight {
             self.quadratic_attenuation,
         ];
         let kind = if w == 0.0 {
-            LightKind::Directional { towards_light: [x, y, z] }
+            LightKind::Directional {
+                towards_light: [x, y, z],
+            }
         } else {
             let position = [x / w, y / w, z / w];
             let cutoff = finite("GL_SPOT_CUTOFF", self.spot_cutoff)?;
             if cutoff == 180.0 {
-                LightKind::Point { position, attenuation }
+                LightKind::Point {
+                    position,
+                    attenuation,
+                }
             } else if (0.0..=90.0).contains(&cutoff) {
                 LightKind::Spot {
                     position,

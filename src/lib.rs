@@ -8,6 +8,11 @@
     trivial_casts,
     rustdoc::broken_intra_doc_links
 )]
+// `add`, `mul`, … on vectors and colours saturate; they are deliberately not the
+// operator traits, whose overflow semantics differ.
+#![allow(clippy::should_implement_trait)]
+// `!(x > 0.0)` is the NaN-aware test the float tiers mean.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 #[cfg(test)]
 extern crate std;
@@ -29,7 +34,9 @@ pub mod vector;
 pub mod prelude {
     pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
     pub use crate::error::ParamError;
-    pub use crate::light::{AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight};
+    pub use crate::light::{
+        AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight,
+    };
     pub use crate::lighting::{
         BlinnPhong, Full, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer, NoFog, Phong,
         Terms,

@@ -26,7 +26,11 @@ pub struct LightColors<S> {
 
 impl<S: Scalar> LightColors<S> {
     /// Validated colours: NaN, infinite or negative channels are rejected.
-    pub fn new(ambient: [f32; 3], diffuse: [f32; 3], specular: [f32; 3]) -> Result<Self, ParamError> {
+    pub fn new(
+        ambient: [f32; 3],
+        diffuse: [f32; 3],
+        specular: [f32; 3],
+    ) -> Result<Self, ParamError> {
         Ok(Self {
             ambient: Rgb::try_from_f32("light ambient", ambient)?,
             diffuse: Rgb::try_from_f32("light diffuse", diffuse)?,
@@ -76,7 +80,7 @@ impl<S: Scalar> Prepared<S> {
             specular: c.specular.mul(m.specular),
             transmission: c.specular.mul(m.transmission),
             half: match (l, v) {
-                (Some(l), Some(v)) => Some(l.add(v).normalize()),
+                (Some(l), Some(v)) => Some(S::normalize_precise(l.add(v))),
                 _ => None,
             },
         }
@@ -154,7 +158,8 @@ impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for [L; K] {
         self.iter_mut().for_each(|l| l.prepare(material, view));
     }
     fn constant_ambient(&self) -> Rgb<S> {
-        self.iter().fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
+        self.iter()
+            .fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
     }
     #[inline(always)]
     fn for_each<F: FnMut(Incident<'_, S>)>(&self, p: &Point3<S>, mut f: F) {
@@ -170,7 +175,8 @@ impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for heapless::Vec<L,
         self.iter_mut().for_each(|l| l.prepare(material, view));
     }
     fn constant_ambient(&self) -> Rgb<S> {
-        self.iter().fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
+        self.iter()
+            .fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
     }
     #[inline(always)]
     fn for_each<F: FnMut(Incident<'_, S>)>(&self, p: &Point3<S>, mut f: F) {
@@ -290,7 +296,11 @@ impl<G> Attenuation<G> {
     /// No attenuation (`a = 1, b = c = 0`).
     pub fn none<S: Scalar<Geo = G>>() -> Self {
         Self {
-            k: [S::geo_from_f32(1.0), S::geo_from_f32(0.0), S::geo_from_f32(0.0)],
+            k: [
+                S::geo_from_f32(1.0),
+                S::geo_from_f32(0.0),
+                S::geo_from_f32(0.0),
+            ],
             constant: true,
         }
     }
@@ -303,7 +313,10 @@ impl<G> Attenuation<G> {
     {
         // 1/(a + d·(b + c·d))
         let [a, b, c] = self.k;
-        S::geo_recip(S::geo_add(a, S::geo_mul(d, S::geo_add(b, S::geo_mul(c, d)))))
+        S::geo_recip(S::geo_add(
+            a,
+            S::geo_mul(d, S::geo_add(b, S::geo_mul(c, d))),
+        ))
     }
 }
 
@@ -568,7 +581,11 @@ impl<S: Scalar> AnyLight<S> {
             LightKind::Point {
                 position,
                 attenuation: [a, b, c],
-            } => Self::Point(PointLight::new(position, Attenuation::new::<S>(a, b, c)?, colors)?),
+            } => Self::Point(PointLight::new(
+                position,
+                Attenuation::new::<S>(a, b, c)?,
+                colors,
+            )?),
             LightKind::Spot {
                 position,
                 axis,

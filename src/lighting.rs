@@ -62,7 +62,12 @@ pub trait Model: Copy + Default + core::fmt::Debug {
 
 /// A model from four constants: `SPEC` is 0 (none), 1 (Phong) or 2 (Blinn-Phong).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct Terms<const SPEC: u8, const BRILLIANCE: bool, const FRESNEL: bool, const TRANSMISSION: bool>;
+pub struct Terms<
+    const SPEC: u8,
+    const BRILLIANCE: bool,
+    const FRESNEL: bool,
+    const TRANSMISSION: bool,
+>;
 
 impl<const SPEC: u8, const BRILLIANCE: bool, const FRESNEL: bool, const TRANSMISSION: bool> Model
     for Terms<SPEC, BRILLIANCE, FRESNEL, TRANSMISSION>
@@ -134,7 +139,10 @@ impl<S: Scalar> Viewer<S> for InfiniteViewer<S> {
     #[inline(always)]
     fn view(&self, p: &Point3<S>) -> (Vec3<S>, S::Geo) {
         let d = &self.dir_geo;
-        let along = S::geo_add(S::geo_add(S::geo_mul(p.x, d.x), S::geo_mul(p.y, d.y)), S::geo_mul(p.z, d.z));
+        let along = S::geo_add(
+            S::geo_add(S::geo_mul(p.x, d.x), S::geo_mul(p.y, d.y)),
+            S::geo_mul(p.z, d.z),
+        );
         (self.dir, S::geo_sub(S::geo_from_f32(0.0), along))
     }
 }
@@ -258,13 +266,25 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
     /// Lights and a material, the viewer at infinity on +z, no fog and no global
     /// ambient light.
     pub fn new(lights: L, material: Material<S>) -> Self {
-        Self::with_parts(lights, material, Rgb::BLACK, InfiniteViewer::default(), NoFog)
+        Self::with_parts(
+            lights,
+            material,
+            Rgb::BLACK,
+            InfiniteViewer::default(),
+            NoFog,
+        )
     }
 }
 
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting<S, L, M, V, F> {
     /// Every part at once.
-    pub fn with_parts(mut lights: L, material: Material<S>, global_ambient: Rgb<S>, viewer: V, fog: F) -> Self {
+    pub fn with_parts(
+        mut lights: L,
+        material: Material<S>,
+        global_ambient: Rgb<S>,
+        viewer: V,
+        fog: F,
+    ) -> Self {
         lights.prepare(&material, viewer.constant_dir());
         let base = material
             .emission
@@ -289,22 +309,46 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The same configuration with another viewer.
     pub fn with_viewer<V2: Viewer<S>>(self, viewer: V2) -> Lighting<S, L, M, V2, F> {
-        Lighting::with_parts(self.lights, self.material, self.global_ambient, viewer, self.fog)
+        Lighting::with_parts(
+            self.lights,
+            self.material,
+            self.global_ambient,
+            viewer,
+            self.fog,
+        )
     }
 
     /// The same configuration with fog.
     pub fn with_fog<F2: FogModel<S>>(self, fog: F2) -> Lighting<S, L, M, V, F2> {
-        Lighting::with_parts(self.lights, self.material, self.global_ambient, self.viewer, fog)
+        Lighting::with_parts(
+            self.lights,
+            self.material,
+            self.global_ambient,
+            self.viewer,
+            fog,
+        )
     }
 
     /// The same configuration with another material model.
     pub fn with_model<M2: Model>(self) -> Lighting<S, L, M2, V, F> {
-        Lighting::with_parts(self.lights, self.material, self.global_ambient, self.viewer, self.fog)
+        Lighting::with_parts(
+            self.lights,
+            self.material,
+            self.global_ambient,
+            self.viewer,
+            self.fog,
+        )
     }
 
     /// The same lights and viewer with another material.
     pub fn with_material(self, material: Material<S>) -> Self {
-        Self::with_parts(self.lights, material, self.global_ambient, self.viewer, self.fog)
+        Self::with_parts(
+            self.lights,
+            material,
+            self.global_ambient,
+            self.viewer,
+            self.fog,
+        )
     }
 
     /// Whether [`Lighting::shade`] reads the surface position (point or spot lights,
@@ -345,14 +389,23 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// One light's (per-point ambient, diffuse + specular + transmission).
     #[inline(always)]
-    fn light_terms(&self, inc: &Incident<'_, S>, n: Vec3<S>, v: Vec3<S>) -> (Option<Rgb<S>>, Rgb<S>) {
+    fn light_terms(
+        &self,
+        inc: &Incident<'_, S>,
+        n: Vec3<S>,
+        v: Vec3<S>,
+    ) -> (Option<Rgb<S>>, Rgb<S>) {
         let c = inc.colors;
         let m = &self.material;
         let nl = n.dot(inc.l);
         let mut direct = Rgb::BLACK;
         if nl > S::ZERO {
             // diffuse: kd·Id·(N·L)^b
-            let d = if M::BRILLIANCE { nl.min1().powi(m.brilliance as u16) } else { nl };
+            let d = if M::BRILLIANCE {
+                nl.min1().powi(m.brilliance as u16)
+            } else {
+                nl
+            };
             direct = c.diffuse.scale(d);
             // specular: ks·Is·f(β)·x^n, x = R·V or N·H
             let x = match M::SPECULAR {
@@ -364,13 +417,17 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
                 let mut s = x.min1().powi(m.shininess);
                 if M::FRESNEL {
                     // Schlick: F0 + (1 − F0)(1 − cos β)^5, cos β = N·L
-                    let f = m.fresnel_f0.add(S::ONE.sub(m.fresnel_f0).mul(S::ONE.sub(nl.min1()).powi(5)));
+                    let f = m
+                        .fresnel_f0
+                        .add(S::ONE.sub(m.fresnel_f0).mul(S::ONE.sub(nl.min1()).powi(5)));
                     s = s.mul(f);
                 }
                 direct = direct.add_scaled(c.specular, s);
             }
         } else if M::TRANSMISSION && nl < S::ZERO {
-            direct = c.transmission.scale(transmission(n, inc.l, v, m.eta, nl).powi(m.transmission_exponent));
+            direct = c
+                .transmission
+                .scale(transmission(n, inc.l, v, m.eta, nl).powi(m.transmission_exponent));
         }
         let ambient = inc.ambient_per_point.then_some(c.ambient);
         match inc.scale {
@@ -387,8 +444,13 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 fn transmission<S: Scalar>(n: Vec3<S>, l: Vec3<S>, v: Vec3<S>, eta: S, nl: S) -> S {
     // incident d = −L, normal on the incoming side −N, c1 = −N·L = cos θi > 0
     let c1 = S::ZERO.sub(nl);
-    // cos² θt = 1 − η²(1 − c1²)
-    let k = S::ONE.sub(eta.mul(eta).mul(S::ONE.sub(c1.mul(c1))));
+    // cos² θt = 1 − η·a with a = η·sin² θi. a ≥ 1 implies η ≥ 1 and η·a ≥ 1: total
+    // internal reflection. Testing it first keeps η·a below 2 (the fixed tiers' range).
+    let a = eta.mul(S::ONE.sub(c1.mul(c1)));
+    if a >= S::ONE {
+        return S::ZERO;
+    }
+    let k = S::ONE.sub(eta.mul(a));
     if k <= S::ZERO {
         return S::ZERO;
     }

@@ -73,7 +73,14 @@ pub enum AmbientSource {
 impl MaterialDesc {
     /// The seeds' classic parameterisation: object colour `Io`, ambient `ka`,
     /// diffuse `kd` (coloured: `kd·Io`), specular `ks` (white), exponent `n`.
-    pub fn classic(object: [f32; 3], ambient: AmbientSource, ka: f32, kd: f32, ks: f32, n: f32) -> Self {
+    pub fn classic(
+        object: [f32; 3],
+        ambient: AmbientSource,
+        ka: f32,
+        kd: f32,
+        ks: f32,
+        n: f32,
+    ) -> Self {
         let ambient = match ambient {
             AmbientSource::Light => [ka; 3],
             AmbientSource::Object => object.map(|c| ka * c),

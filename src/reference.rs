@@ -127,7 +127,10 @@ impl Reference<'_> {
         for light in self.lights {
             let (l, factor) = match light.kind {
                 LightKind::Directional { towards_light } => (normalize(v(towards_light)), 1.0),
-                LightKind::Point { position, attenuation } => {
+                LightKind::Point {
+                    position,
+                    attenuation,
+                } => {
                     let to_light = sub(v(position), p);
                     let d = length(to_light);
                     (normalize(to_light), attenuation_factor(attenuation, d))
@@ -186,7 +189,10 @@ impl Reference<'_> {
                 if k > 0.0 {
                     let t = sub(scale(n, libm::sqrt(k) - eta * c1), scale(l, eta));
                     let tv = dot(t, view).clamp(0.0, 1.0);
-                    c = scale(mul(v(light.specular), v(m.transmission)), powi(tv, m.transmission_exponent));
+                    c = scale(
+                        mul(v(light.specular), v(m.transmission)),
+                        powi(tv, m.transmission_exponent),
+                    );
                 }
             }
             direct = add(direct, scale(c, factor));

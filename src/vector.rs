@@ -70,7 +70,11 @@ impl<S: Scalar> Vec3<S> {
     /// `−a`.
     #[inline(always)]
     pub fn neg(self) -> Self {
-        Self::new(S::ZERO.sub(self.x), S::ZERO.sub(self.y), S::ZERO.sub(self.z))
+        Self::new(
+            S::ZERO.sub(self.x),
+            S::ZERO.sub(self.y),
+            S::ZERO.sub(self.z),
+        )
     }
 
     /// `a / |a|` (see [`Scalar::normalize`] for tiny and zero vectors).
@@ -93,11 +97,19 @@ pub type Point3<S> = Vec3<<S as Scalar>::Geo>;
 /// Converts an `f32` position to the geometry type of tier `S` (saturating, NaN → 0).
 #[inline]
 pub fn point_from_f32<S: Scalar>(p: [f32; 3]) -> Point3<S> {
-    Vec3::new(S::geo_from_f32(p[0]), S::geo_from_f32(p[1]), S::geo_from_f32(p[2]))
+    Vec3::new(
+        S::geo_from_f32(p[0]),
+        S::geo_from_f32(p[1]),
+        S::geo_from_f32(p[2]),
+    )
 }
 
 /// `a − b` for positions (saturating).
 #[inline(always)]
 pub fn point_sub<S: Scalar>(a: Point3<S>, b: Point3<S>) -> Point3<S> {
-    Vec3::new(S::geo_sub(a.x, b.x), S::geo_sub(a.y, b.y), S::geo_sub(a.z, b.z))
+    Vec3::new(
+        S::geo_sub(a.x, b.x),
+        S::geo_sub(a.y, b.y),
+        S::geo_sub(a.z, b.z),
+    )
 }

@@ -53,7 +53,11 @@ impl<const NEWTON: u8> Q14<NEWTON> {
             return Self::normalize(v);
         }
         // split |v|² = t·2^-16·2^(4−k) with k = 2 or 4 (see `normalize`)
-        let (t, sh) = if s >= 1 << 28 { (s >> 14, 15) } else { (s >> 12, 14) };
+        let (t, sh) = if s >= 1 << 28 {
+            (s >> 14, 15)
+        } else {
+            (s >> 12, 14)
+        };
         let y = rsqrt_q14_mantissa(t, NEWTON) as i32;
         Self::scale_unit(v, y, sh)
     }
@@ -66,6 +70,14 @@ impl<const NEWTON: u8> Q14<NEWTON> {
             Self::from_raw((v.y.0 * y + r) >> shift),
             Self::from_raw((v.z.0 * y + r) >> shift),
         )
+    }
+}
+
+impl<const A: u8> Vec3<Q14<A>> {
+    /// The same raw values in a tier with another Newton step count.
+    #[inline(always)]
+    fn map_tier<const B: u8>(self) -> Vec3<Q14<B>> {
+        Vec3::new(Q14(self.x.0), Q14(self.y.0), Q14(self.z.0))
     }
 }
 
@@ -167,6 +179,11 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
     }
 
     #[inline]
+    fn normalize_precise(v: Vec3<Self>) -> Vec3<Self> {
+        Q14::<3>::normalize(Vec3::new(Q14(v.x.0), Q14(v.y.0), Q14(v.z.0))).map_tier()
+    }
+
+    #[inline]
     fn geo_from_f32(v: f32) -> Geo16 {
         geo16_from_f32(v)
     }
@@ -188,7 +205,7 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
     }
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
-        Self(((g.to_bits().clamp(0, 1 << 16) + 2) >> 2) as i32)
+        Self((g.to_bits().clamp(0, 1 << 16) + 2) >> 2)
     }
     #[inline]
     fn geo_recip(g: Geo16) -> Self {
@@ -236,8 +253,8 @@ pub(crate) fn geo16_direction(v: Vec3<Geo16>, newton: u8) -> (Vec3<i32>, Geo16) 
     }
     let (t, k) = super::rsqrt::split_u64(s);
     let r = super::rsqrt::rsqrt_q30_mantissa(t, newton) as i64; // Q30
-    // |v|² (raw) = s′·2^(64−k): 1/|v|raw = r·2^(−30)·2^((k−64)/2)
-    // unit component (Q30) = c·r·2^((k−64)/2) = c·r ≫ (32 − k/2)
+                                                                // |v|² (raw) = s′·2^(64−k): 1/|v|raw = r·2^(−30)·2^((k−64)/2)
+                                                                // unit component (Q30) = c·r·2^((k−64)/2) = c·r ≫ (32 − k/2)
     let sh = 32 - k / 2;
     let unit = |c: i64| round_shr(c * r, sh).clamp(-(1 << 30), 1 << 30) as i32;
     // |v| (raw Q16) = √s′·2^(32−k/2); √s′ = s′·r (Q30)

@@ -132,6 +132,12 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     }
 
     #[inline]
+    fn normalize_precise(v: Vec3<Self>) -> Vec3<Self> {
+        let n = Q30::<3>::normalize(Vec3::new(Q30(v.x.0), Q30(v.y.0), Q30(v.z.0)));
+        Vec3::new(Self(n.x.0), Self(n.y.0), Self(n.z.0))
+    }
+
+    #[inline]
     fn geo_from_f32(v: f32) -> Geo16 {
         geo16_from_f32(v)
     }
@@ -153,7 +159,7 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     }
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
-        Self((g.to_bits().clamp(0, 1 << 16) as i32) << 14)
+        Self(g.to_bits().clamp(0, 1 << 16) << 14)
     }
     #[inline]
     fn geo_recip(g: Geo16) -> Self {

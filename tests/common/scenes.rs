@@ -1,0 +1,545 @@
+//! Random lighting samples for comparing the tiers with the f64 reference.
+//!
+//! Shared by `tests/lighting_accuracy.rs` and `examples/accuracy.rs` (included with
+//! `#[path]`), so the README's figures and the asserted bounds come from one
+//! generator.
+
+#![allow(dead_code)]
+
+use fixshade::light::{AnyLight, LightDesc, LightKind};
+use fixshade::lighting::{InfiniteViewer, Lighting, LinearFog, LocalViewer, Model};
+use fixshade::material::{Material, MaterialDesc};
+use fixshade::num::Scalar;
+use fixshade::reference::{to_u8, FogDesc, ModelDesc, Reference, ViewerDesc};
+use fixshade::vector::{point_from_f32, Vec3};
+use proptest::prelude::*;
+
+/// The lighting term a sample isolates (all others off or zero).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Term {
+    Ambient,
+    Diffuse,
+    Brilliance,
+    Phong,
+    BlinnPhong,
+    Fresnel,
+    Transmission,
+    PointAttenuation,
+    Spot,
+    LocalViewer,
+    Fog,
+    Everything,
+}
+
+pub const TERMS: [Term; 12] = [
+    Term::Ambient,
+    Term::Diffuse,
+    Term::Brilliance,
+    Term::Phong,
+    Term::BlinnPhong,
+    Term::Fresnel,
+    Term::Transmission,
+    Term::PointAttenuation,
+    Term::Spot,
+    Term::LocalViewer,
+    Term::Fog,
+    Term::Everything,
+];
+
+/// Which model type a term is evaluated with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelKind {
+    Lambert,
+    Brilliance,
+    Phong,
+    Blinn,
+    Full,
+}
+
+impl Term {
+    pub fn model(self) -> ModelKind {
+        match self {
+            Term::Ambient | Term::Diffuse => ModelKind::Lambert,
+            Term::Brilliance => ModelKind::Brilliance,
+            Term::Phong => ModelKind::Phong,
+            Term::Fresnel | Term::Transmission | Term::Everything => ModelKind::Full,
+            _ => ModelKind::Blinn,
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Term::Ambient => "ambient + emission",
+            Term::Diffuse => "Lambert diffuse",
+            Term::Brilliance => "diffuse brilliance (N·L)^b",
+            Term::Phong => "Phong specular (R·V)^n",
+            Term::BlinnPhong => "Blinn-Phong specular (N·H)^n",
+            Term::Fresnel => "Fresnel angle factor f(β)",
+            Term::Transmission => "transmission (T·V)^n",
+            Term::PointAttenuation => "point light, 1/(a+bd+cd²)",
+            Term::Spot => "spot light cos^e φ",
+            Term::LocalViewer => "local viewer",
+            Term::Fog => "linear fog",
+            Term::Everything => "all terms, 1-4 mixed lights",
+        }
+    }
+}
+
+/// One shading problem: a scene and a surface point.
+#[derive(Clone, Debug)]
+pub struct Sample {
+    pub lights: Vec<LightDesc>,
+    pub material: MaterialDesc,
+    pub global_ambient: [f32; 3],
+    pub viewer: ViewerDesc,
+    pub fog: Option<FogDesc>,
+    pub p: [f32; 3],
+    pub n: [f32; 3],
+    pub model: ModelKind,
+}
+
+fn norm(v: [f64; 3]) -> [f64; 3] {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    [v[0] / l, v[1] / l, v[2] / l]
+}
+fn f32s(v: [f64; 3]) -> [f32; 3] {
+    [v[0] as f32, v[1] as f32, v[2] as f32]
+}
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+/// A unit vector at angle `theta` from `axis`, azimuth `phi`.
+fn around(axis: [f64; 3], theta: f64, phi: f64) -> [f64; 3] {
+    let a = norm(axis);
+    let helper = if a[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let u = norm(cross(a, helper));
+    let w = cross(a, u);
+    let (s, c) = theta.sin_cos();
+    let (sp, cp) = phi.sin_cos();
+    norm([
+        a[0] * c + (u[0] * cp + w[0] * sp) * s,
+        a[1] * c + (u[1] * cp + w[1] * sp) * s,
+        a[2] * c + (u[2] * cp + w[2] * sp) * s,
+    ])
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+prop_compose! {
+    fn colour(max: f32)(r in 0.0..=max, g in 0.0..=max, b in 0.0..=max) -> [f32; 3] { [r, g, b] }
+}
+
+/// A range of specular exponents (the error of a power grows with the exponent).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Band {
+    /// n in 1..=64
+    Low,
+    /// n in 65..=256
+    Mid,
+    /// n in 257..=1024
+    High,
+}
+
+pub const BANDS: [Band; 3] = [Band::Low, Band::Mid, Band::High];
+
+impl Band {
+    pub fn range(self) -> (u32, u32) {
+        match self {
+            Band::Low => (1, 64),
+            Band::Mid => (65, 256),
+            Band::High => (257, 1024),
+        }
+    }
+}
+
+/// Specular exponents in a band.
+pub fn shininess(band: Band) -> impl Strategy<Value = f32> {
+    let (lo, hi) = band.range();
+    (lo..=hi).prop_map(|n| n as f32)
+}
+
+/// A random sample isolating `term`. Light colours are scaled by 0.9/lights so the
+/// light-dependent sum stays below 2 (the fixed tiers' range) before fog.
+pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
+    let lights_n = if term == Term::Everything {
+        1usize..=4
+    } else {
+        1usize..=1
+    };
+    (
+        lights_n,
+        proptest::collection::vec(
+            (
+                0.0f64..1.0,
+                0.0f64..1.0,
+                0.0f64..1.0,
+                0.0f64..1.0,
+                colour(1.0),
+            ),
+            4,
+        ),
+        colour(1.0),
+        colour(1.0),
+        colour(1.0),
+        shininess(band),
+        (0.0f64..1.3, 0.0f64..6.3),
+        (-3.0f32..3.0, -3.0f32..3.0, -3.0f32..3.0),
+        (0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0),
+    )
+        .prop_map(
+            move |(k, lights_raw, ka, kd, ks, n_exp, (nt, np), p, extra)| {
+                build(
+                    term,
+                    k,
+                    &lights_raw,
+                    ka,
+                    kd,
+                    ks,
+                    n_exp,
+                    nt,
+                    np,
+                    [p.0, p.1, p.2],
+                    extra,
+                )
+            },
+        )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn build(
+    term: Term,
+    k: usize,
+    lights_raw: &[(f64, f64, f64, f64, [f32; 3])],
+    ka: [f32; 3],
+    kd: [f32; 3],
+    ks: [f32; 3],
+    n_exp: f32,
+    nt: f64,
+    np: f64,
+    p: [f32; 3],
+    extra: (f64, f64, f64),
+) -> Sample {
+    let local = matches!(term, Term::LocalViewer | Term::Everything) && extra.0 < 0.7;
+    let eye = [0.5f32, -0.3, 8.0];
+    let viewer = if local {
+        ViewerDesc::Local(eye)
+    } else {
+        ViewerDesc::Infinite([0.0, 0.0, 1.0])
+    };
+    let pd = [p[0] as f64, p[1] as f64, p[2] as f64];
+    let v = match viewer {
+        ViewerDesc::Local(e) => norm([
+            e[0] as f64 - pd[0],
+            e[1] as f64 - pd[1],
+            e[2] as f64 - pd[2],
+        ]),
+        ViewerDesc::Infinite(d) => norm([d[0] as f64, d[1] as f64, d[2] as f64]),
+    };
+    // the normal: within ~75° of the viewer
+    let n = around(v, nt, np);
+    let specular_term = matches!(
+        term,
+        Term::Phong | Term::BlinnPhong | Term::Fresnel | Term::Everything
+    );
+    let scale = 0.9 / k as f32;
+    let mut lights = Vec::new();
+    for (i, &(a, b, c, d, col)) in lights_raw.iter().take(k).enumerate() {
+        let col = col.map(|x| x * scale);
+        // direction to the light: near the specular direction half of the time, else anywhere
+        // in the hemisphere around N (or behind it for transmission)
+        let l = if specular_term && a < 0.5 {
+            let spread = 2.0 / (n_exp as f64).sqrt();
+            if term == Term::Phong {
+                // R near V: L = reflect(V') about N, V' = V tilted
+                let vt = around(v, b * spread, c * std::f64::consts::TAU);
+                let nv = dot(n, vt);
+                norm([
+                    2.0 * nv * n[0] - vt[0],
+                    2.0 * nv * n[1] - vt[1],
+                    2.0 * nv * n[2] - vt[2],
+                ])
+            } else {
+                // H near N: L = reflect(V) about H
+                let h = around(n, b * spread, c * std::f64::consts::TAU);
+                let hv = dot(h, v);
+                norm([
+                    2.0 * hv * h[0] - v[0],
+                    2.0 * hv * h[1] - v[1],
+                    2.0 * hv * h[2] - v[2],
+                ])
+            }
+        } else if term == Term::Transmission {
+            around([-n[0], -n[1], -n[2]], b * 1.5, c * std::f64::consts::TAU)
+        } else {
+            around(n, b * 1.6, c * std::f64::consts::TAU)
+        };
+        let dist = 0.5 + d * 15.0;
+        let pos = f32s([
+            pd[0] + l[0] * dist,
+            pd[1] + l[1] * dist,
+            pd[2] + l[2] * dist,
+        ]);
+        let att = [1.0, (b * 0.3) as f32, (c * 0.05) as f32];
+        let kind_pick = if term == Term::Everything {
+            (i as f64 * 0.37 + a) % 1.0
+        } else {
+            0.0
+        };
+        let kind = match term {
+            Term::PointAttenuation => LightKind::Point {
+                position: pos,
+                attenuation: att,
+            },
+            Term::Spot => spot(pos, l, extra, att),
+            Term::Everything if kind_pick > 0.66 => spot(pos, l, extra, att),
+            Term::Everything if kind_pick > 0.33 => LightKind::Point {
+                position: pos,
+                attenuation: att,
+            },
+            _ => LightKind::Directional {
+                towards_light: f32s(l),
+            },
+        };
+        lights.push(LightDesc {
+            kind,
+            ambient: if matches!(term, Term::Ambient | Term::Everything) {
+                col.map(|x| x * 0.5)
+            } else {
+                [0.0; 3]
+            },
+            diffuse: col,
+            specular: col,
+        });
+    }
+    let none = [0.0f32; 3];
+    let mut m = MaterialDesc {
+        emission: none,
+        ambient: none,
+        diffuse: kd,
+        specular: none,
+        shininess: n_exp,
+        brilliance: 1,
+        fresnel_f0: 1.0,
+        transmission: none,
+        transmission_exponent: 1.0,
+        refractive_index: 1.0,
+    };
+    let mut global_ambient = none;
+    match term {
+        Term::Ambient => {
+            m.ambient = ka;
+            m.emission = ks.map(|x| x * 0.3);
+            m.diffuse = none;
+            global_ambient = [0.3, 0.3, 0.3];
+        }
+        Term::Brilliance => m.brilliance = [1u8, 2, 4, 8][(extra.1 * 3.99) as usize],
+        Term::Phong | Term::BlinnPhong => {
+            m.diffuse = none;
+            m.specular = ks;
+        }
+        Term::Fresnel => {
+            m.diffuse = none;
+            m.specular = ks;
+            m.fresnel_f0 = extra.1 as f32;
+        }
+        Term::Transmission => {
+            m.diffuse = none;
+            m.transmission = ks;
+            m.transmission_exponent = (1.0 + extra.1 * 30.0).round() as f32;
+            m.refractive_index = (0.6 + extra.2 * 1.5) as f32;
+        }
+        Term::Everything => {
+            m.ambient = ka.map(|x| x * 0.5);
+            m.emission = [0.05, 0.02, 0.0];
+            m.specular = ks.map(|x| x * 0.5);
+            m.brilliance = [1u8, 2, 4, 8][(extra.1 * 3.99) as usize];
+            m.fresnel_f0 = extra.2 as f32;
+            m.transmission = ks.map(|x| x * 0.3);
+            m.transmission_exponent = 4.0;
+            m.refractive_index = 1.33;
+            global_ambient = [0.1, 0.1, 0.1];
+        }
+        _ => {}
+    }
+    let fog = matches!(term, Term::Fog | Term::Everything).then(|| FogDesc {
+        start: 2.0 + extra.2 as f32,
+        end: 9.0 + extra.1 as f32 * 4.0,
+        color: [0.5, 0.55, 0.6],
+    });
+    Sample {
+        lights,
+        material: m,
+        global_ambient,
+        viewer,
+        fog,
+        p,
+        n: f32s(n),
+        model: term.model(),
+    }
+}
+
+fn spot(pos: [f32; 3], l: [f64; 3], extra: (f64, f64, f64), att: [f32; 3]) -> LightKind {
+    // the axis points from the light back towards the point, tilted by up to 40°
+    let axis = around(
+        [-l[0], -l[1], -l[2]],
+        extra.2 * 0.7,
+        extra.1 * std::f64::consts::TAU,
+    );
+    LightKind::Spot {
+        position: pos,
+        axis: f32s(axis),
+        exponent: (extra.0 * 40.0).round() as f32,
+        cutoff_deg: 20.0 + extra.1 as f32 * 60.0,
+        attenuation: att,
+    }
+}
+
+/// Whether the sample sits within 10⁻³ of a discontinuity of the equation, where
+/// any rounding may switch a whole term on or off: `N·L = 0` (the specular term
+/// exists only for `N·L > 0`) or a spot cone's edge. The accuracy bounds exclude
+/// these samples; `tests/lighting_extremes.rs` covers them for panics and range.
+pub fn near_discontinuity(s: &Sample) -> bool {
+    let pd = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
+    let n = norm([s.n[0] as f64, s.n[1] as f64, s.n[2] as f64]);
+    s.lights.iter().any(|l| {
+        let (dir, cone) = match l.kind {
+            LightKind::Directional { towards_light } => {
+                (norm(towards_light.map(|x| x as f64)), None)
+            }
+            LightKind::Point { position, .. } => {
+                (norm([0, 1, 2].map(|i| position[i] as f64 - pd[i])), None)
+            }
+            LightKind::Spot {
+                position,
+                axis,
+                cutoff_deg,
+                ..
+            } => {
+                let d = norm([0, 1, 2].map(|i| position[i] as f64 - pd[i]));
+                let a = norm(axis.map(|x| x as f64));
+                let cos_phi = -dot(a, d);
+                (
+                    d,
+                    Some((cos_phi - (cutoff_deg as f64).to_radians().cos()).abs()),
+                )
+            }
+        };
+        dot(n, dir).abs() < 1.0e-3 || cone.is_some_and(|c| c < 1.0e-3)
+    })
+}
+
+/// The reference colour of a sample, 8 bits per channel.
+pub fn reference_u8(s: &Sample) -> [u8; 3] {
+    let r = Reference {
+        lights: &s.lights,
+        material: s.material,
+        global_ambient: s.global_ambient,
+        viewer: s.viewer,
+        fog: s.fog,
+        model: model_desc(s.model),
+    };
+    let p = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
+    let n = [s.n[0] as f64, s.n[1] as f64, s.n[2] as f64];
+    r.shade(p, n).map(to_u8)
+}
+
+type M0 = fixshade::lighting::Lambert;
+type MB = fixshade::lighting::Terms<0, true, false, false>;
+type MP = fixshade::lighting::Phong;
+type Mbp = fixshade::lighting::BlinnPhong;
+type MF = fixshade::lighting::Full;
+
+fn model_desc(m: ModelKind) -> ModelDesc {
+    match m {
+        ModelKind::Lambert => ModelDesc::of::<M0>(),
+        ModelKind::Brilliance => ModelDesc::of::<MB>(),
+        ModelKind::Phong => ModelDesc::of::<MP>(),
+        ModelKind::Blinn => ModelDesc::of::<Mbp>(),
+        ModelKind::Full => ModelDesc::of::<MF>(),
+    }
+}
+
+/// The tier's colour of a sample, 8 bits per channel.
+pub fn tier_u8<S: Scalar>(s: &Sample) -> [u8; 3] {
+    match s.model {
+        ModelKind::Lambert => eval::<S, M0>(s),
+        ModelKind::Brilliance => eval::<S, MB>(s),
+        ModelKind::Phong => eval::<S, MP>(s),
+        ModelKind::Blinn => eval::<S, Mbp>(s),
+        ModelKind::Full => eval::<S, MF>(s),
+    }
+}
+
+fn eval<S: Scalar, M: Model>(s: &Sample) -> [u8; 3] {
+    let lights: heapless::Vec<AnyLight<S>, 4> =
+        s.lights.iter().map(|d| AnyLight::new(d).unwrap()).collect();
+    let mat = Material::<S>::new(&s.material).unwrap();
+    let lit = Lighting::<S, _, M>::new(lights, mat)
+        .with_global_ambient(fixshade::color::Rgb::from_f32(s.global_ambient));
+    let p = point_from_f32::<S>(s.p);
+    let n = Vec3::<S>::from_f32(s.n);
+    let c = match (s.viewer, s.fog) {
+        (ViewerDesc::Infinite(d), None) => lit
+            .with_viewer(InfiniteViewer::new(d).unwrap())
+            .shade_normalizing(&p, n),
+        (ViewerDesc::Infinite(d), Some(f)) => lit
+            .with_viewer(InfiniteViewer::new(d).unwrap())
+            .with_fog(LinearFog::new(f.start, f.end, f.color).unwrap())
+            .shade_normalizing(&p, n),
+        (ViewerDesc::Local(e), None) => lit
+            .with_viewer(LocalViewer::new(e).unwrap())
+            .shade_normalizing(&p, n),
+        (ViewerDesc::Local(e), Some(f)) => lit
+            .with_viewer(LocalViewer::new(e).unwrap())
+            .with_fog(LinearFog::new(f.start, f.end, f.color).unwrap())
+            .shade_normalizing(&p, n),
+    };
+    let [r, g, b] = c.to_unorm(8);
+    [r as u8, g as u8, b as u8]
+}
+
+/// Largest channel difference in 8-bit LSBs.
+pub fn lsb_error(a: [u8; 3], b: [u8; 3]) -> u32 {
+    (0..3)
+        .map(|i| (a[i] as i32 - b[i] as i32).unsigned_abs())
+        .max()
+        .unwrap_or(0)
+}
+
+/// Max and mean error of tier `S` over `cases` samples of `term` (deterministic).
+pub fn measure<S: Scalar>(term: Term, band: Band, cases: u32, seed: u64) -> (u32, f64, Sample) {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut seed_bytes = [0u8; 32];
+    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let mut runner = TestRunner::new_with_rng(
+        Config::default(),
+        TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes),
+    );
+    let strat = sample(term, band);
+    let (mut max, mut sum) = (0u32, 0u64);
+    let mut worst = None;
+    let mut done = 0;
+    while done < cases {
+        let s = strat.new_tree(&mut runner).unwrap().current();
+        if near_discontinuity(&s) {
+            continue;
+        }
+        done += 1;
+        let e = lsb_error(tier_u8::<S>(&s), reference_u8(&s));
+        sum += e as u64;
+        if e >= max {
+            max = e;
+            worst = Some(s);
+        }
+    }
+    (max, sum as f64 / cases as f64, worst.unwrap())
+}
