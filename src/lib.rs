@@ -23,6 +23,7 @@ pub mod gl;
 pub mod light;
 pub mod lighting;
 pub mod material;
+pub mod mesh;
 pub mod num;
 pub mod raster;
 #[cfg(feature = "reference")]

@@ -1,0 +1,391 @@
+//! Face and vertex normals of an indexed triangle mesh (load-time work, `f32`
+//! storage with `f64` intermediate products).
+
+use super::error::{check_len, MeshError};
+use crate::num::{Geo16, Scalar, Q14};
+use crate::vector::Vec3;
+
+/// How [`vertex_normals`] weights the faces around a vertex.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Weighting {
+    /// `N_v = normalize(Σ (b − a) × (c − a))`: each face's normal weighted by
+    /// twice its area. Cheapest; large faces dominate, so a vertex whose faces are
+    /// split unevenly (a cube corner) leans towards the side with more area.
+    #[default]
+    Area,
+    /// `N_v = normalize(Σ α_f · n̂_f)`: each face's unit normal weighted by the
+    /// face's interior angle `α_f` at the vertex. Independent of how the faces
+    /// are triangulated (a cube corner gets exactly `(±1, ±1, ±1)/√3`).
+    Angle,
+}
+
+/// Checks every index against `vertices` before anything is written.
+fn check_indices(tris: &[[u16; 3]], vertices: usize) -> Result<(), MeshError> {
+    for (triangle, t) in tris.iter().enumerate() {
+        for &index in t {
+            if usize::from(index) >= vertices {
+                return Err(MeshError::IndexOutOfRange { triangle, index });
+            }
+        }
+    }
+    Ok(())
+}
+
+fn to64(p: [f32; 3]) -> [f64; 3] {
+    [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `(b − a) × (c − a)` in `f64`: exact enough, and finite for any finite `f32`
+/// positions (|component| < 2·(6.8·10³⁸)² ≪ 10³⁰⁸). Non-finite for NaN or
+/// infinite positions.
+fn face_cross(p: &[[f32; 3]], t: [u16; 3]) -> [f64; 3] {
+    let a = to64(p[usize::from(t[0])]);
+    let b = to64(p[usize::from(t[1])]);
+    let c = to64(p[usize::from(t[2])]);
+    cross(sub(b, a), sub(c, a))
+}
+
+/// `v / |v|` as `f32`, or zero when `|v|` is zero, denormal-small or not finite.
+fn unit_or_zero(v: [f64; 3]) -> [f32; 3] {
+    let len2 = dot(v, v);
+    if !(len2.is_finite() && len2 > 1.0e-300) {
+        return [0.0; 3];
+    }
+    let inv = 1.0 / libm::sqrt(len2);
+    [
+        (v[0] * inv) as f32,
+        (v[1] * inv) as f32,
+        (v[2] * inv) as f32,
+    ]
+}
+
+/// The unit normal of every triangle, `n̂ = normalize((b − a) × (c − a))`, into
+/// `out[..tris.len()]`; returns `tris.len()`.
+///
+/// The normal points to the side from which `a → b → c` is counter-clockwise
+/// (right-handed space). Degenerate triangles (zero area) and triangles with
+/// non-finite positions get the zero vector.
+///
+/// # Errors
+///
+/// [`MeshError::IndexOutOfRange`] for an index `≥ positions.len()`,
+/// [`MeshError::BufferTooSmall`] when `out.len() < tris.len()`. Nothing is
+/// written on error.
+///
+/// ```
+/// use fixshade::mesh::face_normals;
+/// let pos = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+/// let mut n = [[0.0f32; 3]; 2];
+/// assert_eq!(face_normals(&pos, &[[0, 1, 2], [0, 2, 1]], &mut n), Ok(2));
+/// assert_eq!(n, [[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]]);
+/// ```
+pub fn face_normals(
+    positions: &[[f32; 3]],
+    tris: &[[u16; 3]],
+    out: &mut [[f32; 3]],
+) -> Result<usize, MeshError> {
+    check_len(tris.len(), out.len())?;
+    check_indices(tris, positions.len())?;
+    for (o, &t) in out.iter_mut().zip(tris) {
+        *o = unit_or_zero(face_cross(positions, t));
+    }
+    Ok(tris.len())
+}
+
+/// The normal of every vertex, the normalised weighted sum of the normals of the
+/// faces around it (see [`Weighting`]), into `out[..positions.len()]`; returns
+/// `positions.len()`.
+///
+/// Vertices used by no triangle, and vertices whose weighted sum vanishes
+/// (degenerate faces only, or faces cancelling each other as on a two-sided
+/// sheet), get the **zero vector**. Faces with non-finite positions are skipped.
+/// With [`Weighting::Area`] the cross products are scaled by the largest one
+/// before summing in `f32`, so faces smaller than about 10⁻³⁰ of the largest
+/// face count as degenerate.
+///
+/// Triangles are expected counter-clockwise seen from outside (see
+/// [`face_normals`]); reversed triangles pull normals inwards.
+///
+/// # Errors
+///
+/// [`MeshError::IndexOutOfRange`] for an index `≥ positions.len()`,
+/// [`MeshError::BufferTooSmall`] when `out.len() < positions.len()`. Nothing
+/// is written on error.
+///
+/// ```
+/// use fixshade::mesh::{vertex_normals, Weighting};
+/// // two triangles folded 90° along the edge 0–1
+/// let pos = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let tris = [[0, 1, 2], [0, 3, 1]];
+/// let mut n = [[0.0f32; 3]; 4];
+/// vertex_normals(&pos, &tris, Weighting::Area, &mut n)?;
+/// let h = core::f32::consts::FRAC_1_SQRT_2;
+/// assert_eq!(n[0], [0.0, h, h]); // between +z and +y
+/// assert_eq!(n[2], [0.0, 0.0, 1.0]); // only the first face
+/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// ```
+pub fn vertex_normals(
+    positions: &[[f32; 3]],
+    tris: &[[u16; 3]],
+    weighting: Weighting,
+    out: &mut [[f32; 3]],
+) -> Result<usize, MeshError> {
+    let n = positions.len();
+    check_len(n, out.len())?;
+    check_indices(tris, n)?;
+    let out = &mut out[..n];
+    out.fill([0.0; 3]);
+    // Area: scale = 1 / max |(b − a) × (c − a)|, so every summand is ≤ 1.
+    let mut scale = 1.0f64;
+    if weighting == Weighting::Area {
+        let mut max = 0.0f64;
+        for &t in tris {
+            let c = face_cross(positions, t);
+            let m = c[0].abs().max(c[1].abs()).max(c[2].abs());
+            if m.is_finite() && m > max {
+                max = m;
+            }
+        }
+        if max > 0.0 {
+            scale = 1.0 / max;
+        }
+    }
+    for &t in tris {
+        let c = face_cross(positions, t);
+        if !(c[0].is_finite() && c[1].is_finite() && c[2].is_finite()) {
+            continue;
+        }
+        match weighting {
+            Weighting::Area => {
+                let w = [c[0] * scale, c[1] * scale, c[2] * scale];
+                for &i in &t {
+                    add(&mut out[usize::from(i)], w);
+                }
+            }
+            Weighting::Angle => {
+                let len = libm::sqrt(dot(c, c));
+                if !(len > 0.0 && len.is_finite()) {
+                    continue;
+                }
+                let unit = [c[0] / len, c[1] / len, c[2] / len];
+                for k in 0..3 {
+                    // α = atan2(|e1 × e2|, e1 · e2), e1, e2 the edges leaving corner k.
+                    let p = to64(positions[usize::from(t[k])]);
+                    let e1 = sub(to64(positions[usize::from(t[(k + 1) % 3])]), p);
+                    let e2 = sub(to64(positions[usize::from(t[(k + 2) % 3])]), p);
+                    let x = cross(e1, e2);
+                    let angle = libm::atan2(libm::sqrt(dot(x, x)), dot(e1, e2));
+                    if angle.is_finite() {
+                        let w = [unit[0] * angle, unit[1] * angle, unit[2] * angle];
+                        add(&mut out[usize::from(t[k])], w);
+                    }
+                }
+            }
+        }
+    }
+    for o in out.iter_mut() {
+        *o = unit_or_zero(to64(*o));
+    }
+    Ok(n)
+}
+
+/// `acc += w` (in `f32`; every summand is bounded, so the sum stays finite for
+/// fewer than 10³⁷ faces per vertex).
+fn add(acc: &mut [f32; 3], w: [f64; 3]) {
+    for (a, w) in acc.iter_mut().zip(w) {
+        *a += w as f32;
+    }
+}
+
+/// `p` in Q16.16, saturating at ±32768, NaN → 0.
+pub(crate) fn geo16(p: [f32; 3]) -> Vec3<Geo16> {
+    let c = <Q14 as Scalar>::geo_from_f32;
+    Vec3::new(c(p[0]), c(p[1]), c(p[2]))
+}
+
+/// Converts `f32` normals to tier `S` with [`Vec3::from_f32`] (saturating, NaN →
+/// 0), into `dst[..src.len()]`; returns `src.len()`.
+///
+/// # Errors
+///
+/// [`MeshError::BufferTooSmall`] when `dst.len() < src.len()`.
+///
+/// ```
+/// use fixshade::mesh::normals_to_tier;
+/// use fixshade::num::{Scalar, Q14};
+/// use fixshade::vector::Vec3;
+/// let mut dst = [Vec3::<Q14>::default(); 1];
+/// normals_to_tier(&[[0.0, 0.6, 0.8]], &mut dst)?;
+/// assert_eq!(dst[0].y, Q14::from_f32(0.6));
+/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// ```
+pub fn normals_to_tier<S: Scalar>(
+    src: &[[f32; 3]],
+    dst: &mut [Vec3<S>],
+) -> Result<usize, MeshError> {
+    check_len(src.len(), dst.len())?;
+    for (d, &s) in dst.iter_mut().zip(src) {
+        *d = Vec3::from_f32(s);
+    }
+    Ok(src.len())
+}
+
+/// Converts `f32` positions to [`Geo16`] (Q16.16, the input of the fixed-point
+/// vertex stage), saturating at ±32768, NaN → 0, into `dst[..src.len()]`;
+/// returns `src.len()`.
+///
+/// # Errors
+///
+/// [`MeshError::BufferTooSmall`] when `dst.len() < src.len()`.
+///
+/// ```
+/// use fixshade::mesh::positions_to_geo16;
+/// use fixshade::num::Geo16;
+/// use fixshade::vector::Vec3;
+/// let mut dst = [Vec3::new(Geo16::ZERO, Geo16::ZERO, Geo16::ZERO); 1];
+/// positions_to_geo16(&[[1.5, -2.0, 1.0e9]], &mut dst)?;
+/// assert_eq!(dst[0].x, Geo16::from_num(1.5));
+/// assert_eq!(dst[0].z, Geo16::MAX);
+/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// ```
+pub fn positions_to_geo16(src: &[[f32; 3]], dst: &mut [Vec3<Geo16>]) -> Result<usize, MeshError> {
+    check_len(src.len(), dst.len())?;
+    for (d, &s) in dst.iter_mut().zip(src) {
+        *d = geo16(s);
+    }
+    Ok(src.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit cube, corners shared, two triangles per face, CCW from outside.
+    pub(crate) fn cube() -> ([[f32; 3]; 8], [[u16; 3]; 12]) {
+        let mut p = [[0.0f32; 3]; 8];
+        for (i, v) in p.iter_mut().enumerate() {
+            *v = [
+                if i & 1 != 0 { 1.0 } else { -1.0 },
+                if i & 2 != 0 { 1.0 } else { -1.0 },
+                if i & 4 != 0 { 1.0 } else { -1.0 },
+            ];
+        }
+        let t = [
+            [0, 2, 3],
+            [0, 3, 1], // −z
+            [4, 5, 7],
+            [4, 7, 6], // +z
+            [0, 1, 5],
+            [0, 5, 4], // −y
+            [2, 6, 7],
+            [2, 7, 3], // +y
+            [0, 4, 6],
+            [0, 6, 2], // −x
+            [1, 3, 7],
+            [1, 7, 5], // +x
+        ];
+        (p, t)
+    }
+
+    #[test]
+    fn cube_faces_point_outwards() {
+        let (p, t) = cube();
+        let mut n = [[0.0f32; 3]; 12];
+        face_normals(&p, &t, &mut n).unwrap();
+        for (f, tri) in n.iter().zip(&t) {
+            let c = p[tri[0] as usize];
+            let d = f[0] * c[0] + f[1] * c[1] + f[2] * c[2];
+            assert_eq!(d, 1.0, "{f:?}");
+        }
+    }
+
+    #[test]
+    fn cube_vertex_normals() {
+        let (p, t) = cube();
+        let mut n = [[0.0f32; 3]; 8];
+        vertex_normals(&p, &t, Weighting::Angle, &mut n).unwrap();
+        let k = 1.0 / libm::sqrtf(3.0);
+        for (v, nv) in p.iter().zip(&n) {
+            for a in 0..3 {
+                assert!((nv[a] - v[a] * k).abs() < 1.0e-6, "{v:?} {nv:?}");
+            }
+        }
+        vertex_normals(&p, &t, Weighting::Area, &mut n).unwrap();
+        for (v, nv) in p.iter().zip(&n) {
+            let len = libm::sqrtf(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+            assert!((len - 1.0).abs() < 1.0e-6);
+            // same octant, within 20° of the diagonal
+            let cos = (nv[0] * v[0] + nv[1] * v[1] + nv[2] * v[2]) * k;
+            assert!(cos > 0.94, "{v:?} {nv:?}");
+        }
+    }
+
+    #[test]
+    fn errors_and_isolated_vertices() {
+        let (p, t) = cube();
+        let mut n = [[9.0f32; 3]; 8];
+        assert_eq!(
+            vertex_normals(&p, &t, Weighting::Area, &mut n[..7]),
+            Err(MeshError::BufferTooSmall { needed: 8, got: 7 })
+        );
+        assert_eq!(
+            vertex_normals(&p[..7], &t, Weighting::Area, &mut n),
+            Err(MeshError::IndexOutOfRange {
+                triangle: 2,
+                index: 7
+            })
+        );
+        assert_eq!(n, [[9.0; 3]; 8], "nothing written on error");
+        // a vertex without faces, a degenerate face
+        let p = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [5.0, 5.0, 5.0],
+        ];
+        vertex_normals(&p, &[[0, 1, 2]], Weighting::Angle, &mut n).unwrap();
+        assert_eq!(&n[..4], &[[0.0; 3]; 4]);
+        vertex_normals(&p, &[[0, 1, 2]], Weighting::Area, &mut n).unwrap();
+        assert_eq!(&n[..4], &[[0.0; 3]; 4]);
+        // two-sided sheet cancels
+        let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        vertex_normals(&p, &[[0, 1, 2], [0, 2, 1]], Weighting::Area, &mut n).unwrap();
+        assert_eq!(&n[..3], &[[0.0; 3]; 3]);
+    }
+
+    #[test]
+    fn non_finite_faces_are_skipped() {
+        let p = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [f32::NAN, 0.0, f32::INFINITY],
+        ];
+        let mut n = [[0.0f32; 3]; 4];
+        for w in [Weighting::Area, Weighting::Angle] {
+            vertex_normals(&p, &[[0, 1, 2], [0, 3, 1]], w, &mut n).unwrap();
+            assert_eq!(n[0], [0.0, 0.0, 1.0]);
+            assert_eq!(n[3], [0.0; 3]);
+        }
+        // huge but finite positions still work
+        let p = [[0.0, 0.0, 0.0], [3.0e38, 0.0, 0.0], [0.0, 3.0e38, 0.0]];
+        vertex_normals(&p, &[[0, 1, 2]], Weighting::Area, &mut n).unwrap();
+        assert_eq!(n[0], [0.0, 0.0, 1.0]);
+    }
+}
