@@ -152,45 +152,86 @@ impl<S: Scalar> Rgb<S> {
 const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
 
 /// An embedded-graphics colour that linear RGB converts to.
+///
+/// A colour has up to three integer channels with maxima [`OutputColor::CHANNEL_MAX`]
+/// (a grey colour uses only the first, holding the luminance); shading stages
+/// quantise into these channels and build the colour with
+/// [`OutputColor::from_channels`].
 pub trait OutputColor: embedded_graphics_core::pixelcolor::PixelColor {
-    /// Quantises a linear colour (no gamma).
-    fn from_linear<S: Scalar>(c: Rgb<S>) -> Self;
-    /// Quantises a linear colour through a gamma table.
-    fn from_linear_gamma<S: Scalar, const N: usize>(c: Rgb<S>, gamma: &GammaTable<N>) -> Self;
+    /// The largest value of each channel (0 for an unused channel).
+    const CHANNEL_MAX: [u32; 3];
+    /// The linear quantities the channels encode: `[r, g, b]`, or
+    /// `[luminance, 0, 0]` for grey.
+    #[inline(always)]
+    fn linear_channels<S: Scalar>(c: Rgb<S>) -> [S; 3] {
+        [c.r, c.g, c.b]
+    }
+    /// The colour of channel values already within [`OutputColor::CHANNEL_MAX`].
+    fn from_channels(ch: [u32; 3]) -> Self;
+
+    /// Quantises a linear colour (no gamma): each channel rounded to nearest.
+    #[inline]
+    fn from_linear<S: Scalar>(c: Rgb<S>) -> Self {
+        let l = Self::linear_channels(c);
+        let q = |v: S, max: u32| if max == 0 { 0 } else { (v.to_unorm(16) * max + 32767) / 65535 };
+        Self::from_channels([
+            q(l[0], Self::CHANNEL_MAX[0]),
+            q(l[1], Self::CHANNEL_MAX[1]),
+            q(l[2], Self::CHANNEL_MAX[2]),
+        ])
+    }
+
+    /// Quantises a linear colour through a gamma table (8-bit encoded value, then
+    /// rounded to the channel's bits).
+    #[inline]
+    fn from_linear_gamma<S: Scalar, const N: usize>(c: Rgb<S>, gamma: &GammaTable<N>) -> Self {
+        let l = Self::linear_channels(c);
+        let q = |v: S, max: u32| (gamma.apply(v) as u32 * max + 127) / 255;
+        Self::from_channels([
+            q(l[0], Self::CHANNEL_MAX[0]),
+            q(l[1], Self::CHANNEL_MAX[1]),
+            q(l[2], Self::CHANNEL_MAX[2]),
+        ])
+    }
 }
 
 impl OutputColor for Rgb888 {
+    const CHANNEL_MAX: [u32; 3] = [255, 255, 255];
+    #[inline(always)]
+    fn from_channels(ch: [u32; 3]) -> Self {
+        Rgb888::new(ch[0] as u8, ch[1] as u8, ch[2] as u8)
+    }
     #[inline]
     fn from_linear<S: Scalar>(c: Rgb<S>) -> Self {
         c.to_rgb888()
     }
-    #[inline]
-    fn from_linear_gamma<S: Scalar, const N: usize>(c: Rgb<S>, gamma: &GammaTable<N>) -> Self {
-        Rgb888::new(gamma.apply(c.r), gamma.apply(c.g), gamma.apply(c.b))
-    }
 }
 
 impl OutputColor for Rgb565 {
+    const CHANNEL_MAX: [u32; 3] = [31, 63, 31];
+    #[inline(always)]
+    fn from_channels(ch: [u32; 3]) -> Self {
+        Rgb565::new(ch[0] as u8, ch[1] as u8, ch[2] as u8)
+    }
     #[inline]
     fn from_linear<S: Scalar>(c: Rgb<S>) -> Self {
         c.to_rgb565()
     }
-    #[inline]
-    fn from_linear_gamma<S: Scalar, const N: usize>(c: Rgb<S>, gamma: &GammaTable<N>) -> Self {
-        // 8-bit gamma output, then rounded to 5/6 bits
-        let q = |v: S, max: u32| ((gamma.apply(v) as u32 * max + 127) / 255) as u8;
-        Rgb565::new(q(c.r, 31), q(c.g, 63), q(c.b, 31))
-    }
 }
 
 impl OutputColor for Gray8 {
+    const CHANNEL_MAX: [u32; 3] = [255, 0, 0];
+    #[inline(always)]
+    fn linear_channels<S: Scalar>(c: Rgb<S>) -> [S; 3] {
+        [c.luminance(), S::ZERO, S::ZERO]
+    }
+    #[inline(always)]
+    fn from_channels(ch: [u32; 3]) -> Self {
+        Gray8::new(ch[0] as u8)
+    }
     #[inline]
     fn from_linear<S: Scalar>(c: Rgb<S>) -> Self {
         c.to_gray8()
-    }
-    #[inline]
-    fn from_linear_gamma<S: Scalar, const N: usize>(c: Rgb<S>, gamma: &GammaTable<N>) -> Self {
-        Gray8::new(gamma.apply(c.luminance()))
     }
 }
 
@@ -268,6 +309,16 @@ impl<const N: usize> GammaTable<N> {
             table,
             bits: N.trailing_zeros(),
         })
+    }
+
+    /// The 8-bit encoded value of a linear value given as `u16`-scaled integer
+    /// (`v·65535`, values above 65535 clamp).
+    #[inline(always)]
+    pub fn apply_unorm16(&self, v: u32) -> u8 {
+        let sh = 16 - self.bits;
+        // nearest of the N entries: ⌊(v + half a step) / 2^(16 − bits)⌋, at most N − 1
+        let i = ((v.min(65535) + ((1 << sh) >> 1)) >> sh) as usize;
+        self.table.get(i.min(N - 1)).copied().unwrap_or(255)
     }
 
     /// The 8-bit encoded value of a linear value (clamped to [0, 1]).

@@ -28,6 +28,7 @@ pub mod num;
 pub mod raster;
 #[cfg(feature = "reference")]
 pub mod reference;
+pub mod shade;
 pub mod target;
 pub mod vector;
 

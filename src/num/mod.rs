@@ -133,6 +133,27 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
         Self::normalize(v)
     }
 
+    /// A renormalisation for interpolated normals, whose length stays near 1
+    /// (between about 0.7 and 1 for reasonably tessellated meshes): the same
+    /// result as [`Scalar::normalize`] for every input, possibly cheaper.
+    #[inline(always)]
+    fn normalize_interpolated(v: Vec3<Self>) -> Vec3<Self> {
+        Self::normalize(v)
+    }
+
+    /// Fraction bits of the rasterizer attribute a unit-range value becomes
+    /// (28 for Q14 and the float tiers, 30 for Q30): [`Scalar::to_attr`] is
+    /// `round(clamp(x, −2, 2) · 2^ATTR_FRAC)` saturated to `i32`.
+    const ATTR_FRAC: u32;
+    /// The value as a rasterizer attribute (see [`Scalar::ATTR_FRAC`]).
+    fn to_attr(self) -> i32;
+    /// The value of a rasterizer attribute (inverse of [`Scalar::to_attr`]).
+    fn from_attr(a: i32) -> Self;
+    /// A position coordinate as a rasterizer attribute: Q16.16, saturated.
+    fn geo_to_attr(g: Self::Geo) -> i32;
+    /// The position coordinate of a rasterizer attribute.
+    fn geo_from_attr(a: i32) -> Self::Geo;
+
     /// Converts a geometric value from `f32`: NaN becomes zero, values beyond the
     /// geometry range saturate.
     fn geo_from_f32(v: f32) -> Self::Geo;

@@ -178,6 +178,30 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         )
     }
 
+    #[inline(always)]
+    fn normalize_interpolated(v: Vec3<Self>) -> Vec3<Self> {
+        Self::normalize_near_unit(v)
+    }
+    const ATTR_FRAC: u32 = 28;
+    #[inline(always)]
+    fn to_attr(self) -> i32 {
+        // |raw| ≤ 2^15: raw·2^14 fits
+        self.0 << 14
+    }
+    #[inline(always)]
+    fn from_attr(a: i32) -> Self {
+        // round(a / 2^14) without overflow for any a
+        Self::from_raw(((a >> 13) + 1) >> 1)
+    }
+    #[inline(always)]
+    fn geo_to_attr(g: Geo16) -> i32 {
+        g.to_bits()
+    }
+    #[inline(always)]
+    fn geo_from_attr(a: i32) -> Geo16 {
+        Geo16::from_bits(a)
+    }
+
     #[inline]
     fn normalize_precise(v: Vec3<Self>) -> Vec3<Self> {
         Q14::<3>::normalize(Vec3::new(Q14(v.x.0), Q14(v.y.0), Q14(v.z.0))).map_tier()

@@ -131,6 +131,24 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
         )
     }
 
+    const ATTR_FRAC: u32 = 30;
+    #[inline(always)]
+    fn to_attr(self) -> i32 {
+        self.0
+    }
+    #[inline(always)]
+    fn from_attr(a: i32) -> Self {
+        Self(a)
+    }
+    #[inline(always)]
+    fn geo_to_attr(g: Geo16) -> i32 {
+        g.to_bits()
+    }
+    #[inline(always)]
+    fn geo_from_attr(a: i32) -> Geo16 {
+        Geo16::from_bits(a)
+    }
+
     #[inline]
     fn normalize_precise(v: Vec3<Self>) -> Vec3<Self> {
         let n = Q30::<3>::normalize(Vec3::new(Q30(v.x.0), Q30(v.y.0), Q30(v.z.0)));

@@ -1,0 +1,116 @@
+//! Flat shading: one colour per triangle, lit at its centroid.
+
+use super::{Encoder, ShadeVertex, Shading};
+use crate::color::OutputColor;
+use crate::light::LightSet;
+use crate::lighting::{FogModel, Lighting, Model, Viewer};
+use crate::num::Scalar;
+use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
+use crate::target::{DepthBuffer, Framebuffer};
+use crate::vector::Vec3;
+use core::marker::PhantomData;
+
+/// Flat shading: the triangle is lit once, at its centroid, with the normalised
+/// average of its vertex normals (equal to the face normal when the mesh gives
+/// each vertex of a face the face normal), and filled with that colour. Shows the
+/// seeds' Mach bands on curved surfaces; the cheapest mode.
+#[derive(Debug)]
+pub struct Flat<'l, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+{
+    lighting: &'l Lighting<S, L, M, V, F>,
+    encoder: E,
+    channels: [i32; 3],
+    color: PhantomData<C>,
+}
+
+impl<'l, S, L, M, V, F, E, C> Flat<'l, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+    E: Encoder<C>,
+    C: OutputColor,
+{
+    /// Flat shading with `lighting`, writing pixels through `encoder`.
+    pub fn new(lighting: &'l Lighting<S, L, M, V, F>, encoder: E) -> Self {
+        Self {
+            lighting,
+            encoder,
+            channels: [0; 3],
+            color: PhantomData,
+        }
+    }
+
+    /// Sets the colour [`SpanShader::shade_span`] fills with (what
+    /// [`Shading::draw`] does with the colour lit at the centroid).
+    pub fn set_color(&mut self, color: crate::color::Rgb<S>) {
+        self.channels = self.encoder.vertex(color);
+    }
+}
+
+/// Fills runs with the encoded colour of the triangle being drawn.
+impl<S, L, M, V, F, E, C> SpanShader<0> for Flat<'_, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+    E: Encoder<C>,
+    C: OutputColor,
+{
+    type Color = C;
+    #[inline]
+    fn shade_span(&mut self, x: i32, y: i32, _start: &[i32; 0], _step: &[i32; 0], out: &mut [C]) {
+        let mut x = x;
+        for p in out {
+            *p = self.encoder.pixel(self.channels, x, y);
+            x += 1;
+        }
+    }
+}
+
+impl<S, L, M, V, F, E, C> Shading<S> for Flat<'_, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+    E: Encoder<C>,
+    C: OutputColor,
+{
+    type Color = C;
+
+    fn draw<Fb: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut Fb,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+    ) -> DrawStats {
+        // n = normalize(n0 + n1 + n2); p = p0 + ((p1 − p0) + (p2 − p0))/3
+        let n = S::normalize(tri[0].normal.add(tri[1].normal).add(tri[2].normal));
+        let third = S::geo_from_f32(1.0 / 3.0);
+        let centroid = |a: S::Geo, b: S::Geo, c: S::Geo| {
+            S::geo_add(a, S::geo_mul(S::geo_add(S::geo_sub(b, a), S::geo_sub(c, a)), third))
+        };
+        let [p0, p1, p2] = tri.map(|t| t.position);
+        let p = Vec3::new(
+            centroid(p0.x, p1.x, p2.x),
+            centroid(p0.y, p1.y, p2.y),
+            centroid(p0.z, p1.z, p2.z),
+        );
+        self.set_color(self.lighting.shade(&p, n));
+        let v = [tri[0].raster([]), tri[1].raster([]), tri[2].raster([])];
+        draw_triangle(fb, depth, &v, opts, self)
+    }
+}

@@ -1,0 +1,124 @@
+//! Phong shading: normals interpolated per pixel, renormalised, lit per pixel.
+
+use super::{Encoder, ShadeVertex, Shading};
+use crate::color::OutputColor;
+use crate::light::LightSet;
+use crate::lighting::{FogModel, Lighting, Model, Viewer};
+use crate::num::Scalar;
+use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
+use crate::target::{DepthBuffer, Framebuffer};
+use crate::vector::Vec3;
+use core::marker::PhantomData;
+
+/// Phong shading: the vertex normals (as [`Scalar::to_attr`] attributes) are
+/// interpolated incrementally along each span, renormalised per pixel with the
+/// tier's [`Scalar::normalize_interpolated`], and every pixel is lit with the full
+/// lighting model. When the lighting needs the surface position (point or spot
+/// lights, a local viewer, fog) the eye-space position is interpolated too.
+/// Catches the highlight in the middle of a large triangle.
+#[derive(Debug)]
+pub struct Phong<'l, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+{
+    lighting: &'l Lighting<S, L, M, V, F>,
+    encoder: E,
+    color: PhantomData<C>,
+}
+
+impl<'l, S, L, M, V, F, E, C> Phong<'l, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+    E: Encoder<C>,
+    C: OutputColor,
+{
+    /// Phong shading with `lighting`, writing pixels through `encoder`.
+    pub fn new(lighting: &'l Lighting<S, L, M, V, F>, encoder: E) -> Self {
+        Self {
+            lighting,
+            encoder,
+            color: PhantomData,
+        }
+    }
+
+    /// The colour of one pixel from its interpolated attributes: normal in
+    /// `a[0..3]`, position in `a[3..6]` when `N = 6`.
+    #[inline(always)]
+    fn pixel<const N: usize>(&self, a: &[i32; N], x: i32, y: i32) -> C {
+        let n = S::normalize_interpolated(Vec3::new(S::from_attr(a[0]), S::from_attr(a[1]), S::from_attr(a[2])));
+        let p = if N >= 6 {
+            Vec3::new(S::geo_from_attr(a[3]), S::geo_from_attr(a[4]), S::geo_from_attr(a[5]))
+        } else {
+            Lighting::<S, L, M, V, F>::origin()
+        };
+        self.encoder.encode(self.lighting.shade(&p, n), x, y)
+    }
+}
+
+impl<S, L, M, V, F, E, C, const N: usize> SpanShader<N> for Phong<'_, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+    E: Encoder<C>,
+    C: OutputColor,
+{
+    type Color = C;
+    #[inline]
+    fn shade_span(&mut self, x: i32, y: i32, start: &[i32; N], step: &[i32; N], out: &mut [C]) {
+        let mut a = *start;
+        let mut x = x;
+        for p in out {
+            // pixel k: attributes = start + k·step
+            *p = self.pixel(&a, x, y);
+            for i in 0..N {
+                a[i] += step[i];
+            }
+            x += 1;
+        }
+    }
+}
+
+impl<S, L, M, V, F, E, C> Shading<S> for Phong<'_, S, L, M, V, F, E, C>
+where
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+    E: Encoder<C>,
+    C: OutputColor,
+{
+    type Color = C;
+
+    fn draw<Fb: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut Fb,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+    ) -> DrawStats {
+        let normal = |t: &ShadeVertex<S>| [t.normal.x.to_attr(), t.normal.y.to_attr(), t.normal.z.to_attr()];
+        if Lighting::<S, L, M, V, F>::NEEDS_POSITION {
+            let v = tri.map(|t| {
+                let [nx, ny, nz] = normal(&t);
+                let p = t.position;
+                t.raster([nx, ny, nz, S::geo_to_attr(p.x), S::geo_to_attr(p.y), S::geo_to_attr(p.z)])
+            });
+            draw_triangle(fb, depth, &v, opts, self)
+        } else {
+            let v = tri.map(|t| t.raster(normal(&t)));
+            draw_triangle(fb, depth, &v, opts, self)
+        }
+    }
+}
