@@ -38,7 +38,7 @@ impl<const K: usize> ClipVertex<K> {
 /// as 0, 1 or 2 triangles to `out`; returns how many.
 ///
 /// Sutherland–Hodgman against one plane: walking the edges `a → b`, a vertex
-/// with `d = w_c − near_w ≥ 0` is kept, and an edge whose ends lie on opposite
+/// with `w_c ≥ near_w` is kept, and an edge whose ends lie on opposite
 /// sides contributes the point `a + t·(b − a)`, `t = d_a/(d_a − d_b)`, with its
 /// `w_c` set to exactly `near_w`. The resulting polygon (3 or 4 vertices) is
 /// fanned from its first vertex, so the winding is kept. A triangle entirely in
@@ -62,8 +62,8 @@ pub fn clip_near<const K: usize>(
     near_w: f32,
     out: &mut [[ClipVertex<K>; 3]; 2],
 ) -> usize {
-    let d = tri.clone().map(|v| v.clip[3] - near_w);
-    let inside = d.map(|d| d >= 0.0);
+    let d = tri.map(|v| v.clip[3] - near_w);
+    let inside = tri.map(|v| v.clip[3] >= near_w);
     if inside == [true; 3] {
         out[0] = *tri;
         return 1;

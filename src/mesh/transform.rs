@@ -346,8 +346,9 @@ impl Mat4 {
 const ELEMENT_BITS: i32 = 29;
 /// Fractional bits of the positions the fixed-point stage reads ([`Geo16`]).
 const POS_FRAC: i32 = 16;
-/// Clip coordinates given in `f32` are clamped to ±2^62 raw units.
-const RAW_LIMIT: i64 = 1 << 62;
+/// Clip coordinates given in `f32` are clamped to ±(2^62 − 1) raw units, the
+/// range [`FixedMat4::apply_raw`] produces, so that `w + z` and `2w` fit an `i64`.
+const RAW_LIMIT: i64 = (1 << 62) - 1;
 
 /// The exponent `e` with `max|x| = m·2^e`, `m ∈ [0.5, 1)`; 0 for all zeros.
 fn max_exponent<'a>(xs: impl Iterator<Item = &'a f32>) -> i32 {
@@ -432,22 +433,25 @@ impl FixedMat4 {
         out
     }
 
-    /// [`FixedMat4::apply_raw`] converted to `f32`.
+    /// [`FixedMat4::apply_raw`] converted to `f32`: each component rounded to
+    /// 24 significant bits, then scaled by `2^−(16+F)` (exact unless the value
+    /// exceeds the `f32` range, which needs elements near 10³⁸).
     pub fn apply_f32(&self, p: Vec3<Geo16>) -> [f32; 4] {
         let unit = self.unit();
-        self.apply_raw(p).map(|r| (r as f64 * unit) as f32)
+        self.apply_raw(p).map(|r| r as f32 * unit)
     }
 
-    /// The value of one raw unit, `2^−(16+F)`.
-    fn unit(&self) -> f64 {
-        libm::ldexp(1.0, -(POS_FRAC + self.frac))
+    /// The value of one raw unit, `2^−(16+F)` (a normal `f32`: `16 + F` is in
+    /// −83..=116).
+    fn unit(&self) -> f32 {
+        libm::ldexpf(1.0, -(POS_FRAC + self.frac))
     }
 }
 
 /// `round(a·b/c)` for `b ≥ 0`, `c > 0`, without overflow: when `|a·b|` would
 /// need more than 62 bits, `a` and `c` drop the excess low bits first (the
 /// quotient keeps the precision of what is left of `c`). A `c` that vanishes
-/// that way means the quotient is beyond ±2^62: it saturates to ±2^62.
+/// that way means the quotient is beyond ±2^62: it saturates to ±(2^62 − 1).
 fn mul_div(a: i64, b: i64, c: i64) -> i64 {
     let bits = |v: i64| 64 - v.unsigned_abs().leading_zeros() as i32;
     let excess = (bits(a) + bits(b) - 62).min(63);
@@ -586,9 +590,10 @@ impl ScreenVertex {
 /// - `z = (z_c/w_c + 1)/2·65535`, saturated to `0..=65535`;
 /// - `inv_w = 2^24·near_w/w_c` (see [`ScreenVertex::inv_w`]).
 ///
-/// The divisions are `i64` with rounding to nearest; the results are exact to
-/// ±1 unit except where a coordinate exceeds the clip range by far (then it
-/// saturates anyway).
+/// The clip coordinates carry 24 significant bits (see
+/// [`ScreenTransform::project`]), so positions are placed to about 2⁻²⁴ of
+/// `|x_c|/w_c` of the viewport (far below a sub-pixel on screen); the divisions
+/// are `i64`, rounded to nearest.
 ///
 /// ```
 /// use fixshade::mesh::{Mat4, ScreenTransform, Viewport, INV_W_ONE};
@@ -608,6 +613,8 @@ pub struct ScreenTransform {
     mvp: FixedMat4,
     viewport: Viewport,
     near_w: f32,
+    /// One clip-space unit in raw units, `2^(16+F)`.
+    scale: f32,
     /// `near_w` in raw units (≥ 1).
     near_raw: i64,
     /// Vertices with raw `w_c ≤ reject_raw` are rejected.
@@ -628,11 +635,13 @@ impl ScreenTransform {
         }
         let mvp = FixedMat4::new(mvp)?;
         // near_w·2^(16+F), saturating (`as` saturates), at least 1
-        let near_raw = ((f64::from(near_w) / mvp.unit()) as i64).clamp(1, RAW_LIMIT);
+        let scale = libm::ldexpf(1.0, POS_FRAC + mvp.frac);
+        let near_raw = ((near_w * scale) as i64).clamp(1, RAW_LIMIT);
         Ok(Self {
             mvp,
             viewport,
             near_w,
+            scale,
             near_raw,
             reject_raw: near_raw - (near_raw >> 8),
         })
@@ -660,8 +669,14 @@ impl ScreenTransform {
 
     /// Projects a Q16.16 position (see the [type docs](Self)); `None` behind the
     /// near plane.
+    ///
+    /// The clip coordinates are rounded to 24 significant bits (as `f32` holds
+    /// them) before the division, so that `project(p)` equals
+    /// `project_clip(clip(p))` bit for bit: a triangle that was clipped shares
+    /// exact screen vertices with its unclipped neighbours (no cracks).
     pub fn project(&self, p: Vec3<Geo16>) -> Option<ScreenVertex> {
-        self.finish(self.mvp.apply_raw(p))
+        // |r| < 2^62: the round trip through f32 cannot saturate
+        self.finish(self.mvp.apply_raw(p).map(|r| r as f32 as i64))
     }
 
     /// [`ScreenTransform::project`] of an `f32` position, converted to Q16.16
@@ -674,9 +689,8 @@ impl ScreenTransform {
     /// [`clip_near`](super::clip_near)); NaN counts as 0, values beyond the raw
     /// range saturate.
     pub fn project_clip(&self, c: [f32; 4]) -> Option<ScreenVertex> {
-        let unit = self.mvp.unit();
-        // `as` saturates and maps NaN to 0
-        self.finish(c.map(|v| ((f64::from(v) / unit) as i64).clamp(-RAW_LIMIT, RAW_LIMIT)))
+        // `as` saturates and maps NaN to 0; the scaling by 2^(16+F) is exact
+        self.finish(c.map(|v| ((v * self.scale) as i64).clamp(-RAW_LIMIT, RAW_LIMIT)))
     }
 
     /// The screen mapping of raw clip coordinates (formulas in the type docs).
@@ -693,8 +707,9 @@ impl ScreenTransform {
         // |mul_div| ≤ 2^62 and |cx| < 2^21: no overflow
         let x = (cx + mul_div(xc, w8, wc)).clamp(-guard, guard);
         let y = (cy - mul_div(yc, h8, wc)).clamp(-guard, guard);
-        // z = (w + z)/(2w)·65535; |w + z| < 2^63, 2w < 2^63
-        let z = mul_div(wc + zc, 65535, 2 * wc).clamp(0, 65535);
+        // z = (w + z)/(2w)·65535; |w + z| < 2^63, 2w < 2^63 (saturation is a
+        // safety net only)
+        let z = mul_div(wc.saturating_add(zc), 65535, wc.saturating_mul(2)).clamp(0, 65535);
         let inv_w = mul_div(self.near_raw, i64::from(INV_W_ONE), wc).clamp(1, i64::from(i32::MAX));
         Some(ScreenVertex {
             x: x as i32,
@@ -876,6 +891,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::needless_range_loop)] // matrix indices read best as i, j, k
     fn normal_matrix_is_inverse_transpose() {
         let m = Mat4::rotate_y(0.3).mul(&Mat4::scale([2.0, 3.0, 4.0]));
         let n = m.normal_matrix();
@@ -965,15 +981,14 @@ mod tests {
         let g = GUARD_BAND << SUBPIXEL_BITS;
         assert_eq!((v.x, v.y), (g, g));
         // project_clip agrees with project
-        for p in [[1.0f32, 2.0, -3.0], [-0.5, 0.25, -8.0]] {
+        for p in [
+            [1.0f32, 2.0, -3.0],
+            [-0.5, 0.25, -8.0],
+            [123.4, -0.001, -1.75],
+        ] {
             let a = st.project_f32(p).unwrap();
             let b = st.project_clip(st.clip(super::geo16(p))).unwrap();
-            assert!(
-                (a.x - b.x).abs() <= 1 && (a.y - b.y).abs() <= 1,
-                "{a:?} {b:?}"
-            );
-            assert!((i32::from(a.z) - i32::from(b.z)).abs() <= 1);
-            assert!((a.inv_w - b.inv_w).abs() <= 2);
+            assert_eq!(a, b);
         }
         assert_eq!(st.project_clip([f32::NAN; 4]), None);
         assert!(st
