@@ -114,15 +114,15 @@ macro_rules! float_tier {
                 Vec3::new($wrap(x * r), $wrap(y * r), $wrap(z * r))
             }
 
-            const ATTR_FRAC: u32 = 28;
+            const ATTR_FRAC: u32 = 26;
             #[inline(always)]
             fn to_attr(self) -> i32 {
                 // `as` saturates (and maps NaN to 0)
-                ($get(self) * (1u32 << 28) as f32) as i32
+                ($get(self) * (1u32 << 26) as f32) as i32
             }
             #[inline(always)]
             fn from_attr(a: i32) -> Self {
-                $wrap(a as f32 * (1.0 / (1u32 << 28) as f32))
+                $wrap(a as f32 * (1.0 / (1u32 << 26) as f32))
             }
             #[inline(always)]
             fn geo_to_attr(g: f32) -> i32 {

@@ -141,9 +141,11 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
         Self::normalize(v)
     }
 
-    /// Fraction bits of the rasterizer attribute a unit-range value becomes
-    /// (28 for Q14 and the float tiers, 30 for Q30): [`Scalar::to_attr`] is
-    /// `round(clamp(x, −2, 2) · 2^ATTR_FRAC)` saturated to `i32`.
+    /// Fraction bits of the rasterizer attribute a unit-range value becomes (26 for
+    /// every tier: a unit normal component is at most 2^26, so even a normal that
+    /// turns by 180° within one pixel at a silhouette stays far below the
+    /// rasterizer's gradient limit of 2^29 units per pixel): [`Scalar::to_attr`] is
+    /// `round(x · 2^ATTR_FRAC)` saturated to `i32`.
     const ATTR_FRAC: u32;
     /// The value as a rasterizer attribute (see [`Scalar::ATTR_FRAC`]).
     fn to_attr(self) -> i32;

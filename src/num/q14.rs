@@ -182,16 +182,16 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
     fn normalize_interpolated(v: Vec3<Self>) -> Vec3<Self> {
         Self::normalize_near_unit(v)
     }
-    const ATTR_FRAC: u32 = 28;
+    const ATTR_FRAC: u32 = 26;
     #[inline(always)]
     fn to_attr(self) -> i32 {
-        // |raw| ≤ 2^15: raw·2^14 fits
-        self.0 << 14
+        // |raw| ≤ 2^15: raw·2^12 fits
+        self.0 << 12
     }
     #[inline(always)]
     fn from_attr(a: i32) -> Self {
-        // round(a / 2^14) without overflow for any a
-        Self::from_raw(((a >> 13) + 1) >> 1)
+        // round(a / 2^12) without overflow for any a
+        Self::from_raw(((a >> 11) + 1) >> 1)
     }
     #[inline(always)]
     fn geo_to_attr(g: Geo16) -> i32 {

@@ -131,14 +131,15 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
         )
     }
 
-    const ATTR_FRAC: u32 = 30;
+    const ATTR_FRAC: u32 = 26;
     #[inline(always)]
     fn to_attr(self) -> i32 {
-        self.0
+        // round(raw / 16)
+        ((self.0 >> 3) + 1) >> 1
     }
     #[inline(always)]
     fn from_attr(a: i32) -> Self {
-        Self(a)
+        Self::from_wide((a as i64) << 4)
     }
     #[inline(always)]
     fn geo_to_attr(g: Geo16) -> i32 {

@@ -97,8 +97,11 @@ where
         tri: &[ShadeVertex<S>; 3],
         opts: &RasterOptions,
     ) -> DrawStats {
-        // n = normalize(n0 + n1 + n2); p = p0 + ((p1 − p0) + (p2 − p0))/3
-        let n = S::normalize(tri[0].normal.add(tri[1].normal).add(tri[2].normal));
+        // n = normalize((n0 + n1 + n2)/3) (each third first: the sum of three unit
+        // vectors would saturate the fixed tiers); p = p0 + ((p1 − p0) + (p2 − p0))/3
+        let third_s = S::from_f32(1.0 / 3.0);
+        let [n0, n1, n2] = tri.map(|t| t.normal.scale(third_s));
+        let n = S::normalize(n0.add(n1).add(n2));
         let third = S::geo_from_f32(1.0 / 3.0);
         let centroid = |a: S::Geo, b: S::Geo, c: S::Geo| {
             S::geo_add(a, S::geo_mul(S::geo_add(S::geo_sub(b, a), S::geo_sub(c, a)), third))

@@ -1,1 +1,2 @@
 pub mod scenes;
+pub mod render;

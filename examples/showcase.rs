@@ -1,0 +1,66 @@
+//! Renders every reference scene of the source documents in the host simulator
+//! (embedded-graphics-simulator, no SDL) and writes PNGs to `target/renders/`:
+//!
+//! ```sh
+//! cargo run --release --example showcase
+//! ```
+//!
+//! Each scene is rendered with the fast tier `Q14<2>` and with the accurate tier
+//! `Q30<3>` through the real pipeline (mesh → lighting → shading → rasterizer →
+//! embedded-graphics `DrawTarget`), and by the f64 reference model on the same
+//! pixels; the error of each tier is printed beside the file names.
+
+#[path = "../tests/common/render.rs"]
+mod render;
+
+use embedded_graphics::prelude::*;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+use fixshade::num::{Scalar, Q14, Q30};
+use render::{compare, reference_rgb888, render_reference, render_tier, scenes, Scene};
+use std::path::{Path, PathBuf};
+
+fn save(scene: &Scene, pixels: &[Rgb888], path: &Path) {
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(scene.width, scene.height));
+    let points = (0..scene.height).flat_map(|y| (0..scene.width).map(move |x| Point::new(x as i32, y as i32)));
+    display
+        .draw_iter(points.zip(pixels.iter().copied()).map(|(p, c)| Pixel(p, c)))
+        .expect("the simulator display accepts every pixel");
+    let settings = OutputSettingsBuilder::new().build();
+    display.to_rgb_output_image(&settings).save_png(path).expect("write PNG");
+}
+
+/// Renders through a `DrawTarget` (the simulator display) with the adapter, as
+/// firmware would drive a real display, then saves the PNG.
+fn render_to_display<S: Scalar>(scene: &Scene, path: &Path) -> render::Diff {
+    let rgb888 = render_tier::<S, Rgb888>(scene);
+    let rgb565 = render_tier::<S, Rgb565>(scene);
+    save(scene, &rgb888, path);
+    compare(&rgb888, &rgb565, &render_reference(scene))
+}
+
+fn main() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target").join("renders");
+    std::fs::create_dir_all(&dir).expect("create target/renders");
+    println!("Rendering the reference scenes into {}", dir.display());
+    for scene in scenes() {
+        let reference = render_reference(&scene);
+        let ref_path = dir.join(format!("{}_reference.png", scene.name));
+        save(&scene, &reference_rgb888(&reference), &ref_path);
+        println!("\n{} — {}", scene.name, scene.title);
+        println!("  {}", ref_path.display());
+        for (tier, d) in [
+            ("q14", render_to_display::<Q14<2>>(&scene, &dir.join(format!("{}_q14.png", scene.name)))),
+            ("q30", render_to_display::<Q30<3>>(&scene, &dir.join(format!("{}_q30.png", scene.name)))),
+        ] {
+            println!(
+                "  {}  max {} LSB, mean {:.3}, PSNR {:.1} dB, Rgb565 identical {:.1} %",
+                dir.join(format!("{}_{tier}.png", scene.name)).display(),
+                d.max,
+                d.mean,
+                d.psnr,
+                100.0 * d.identical_565
+            );
+        }
+    }
+}

@@ -1,0 +1,55 @@
+//! Golden tests: every reference scene of the source documents, rendered with every
+//! tier through the real pipeline, against the same scene rendered by the f64
+//! reference model on the same pixels. Bounds per tier (8-bit LSBs, PSNR in dB)
+//! are the ones stated in the README; `cargo test --release --test golden --
+//! --nocapture` prints the measured table.
+
+mod common;
+
+use common::render::{diff_tier, render_reference, scenes, Diff};
+use fixshade::num::{F32Fast, Scalar, Q14, Q30};
+
+/// (largest error in LSB, smallest PSNR in dB) a tier guarantees on the scenes:
+/// 2 LSB for the Q14 tiers (the Q14 rounding of the normal shows in the n = 100
+/// highlight), 1 LSB for Q30 and the float tiers. PSNR is measured against the
+/// unquantised reference, so 8-bit output alone scores about 59–62 dB here.
+fn bound<S: Scalar>() -> (u32, f64) {
+    if S::NAME.starts_with("Q14") {
+        (2, 55.0)
+    } else {
+        (1, 55.0)
+    }
+}
+
+fn check<S: Scalar>(failures: &mut Vec<String>) {
+    let (max, psnr) = bound::<S>();
+    for scene in scenes() {
+        let reference = render_reference(&scene);
+        let d: Diff = diff_tier::<S>(&scene, &reference);
+        println!(
+            "{:<28} {:<16} max {:>2} LSB  mean {:.3}  PSNR {:>5.1} dB  Rgb565 identical {:>5.1} %  ({} px)",
+            S::NAME,
+            scene.name,
+            d.max,
+            d.mean,
+            d.psnr,
+            100.0 * d.identical_565,
+            d.pixels
+        );
+        if d.max > max || d.psnr < psnr {
+            failures.push(format!("{} {}: max {} (bound {max}), PSNR {:.1} (bound {psnr})", S::NAME, scene.name, d.max, d.psnr));
+        }
+        assert!(d.pixels > 1000, "{} covers too few pixels", scene.name);
+    }
+}
+
+#[test]
+fn every_scene_every_tier_against_the_reference() {
+    let mut failures = Vec::new();
+    check::<Q14<1>>(&mut failures);
+    check::<Q14<2>>(&mut failures);
+    check::<Q30<3>>(&mut failures);
+    check::<f32>(&mut failures);
+    check::<F32Fast<2>>(&mut failures);
+    assert!(failures.is_empty(), "{failures:#?}");
+}
