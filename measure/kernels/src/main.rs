@@ -16,8 +16,8 @@ use core::hint::black_box;
 use core::slice;
 
 use cortex_m_rt::entry;
-// Linked (and so compiled for both targets) even before kernels use its API.
-use fixshade as _;
+
+mod shading;
 
 /// Borrow `n` items at `p`, both laundered through `black_box`.
 ///
@@ -91,12 +91,12 @@ pub unsafe extern "C" fn clamp_sum(a: *const i32, n: u32, lo: i32, hi: i32) -> u
 }
 
 /// Function pointers that keep every kernel in the LTO image.
-pub struct Keep(pub [*const (); 5]);
-// SAFETY: read-only table of code addresses.
-unsafe impl Sync for Keep {}
+pub struct Keep<T>(pub T);
+// SAFETY: read-only tables of code addresses.
+unsafe impl<T> Sync for Keep<T> {}
 
 #[used]
-pub static KEEP: Keep = Keep([
+pub static KEEP: Keep<[*const (); 5]> = Keep([
     dot_i32 as *const (),
     dot_q16_i64 as *const (),
     div_i32 as *const (),
@@ -108,6 +108,7 @@ pub static KEEP: Keep = Keep([
 fn main() -> ! {
     // `#[used]` alone does not survive the linker's --gc-sections: reference it.
     black_box(&KEEP);
+    black_box(&shading::KEEP);
     loop {
         core::hint::spin_loop();
     }
