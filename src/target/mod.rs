@@ -117,3 +117,5 @@ pub(crate) fn span_in(
     }
     Some(x as usize..end as usize)
 }
+
+impl core::error::Error for TargetError {}
