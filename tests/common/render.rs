@@ -279,58 +279,78 @@ fn opts() -> RasterOptions {
     }
 }
 
+/// The projected triangles of every object of a scene (the per-frame geometry
+/// work, done once so that timings measure shading and rasterization only).
+pub fn prepare(scene: &Scene) -> Vec<Vec<[Vert; 3]>> {
+    scene.objects.iter().map(|o| triangles(scene, o)).collect()
+}
+
 /// Renders a scene with tier `S` into colour type `C` (black background).
 pub fn render_tier<S: Scalar, C: OutputColor + Default>(scene: &Scene) -> Vec<C> {
     let (w, h) = (scene.width, scene.height);
     let mut pixels = vec![C::from_channels([0; 3]); (w * h) as usize];
     let mut depth = vec![u16::MAX; (w * h) as usize];
-    {
-        let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
-        let mut db = DepthBuffer::new(&mut depth, w).unwrap();
-        for obj in &scene.objects {
-            match obj.terms {
-                Terms4::Lambert => draw_object::<S, Lambert, C>(scene, obj, &mut fb, &mut db),
-                Terms4::Brilliance => draw_object::<S, Terms<0, true, false, false>, C>(scene, obj, &mut fb, &mut db),
-                Terms4::Phong => draw_object::<S, PhongSpec, C>(scene, obj, &mut fb, &mut db),
-                Terms4::Blinn => draw_object::<S, BlinnPhong, C>(scene, obj, &mut fb, &mut db),
-            }
-        }
-    }
+    draw_prepared::<S, C>(scene, &prepare(scene), &mut pixels, &mut depth);
     pixels
+}
+
+/// Draws prepared triangles into `pixels` (the depth buffer must be cleared);
+/// returns the number of shaded pixels.
+pub fn draw_prepared<S: Scalar, C: OutputColor + Default>(
+    scene: &Scene,
+    prepared: &[Vec<[Vert; 3]>],
+    pixels: &mut [C],
+    depth: &mut [u16],
+) -> u64 {
+    let (w, h) = (scene.width, scene.height);
+    let mut fb = SliceFramebuffer::new(pixels, w, h).unwrap();
+    let mut db = DepthBuffer::new(depth, w).unwrap();
+    let mut shaded = 0;
+    for (obj, tris) in scene.objects.iter().zip(prepared) {
+        shaded += match obj.terms {
+            Terms4::Lambert => draw_object::<S, Lambert, C>(scene, obj, tris, &mut fb, &mut db),
+            Terms4::Brilliance => draw_object::<S, Terms<0, true, false, false>, C>(scene, obj, tris, &mut fb, &mut db),
+            Terms4::Phong => draw_object::<S, PhongSpec, C>(scene, obj, tris, &mut fb, &mut db),
+            Terms4::Blinn => draw_object::<S, BlinnPhong, C>(scene, obj, tris, &mut fb, &mut db),
+        };
+    }
+    shaded
 }
 
 fn draw_object<S: Scalar, M: Model, C: OutputColor + Default>(
     scene: &Scene,
     obj: &Object,
+    tris: &[[Vert; 3]],
     fb: &mut SliceFramebuffer<'_, C>,
     db: &mut DepthBuffer<'_>,
-) {
+) -> u64 {
     let lights: heapless::Vec<AnyLight<S>, 4> = scene.lights.iter().map(|d| AnyLight::new(d).unwrap()).collect();
     let lighting = Lighting::<S, _, M>::new(lights, Material::new(&obj.material).unwrap())
         .with_global_ambient(Rgb::from_f32(scene.global_ambient));
-    let tris = triangles(scene, obj);
     let sv = |v: &Vert| ShadeVertex::<S>::new([v.screen.x, v.screen.y], v.screen.z, v.screen.inv_w, v.pos, v.normal);
     let o = opts();
+    let mut shaded = 0u64;
     match obj.mode {
         Mode::Flat => {
             let mut s = Flat::new(&lighting, Linear);
-            for t in &tris {
-                s.draw(fb, Some(db), &t.each_ref().map(sv), &o);
+            for t in tris {
+                shaded += s.draw(fb, Some(db), &t.each_ref().map(sv), &o).pixels as u64;
             }
         }
         Mode::Gouraud => {
             let mut s = Gouraud::new(&lighting, Linear);
-            for t in &tris {
-                s.draw(fb, Some(db), &t.each_ref().map(sv), &o);
+            for t in tris {
+                shaded += s.draw(fb, Some(db), &t.each_ref().map(sv), &o).pixels as u64;
             }
         }
         Mode::Phong => {
             let mut s = Phong::new(&lighting, Linear);
-            for t in &tris {
-                s.draw(fb, Some(db), &t.each_ref().map(sv), &o);
+            for t in tris {
+                shaded += s.draw(fb, Some(db), &t.each_ref().map(sv), &o).pixels as u64;
             }
         }
     }
+    shaded
 }
 
 /// The f64 reference image: linear RGB per covered pixel, `None` for background.
@@ -478,4 +498,94 @@ pub fn reference_rgb888(reference: &[Option<V3>]) -> Vec<Rgb888> {
             None => Rgb888::BLACK,
         })
         .collect()
+}
+
+/// The light sets of the speed/accuracy table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSet {
+    /// One directional light, Lambert diffuse only.
+    DirDiffuse,
+    /// One directional light, Blinn-Phong specular.
+    DirBlinn,
+    /// One directional light, Phong specular.
+    DirPhong,
+    /// Four point lights with attenuation, Blinn-Phong specular.
+    Point4Blinn,
+    /// One spot light, Blinn-Phong specular.
+    SpotBlinn,
+}
+
+pub const LIGHT_SETS: [LightSet; 5] =
+    [LightSet::DirDiffuse, LightSet::DirBlinn, LightSet::DirPhong, LightSet::Point4Blinn, LightSet::SpotBlinn];
+pub const MODES: [Mode; 3] = [Mode::Flat, Mode::Gouraud, Mode::Phong];
+
+impl LightSet {
+    pub fn name(self) -> &'static str {
+        match self {
+            LightSet::DirDiffuse => "dir_diffuse",
+            LightSet::DirBlinn => "dir_blinn",
+            LightSet::DirPhong => "dir_phong",
+            LightSet::Point4Blinn => "point4_blinn",
+            LightSet::SpotBlinn => "spot_blinn",
+        }
+    }
+}
+
+/// One lit sphere of radius 100 px on a 240×240 display (eye space: centre
+/// (1.2, −1.2, −5), radius 1), red plastic (ka 0.1, kd 0.7, ks 0.5, n = 32).
+pub fn config_scene(lights: LightSet, mode: Mode) -> Scene {
+    let key = [-0.4f32, 0.5, 0.77];
+    let centre = [1.2f32, -1.2, -5.0];
+    let point = |dx: f32, dy: f32, dz: f32, k: f32| LightDesc {
+        kind: LightKind::Point {
+            position: [centre[0] + dx, centre[1] + dy, centre[2] + dz],
+            attenuation: [1.0, 0.05, 0.01],
+        },
+        ambient: [0.0; 3],
+        diffuse: [k; 3],
+        specular: [k; 3],
+    };
+    let (descs, terms) = match lights {
+        LightSet::DirDiffuse => (vec![white_dir(key, 1.0)], Terms4::Lambert),
+        LightSet::DirBlinn => (vec![white_dir(key, 1.0)], Terms4::Blinn),
+        LightSet::DirPhong => (vec![white_dir(key, 1.0)], Terms4::Phong),
+        LightSet::Point4Blinn => (
+            vec![
+                point(-2.0, 2.0, 3.0, 0.5),
+                point(2.5, 1.0, 2.0, 0.4),
+                point(0.0, -2.5, 2.5, 0.3),
+                point(-1.0, 0.0, 4.0, 0.3),
+            ],
+            Terms4::Blinn,
+        ),
+        LightSet::SpotBlinn => (
+            vec![LightDesc {
+                kind: LightKind::Spot {
+                    position: [centre[0] - 1.0, centre[1] + 1.5, centre[2] + 3.0],
+                    axis: [1.0, -1.5, -3.0],
+                    exponent: 8.0,
+                    cutoff_deg: 30.0,
+                    attenuation: [1.0, 0.0, 0.0],
+                },
+                ambient: [0.0; 3],
+                diffuse: [1.0; 3],
+                specular: [1.0; 3],
+            }],
+            Terms4::Blinn,
+        ),
+    };
+    Scene {
+        name: lights.name(),
+        title: "configuration sphere",
+        width: 240,
+        height: 240,
+        lights: descs,
+        global_ambient: [0.2; 3],
+        objects: vec![Object {
+            shape: Shape::Sphere { centre: [120.0, 120.0], radius: 100.0 },
+            material: MaterialDesc::classic(RED, AmbientSource::Object, 0.1, 0.7, 0.5, 32.0),
+            mode,
+            terms,
+        }],
+    }
 }
