@@ -14,7 +14,10 @@ mod render;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
-use render::{compare, config_scene, draw_prepared, prepare, render_reference, LightSet, Mode, LIGHT_SETS, MODES};
+use render::{
+    compare, config_scene, draw_prepared, prepare, render_reference, LightSet, Mode, LIGHT_SETS,
+    MODES,
+};
 use std::fmt::Write;
 use std::time::Instant;
 
@@ -72,7 +75,10 @@ fn main() {
         .map(|r| r.ns_per_pixel)
         .unwrap_or(1.0);
     let mut json = String::from("[\n");
-    println!("{:<8} {:<8} {:<13} {:>4} {:>7} {:>7} {:>7} {:>8} {:>7}", "tier", "shading", "lights", "max", "mean", "PSNR", "565 %", "ns/px", "ratio");
+    println!(
+        "{:<8} {:<8} {:<13} {:>4} {:>7} {:>7} {:>7} {:>8} {:>7}",
+        "tier", "shading", "lights", "max", "mean", "PSNR", "565 %", "ns/px", "ratio"
+    );
     for (i, r) in rows.iter().enumerate() {
         let d = &r.diff;
         println!(
@@ -87,10 +93,14 @@ fn main() {
             r.ns_per_pixel,
             r.ns_per_pixel / base
         );
-        let psnr = if d.psnr.is_finite() { format!("{:.2}", d.psnr) } else { "null".into() };
-        write!(
+        let psnr = if d.psnr.is_finite() {
+            format!("{:.2}", d.psnr)
+        } else {
+            "null".into()
+        };
+        writeln!(
             json,
-            "  {{\"tier\": \"{}\", \"shading\": \"{}\", \"lights\": \"{}\", \"max_lsb\": {}, \"mean_lsb\": {:.4}, \"psnr_db\": {}, \"identical_565\": {:.4}, \"pixels\": {}, \"host_ns_per_pixel\": {:.3}, \"host_ratio_to_f32_phong_dir_blinn\": {:.3}}}{}\n",
+            "  {{\"tier\": \"{}\", \"shading\": \"{}\", \"lights\": \"{}\", \"max_lsb\": {}, \"mean_lsb\": {:.4}, \"psnr_db\": {}, \"identical_565\": {:.4}, \"pixels\": {}, \"host_ns_per_pixel\": {:.3}, \"host_ratio_to_f32_phong_dir_blinn\": {:.3}}}{}",
             r.tier,
             r.mode.name(),
             r.lights.name(),

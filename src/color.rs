@@ -173,7 +173,13 @@ pub trait OutputColor: embedded_graphics_core::pixelcolor::PixelColor {
     #[inline]
     fn from_linear<S: Scalar>(c: Rgb<S>) -> Self {
         let l = Self::linear_channels(c);
-        let q = |v: S, max: u32| if max == 0 { 0 } else { (v.to_unorm(16) * max + 32767) / 65535 };
+        let q = |v: S, max: u32| {
+            if max == 0 {
+                0
+            } else {
+                (v.to_unorm(16) * max + 32767) / 65535
+            }
+        };
         Self::from_channels([
             q(l[0], Self::CHANNEL_MAX[0]),
             q(l[1], Self::CHANNEL_MAX[1]),

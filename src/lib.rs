@@ -108,8 +108,12 @@ pub mod prelude {
     pub use crate::material::{AmbientSource, Material, MaterialDesc};
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
     pub use crate::raster::{Cull, RasterOptions};
-    pub use crate::shade::{Dithered, Flat, Gamma, Gouraud, Linear, Phong as PhongShading, ShadeVertex, Shading};
-    pub use crate::target::{BandBuffer, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer};
+    pub use crate::shade::{
+        Dithered, Flat, Gamma, Gouraud, Linear, Phong as PhongShading, ShadeVertex, Shading,
+    };
+    pub use crate::target::{
+        BandBuffer, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer,
+    };
     pub use crate::vector::Vec3;
     pub use embedded_graphics_core::pixelcolor::RgbColor as _;
 }

@@ -37,7 +37,13 @@ fn check<S: Scalar>(failures: &mut Vec<String>) {
             d.pixels
         );
         if d.max > max || d.psnr < psnr {
-            failures.push(format!("{} {}: max {} (bound {max}), PSNR {:.1} (bound {psnr})", S::NAME, scene.name, d.max, d.psnr));
+            failures.push(format!(
+                "{} {}: max {} (bound {max}), PSNR {:.1} (bound {psnr})",
+                S::NAME,
+                scene.name,
+                d.max,
+                d.psnr
+            ));
         }
         assert!(d.pixels > 1000, "{} covers too few pixels", scene.name);
     }

@@ -82,7 +82,9 @@ impl<C: OutputColor> Encoder<C> for Dithered {
         let t = BAYER[(y & 3) as usize][(x & 3) as usize];
         let max = C::CHANNEL_MAX;
         // channel = ⌊(a + t) / 2^16⌋, at most max
-        C::from_channels(core::array::from_fn(|i| (((a[i] + t) >> CHANNEL_FRAC) as u32).min(max[i])))
+        C::from_channels(core::array::from_fn(|i| {
+            (((a[i] + t) >> CHANNEL_FRAC) as u32).min(max[i])
+        }))
     }
 }
 

@@ -70,10 +70,8 @@ where
     type Color = C;
     #[inline]
     fn shade_span(&mut self, x: i32, y: i32, _start: &[i32; 0], _step: &[i32; 0], out: &mut [C]) {
-        let mut x = x;
-        for p in out {
+        for (x, p) in (x..).zip(out.iter_mut()) {
             *p = self.encoder.pixel(self.channels, x, y);
-            x += 1;
         }
     }
 }
@@ -104,7 +102,10 @@ where
         let n = S::normalize(n0.add(n1).add(n2));
         let third = S::geo_from_f32(1.0 / 3.0);
         let centroid = |a: S::Geo, b: S::Geo, c: S::Geo| {
-            S::geo_add(a, S::geo_mul(S::geo_add(S::geo_sub(b, a), S::geo_sub(c, a)), third))
+            S::geo_add(
+                a,
+                S::geo_mul(S::geo_add(S::geo_sub(b, a), S::geo_sub(c, a)), third),
+            )
         };
         let [p0, p1, p2] = tri.map(|t| t.position);
         let p = Vec3::new(

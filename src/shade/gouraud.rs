@@ -40,7 +40,8 @@ where
     /// The encoded channel attributes of a vertex lit with `lighting` (what
     /// [`Shading::draw`] hands to the rasterizer).
     pub fn vertex_attrs(&self, v: &ShadeVertex<S>) -> [i32; 3] {
-        self.encoder.vertex(self.lighting.shade(&v.position, v.normal))
+        self.encoder
+            .vertex(self.lighting.shade(&v.position, v.normal))
     }
 
     /// Gouraud shading with `lighting`, writing pixels through `encoder`.
@@ -68,14 +69,12 @@ where
     #[inline]
     fn shade_span(&mut self, x: i32, y: i32, start: &[i32; 3], step: &[i32; 3], out: &mut [C]) {
         let [mut r, mut g, mut b] = *start;
-        let mut x = x;
-        for p in out {
+        for (x, p) in (x..).zip(out.iter_mut()) {
             // pixel k: channels = start + k·step
             *p = self.encoder.pixel([r, g, b], x, y);
             r += step[0];
             g += step[1];
             b += step[2];
-            x += 1;
         }
     }
 }

@@ -53,9 +53,17 @@ where
     /// `a[0..3]`, position in `a[3..6]` when `N = 6`.
     #[inline(always)]
     fn pixel<const N: usize>(&self, a: &[i32; N], x: i32, y: i32) -> C {
-        let n = S::normalize_interpolated(Vec3::new(S::from_attr(a[0]), S::from_attr(a[1]), S::from_attr(a[2])));
+        let n = S::normalize_interpolated(Vec3::new(
+            S::from_attr(a[0]),
+            S::from_attr(a[1]),
+            S::from_attr(a[2]),
+        ));
         let p = if N >= 6 {
-            Vec3::new(S::geo_from_attr(a[3]), S::geo_from_attr(a[4]), S::geo_from_attr(a[5]))
+            Vec3::new(
+                S::geo_from_attr(a[3]),
+                S::geo_from_attr(a[4]),
+                S::geo_from_attr(a[5]),
+            )
         } else {
             Lighting::<S, L, M, V, F>::origin()
         };
@@ -77,14 +85,12 @@ where
     #[inline]
     fn shade_span(&mut self, x: i32, y: i32, start: &[i32; N], step: &[i32; N], out: &mut [C]) {
         let mut a = *start;
-        let mut x = x;
-        for p in out {
+        for (x, p) in (x..).zip(out.iter_mut()) {
             // pixel k: attributes = start + k·step
             *p = self.pixel(&a, x, y);
             for i in 0..N {
                 a[i] += step[i];
             }
-            x += 1;
         }
     }
 }
@@ -108,12 +114,25 @@ where
         tri: &[ShadeVertex<S>; 3],
         opts: &RasterOptions,
     ) -> DrawStats {
-        let normal = |t: &ShadeVertex<S>| [t.normal.x.to_attr(), t.normal.y.to_attr(), t.normal.z.to_attr()];
+        let normal = |t: &ShadeVertex<S>| {
+            [
+                t.normal.x.to_attr(),
+                t.normal.y.to_attr(),
+                t.normal.z.to_attr(),
+            ]
+        };
         if Lighting::<S, L, M, V, F>::NEEDS_POSITION {
             let v = tri.map(|t| {
                 let [nx, ny, nz] = normal(&t);
                 let p = t.position;
-                t.raster([nx, ny, nz, S::geo_to_attr(p.x), S::geo_to_attr(p.y), S::geo_to_attr(p.z)])
+                t.raster([
+                    nx,
+                    ny,
+                    nz,
+                    S::geo_to_attr(p.x),
+                    S::geo_to_attr(p.y),
+                    S::geo_to_attr(p.z),
+                ])
             });
             draw_triangle(fb, depth, &v, opts, self)
         } else {

@@ -1,2 +1,2 @@
-pub mod scenes;
 pub mod render;
+pub mod scenes;

@@ -58,7 +58,10 @@ pub enum Shape {
     /// A UV sphere: centre in pixels, radius in pixels.
     Sphere { centre: [f32; 2], radius: f32 },
     /// One triangle: corners in pixels, vertex normals.
-    Triangle { corners: [[f32; 2]; 3], normals: [[f32; 3]; 3] },
+    Triangle {
+        corners: [[f32; 2]; 3],
+        normals: [[f32; 3]; 3],
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -127,8 +130,16 @@ const ORANGE: [f32; 3] = [1.0, 0.55, 0.1];
 /// Every reference scene of DESIGN §1.
 pub fn scenes() -> Vec<Scene> {
     let key = [-0.4f32, 0.5, 0.77];
-    let two_white = vec![white_dir([-0.5, 0.5, 0.7], 0.6), white_dir([0.6, 0.2, 0.75], 0.6)];
-    let one = |k: f32| vec![LightDesc { ambient: [k; 3], ..white_dir(key, 1.0) }];
+    let two_white = vec![
+        white_dir([-0.5, 0.5, 0.7], 0.6),
+        white_dir([0.6, 0.2, 0.75], 0.6),
+    ];
+    let one = |k: f32| {
+        vec![LightDesc {
+            ambient: [k; 3],
+            ..white_dir(key, 1.0)
+        }]
+    };
     let classic = |obj, src, ka, kd, ks, n| MaterialDesc::classic(obj, src, ka, kd, ks, n);
     let mut v = Vec::new();
     // seed 004: six red spheres, two white lights, ka = 0, kd = 0.5, n = 1 … 100 (Phong)
@@ -138,7 +149,13 @@ pub fn scenes() -> Vec<Scene> {
         two_white.clone(),
         [1.0, 5.0, 10.0, 20.0, 50.0, 100.0]
             .iter()
-            .map(|&n| (classic(RED, AmbientSource::Object, 0.0, 0.5, 0.6, n), Mode::Phong, Terms4::Phong))
+            .map(|&n| {
+                (
+                    classic(RED, AmbientSource::Object, 0.0, 0.5, 0.6, n),
+                    Mode::Phong,
+                    Terms4::Phong,
+                )
+            })
             .collect(),
     ));
     // seed 001: ka = 0, 0.2, 0.4, 0.6 (ambient from the object colour)
@@ -148,7 +165,13 @@ pub fn scenes() -> Vec<Scene> {
         one(1.0),
         [0.0, 0.2, 0.4, 0.6]
             .iter()
-            .map(|&ka| (classic(ORANGE, AmbientSource::Object, ka, 0.4, 0.0, 1.0), Mode::Phong, Terms4::Lambert))
+            .map(|&ka| {
+                (
+                    classic(ORANGE, AmbientSource::Object, ka, 0.4, 0.0, 1.0),
+                    Mode::Phong,
+                    Terms4::Lambert,
+                )
+            })
             .collect(),
     ));
     // seed 003: kd = 0 … 1 in steps of 0.2
@@ -158,7 +181,13 @@ pub fn scenes() -> Vec<Scene> {
         one(0.0),
         [0.0, 0.2, 0.4, 0.6, 0.8, 1.0]
             .iter()
-            .map(|&kd| (classic(ORANGE, AmbientSource::Object, 0.1, kd, 0.0, 1.0), Mode::Phong, Terms4::Lambert))
+            .map(|&kd| {
+                (
+                    classic(ORANGE, AmbientSource::Object, 0.1, kd, 0.0, 1.0),
+                    Mode::Phong,
+                    Terms4::Lambert,
+                )
+            })
             .collect(),
     ));
     // seed 003: ka = 0, 0.1, 0.3, 0.5, 0.7 (ambient from the light colour)
@@ -168,7 +197,13 @@ pub fn scenes() -> Vec<Scene> {
         one(0.5),
         [0.0, 0.1, 0.3, 0.5, 0.7]
             .iter()
-            .map(|&ka| (classic(ORANGE, AmbientSource::Light, ka, 0.5, 0.0, 1.0), Mode::Phong, Terms4::Lambert))
+            .map(|&ka| {
+                (
+                    classic(ORANGE, AmbientSource::Light, ka, 0.5, 0.0, 1.0),
+                    Mode::Phong,
+                    Terms4::Lambert,
+                )
+            })
             .collect(),
     ));
     // seed 001: brilliance 8, 4, 2, 1
@@ -179,7 +214,10 @@ pub fn scenes() -> Vec<Scene> {
         [8u8, 4, 2, 1]
             .iter()
             .map(|&b| {
-                let m = MaterialDesc { brilliance: b, ..classic(ORANGE, AmbientSource::Object, 0.1, 0.9, 0.0, 1.0) };
+                let m = MaterialDesc {
+                    brilliance: b,
+                    ..classic(ORANGE, AmbientSource::Object, 0.1, 0.9, 0.0, 1.0)
+                };
                 (m, Mode::Phong, Terms4::Brilliance)
             })
             .collect(),
@@ -191,7 +229,13 @@ pub fn scenes() -> Vec<Scene> {
         one(0.0),
         [5.0, 10.0, 20.0, 40.0]
             .iter()
-            .map(|&n| (classic(RED, AmbientSource::Object, 0.1, 0.6, 0.7, n), Mode::Phong, Terms4::Phong))
+            .map(|&n| {
+                (
+                    classic(RED, AmbientSource::Object, 0.1, 0.6, 0.7, n),
+                    Mode::Phong,
+                    Terms4::Phong,
+                )
+            })
             .collect(),
     ));
     // seeds 000, 003: flat vs Gouraud vs Phong on one sphere
@@ -200,7 +244,11 @@ pub fn scenes() -> Vec<Scene> {
         "flat_gouraud_phong",
         "flat, Gouraud, Phong shading of one sphere (Blinn-Phong n = 20)",
         one(0.0),
-        vec![(m, Mode::Flat, Terms4::Blinn), (m, Mode::Gouraud, Terms4::Blinn), (m, Mode::Phong, Terms4::Blinn)],
+        vec![
+            (m, Mode::Flat, Terms4::Blinn),
+            (m, Mode::Gouraud, Terms4::Blinn),
+            (m, Mode::Phong, Terms4::Blinn),
+        ],
     ));
     // seed 003: Phong vs Blinn-Phong (n' = 4n gives a similar highlight)
     v.push(row(
@@ -208,8 +256,16 @@ pub fn scenes() -> Vec<Scene> {
         "Phong (R·V)^10 vs Blinn-Phong (N·H)^40",
         one(0.0),
         vec![
-            (classic(RED, AmbientSource::Object, 0.1, 0.6, 0.7, 10.0), Mode::Phong, Terms4::Phong),
-            (classic(RED, AmbientSource::Object, 0.1, 0.6, 0.7, 40.0), Mode::Phong, Terms4::Blinn),
+            (
+                classic(RED, AmbientSource::Object, 0.1, 0.6, 0.7, 10.0),
+                Mode::Phong,
+                Terms4::Phong,
+            ),
+            (
+                classic(RED, AmbientSource::Object, 0.1, 0.6, 0.7, 40.0),
+                Mode::Phong,
+                Terms4::Blinn,
+            ),
         ],
     ));
     // seed 002: a large triangle whose highlight is at its centre: Gouraud misses it
@@ -248,7 +304,10 @@ fn eye(p: [f32; 2]) -> [f32; 3] {
 
 /// The triangles of an object, projected by the orthographic camera of a scene.
 pub fn triangles(scene: &Scene, obj: &Object) -> Vec<[Vert; 3]> {
-    let (w, h) = (scene.width as f32 / PIXELS_PER_UNIT, scene.height as f32 / PIXELS_PER_UNIT);
+    let (w, h) = (
+        scene.width as f32 / PIXELS_PER_UNIT,
+        scene.height as f32 / PIXELS_PER_UNIT,
+    );
     let proj = Mat4::orthographic(0.0, w, -h, 0.0, 1.0, 20.0).unwrap();
     let vp = Viewport::new(0, 0, scene.width as i32, scene.height as i32).unwrap();
     let st = ScreenTransform::new(&proj, vp, 0.5).unwrap();
@@ -260,8 +319,21 @@ pub fn triangles(scene: &Scene, obj: &Object) -> Vec<[Vert; 3]> {
     match obj.shape {
         Shape::Sphere { centre, radius } => {
             const N: (usize, usize) = uv_sphere_counts(STACKS, SLICES);
-            let (mut p, mut n, mut t) = (vec![[0.0f32; 3]; N.0], vec![[0.0f32; 3]; N.0], vec![[0u16; 3]; N.1]);
-            uv_sphere(STACKS, SLICES, eye(centre), radius / PIXELS_PER_UNIT, &mut p, &mut n, &mut t).unwrap();
+            let (mut p, mut n, mut t) = (
+                vec![[0.0f32; 3]; N.0],
+                vec![[0.0f32; 3]; N.0],
+                vec![[0u16; 3]; N.1],
+            );
+            uv_sphere(
+                STACKS,
+                SLICES,
+                eye(centre),
+                radius / PIXELS_PER_UNIT,
+                &mut p,
+                &mut n,
+                &mut t,
+            )
+            .unwrap();
             t.iter()
                 .map(|tri| tri.map(|i| vert(p[i as usize], n[i as usize])))
                 .collect()
@@ -309,7 +381,9 @@ pub fn draw_prepared<S: Scalar, C: OutputColor + Default>(
     for (obj, tris) in scene.objects.iter().zip(prepared) {
         shaded += match obj.terms {
             Terms4::Lambert => draw_object::<S, Lambert, C>(scene, obj, tris, &mut fb, &mut db),
-            Terms4::Brilliance => draw_object::<S, Terms<0, true, false, false>, C>(scene, obj, tris, &mut fb, &mut db),
+            Terms4::Brilliance => draw_object::<S, Terms<0, true, false, false>, C>(
+                scene, obj, tris, &mut fb, &mut db,
+            ),
             Terms4::Phong => draw_object::<S, PhongSpec, C>(scene, obj, tris, &mut fb, &mut db),
             Terms4::Blinn => draw_object::<S, BlinnPhong, C>(scene, obj, tris, &mut fb, &mut db),
         };
@@ -324,10 +398,22 @@ fn draw_object<S: Scalar, M: Model, C: OutputColor + Default>(
     fb: &mut SliceFramebuffer<'_, C>,
     db: &mut DepthBuffer<'_>,
 ) -> u64 {
-    let lights: heapless::Vec<AnyLight<S>, 4> = scene.lights.iter().map(|d| AnyLight::new(d).unwrap()).collect();
+    let lights: heapless::Vec<AnyLight<S>, 4> = scene
+        .lights
+        .iter()
+        .map(|d| AnyLight::new(d).unwrap())
+        .collect();
     let lighting = Lighting::<S, _, M>::new(lights, Material::new(&obj.material).unwrap())
         .with_global_ambient(Rgb::from_f32(scene.global_ambient));
-    let sv = |v: &Vert| ShadeVertex::<S>::new([v.screen.x, v.screen.y], v.screen.z, v.screen.inv_w, v.pos, v.normal);
+    let sv = |v: &Vert| {
+        ShadeVertex::<S>::new(
+            [v.screen.x, v.screen.y],
+            v.screen.z,
+            v.screen.inv_w,
+            v.pos,
+            v.normal,
+        )
+    };
     let o = opts();
     let mut shaded = 0u64;
     match obj.mode {
@@ -409,8 +495,11 @@ impl SpanShader<0> for RefSpan<'_> {
     type Color = Rgb888;
     fn shade_span(&mut self, x: i32, y: i32, _s: &[i32; 0], _d: &[i32; 0], out: &mut [Rgb888]) {
         let sub = (1 << fixshade::raster::SUBPIXEL_BITS) as f64;
-        let p = self.tri.map(|v| [v.screen.x as f64 / sub, v.screen.y as f64 / sub]);
-        let area = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
+        let p = self
+            .tri
+            .map(|v| [v.screen.x as f64 / sub, v.screen.y as f64 / sub]);
+        let area =
+            (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
         let lerp = |l: [f64; 3], a: [V3; 3]| -> V3 {
             [0, 1, 2].map(|c| l[0] * a[0][c] + l[1] * a[1][c] + l[2] * a[2][c])
         };
@@ -429,8 +518,14 @@ impl SpanShader<0> for RefSpan<'_> {
         for (k, _) in out.iter_mut().enumerate() {
             let (cx, cy) = ((x + k as i32) as f64 + 0.5, y as f64 + 0.5);
             // barycentric coordinates of the pixel centre
-            let e = |a: [f64; 2], b: [f64; 2]| (b[0] - a[0]) * (cy - a[1]) - (cx - a[0]) * (b[1] - a[1]);
-            let l = [e(p[1], p[2]) / area, e(p[2], p[0]) / area, e(p[0], p[1]) / area];
+            let e = |a: [f64; 2], b: [f64; 2]| {
+                (b[0] - a[0]) * (cy - a[1]) - (cx - a[0]) * (b[1] - a[1])
+            };
+            let l = [
+                e(p[1], p[2]) / area,
+                e(p[2], p[0]) / area,
+                e(p[0], p[1]) / area,
+            ];
             let c = match self.mode {
                 Mode::Flat => flat_c.unwrap(),
                 Mode::Gouraud => lerp(l, vc.unwrap()),
@@ -468,9 +563,14 @@ pub fn compare(rgb888: &[Rgb888], rgb565: &[Rgb565], reference: &[Option<V3>]) -
         let e = (0..3).map(|c| got[c].abs_diff(want[c])).max().unwrap();
         max = max.max(e);
         sum += e as u64;
-        sq += (0..3).map(|c| (got[c] as f64 - r[c].clamp(0.0, 1.0) * 255.0).powi(2)).sum::<f64>() / 3.0;
+        sq += (0..3)
+            .map(|c| (got[c] as f64 - r[c].clamp(0.0, 1.0) * 255.0).powi(2))
+            .sum::<f64>()
+            / 3.0;
         let c = rgb565[i];
-        if [c.r() as u32, c.g() as u32, c.b() as u32] == [q(r[0], 31.0), q(r[1], 63.0), q(r[2], 31.0)] {
+        if [c.r() as u32, c.g() as u32, c.b() as u32]
+            == [q(r[0], 31.0), q(r[1], 63.0), q(r[2], 31.0)]
+        {
             same += 1;
         }
     }
@@ -478,7 +578,11 @@ pub fn compare(rgb888: &[Rgb888], rgb565: &[Rgb565], reference: &[Option<V3>]) -
     Diff {
         max,
         mean: sum as f64 / n.max(1) as f64,
-        psnr: if mse > 0.0 { 10.0 * (255.0f64 * 255.0 / mse).log10() } else { f64::INFINITY },
+        psnr: if mse > 0.0 {
+            10.0 * (255.0f64 * 255.0 / mse).log10()
+        } else {
+            f64::INFINITY
+        },
         identical_565: same as f64 / n.max(1) as f64,
         pixels: n,
     }
@@ -486,7 +590,11 @@ pub fn compare(rgb888: &[Rgb888], rgb565: &[Rgb565], reference: &[Option<V3>]) -
 
 /// Renders a scene with tier `S` and compares it with the reference.
 pub fn diff_tier<S: Scalar>(scene: &Scene, reference: &[Option<V3>]) -> Diff {
-    compare(&render_tier::<S, Rgb888>(scene), &render_tier::<S, Rgb565>(scene), reference)
+    compare(
+        &render_tier::<S, Rgb888>(scene),
+        &render_tier::<S, Rgb565>(scene),
+        reference,
+    )
 }
 
 /// The reference image quantised to Rgb888 (background black).
@@ -494,7 +602,11 @@ pub fn reference_rgb888(reference: &[Option<V3>]) -> Vec<Rgb888> {
     reference
         .iter()
         .map(|c| match c {
-            Some(r) => Rgb888::new(q(r[0], 255.0) as u8, q(r[1], 255.0) as u8, q(r[2], 255.0) as u8),
+            Some(r) => Rgb888::new(
+                q(r[0], 255.0) as u8,
+                q(r[1], 255.0) as u8,
+                q(r[2], 255.0) as u8,
+            ),
             None => Rgb888::BLACK,
         })
         .collect()
@@ -515,8 +627,13 @@ pub enum LightSet {
     SpotBlinn,
 }
 
-pub const LIGHT_SETS: [LightSet; 5] =
-    [LightSet::DirDiffuse, LightSet::DirBlinn, LightSet::DirPhong, LightSet::Point4Blinn, LightSet::SpotBlinn];
+pub const LIGHT_SETS: [LightSet; 5] = [
+    LightSet::DirDiffuse,
+    LightSet::DirBlinn,
+    LightSet::DirPhong,
+    LightSet::Point4Blinn,
+    LightSet::SpotBlinn,
+];
 pub const MODES: [Mode; 3] = [Mode::Flat, Mode::Gouraud, Mode::Phong];
 
 impl LightSet {
@@ -582,7 +699,10 @@ pub fn config_scene(lights: LightSet, mode: Mode) -> Scene {
         lights: descs,
         global_ambient: [0.2; 3],
         objects: vec![Object {
-            shape: Shape::Sphere { centre: [120.0, 120.0], radius: 100.0 },
+            shape: Shape::Sphere {
+                centre: [120.0, 120.0],
+                radius: 100.0,
+            },
             material: MaterialDesc::classic(RED, AmbientSource::Object, 0.1, 0.7, 0.5, 32.0),
             mode,
             terms,
