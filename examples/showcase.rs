@@ -13,8 +13,8 @@
 #[path = "../tests/common/render.rs"]
 mod render;
 
-use embedded_graphics::prelude::*;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use fixshade::num::{Scalar, Q14, Q30};
 use render::{compare, reference_rgb888, render_reference, render_tier, scenes, Scene};
@@ -22,12 +22,16 @@ use std::path::{Path, PathBuf};
 
 fn save(scene: &Scene, pixels: &[Rgb888], path: &Path) {
     let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(scene.width, scene.height));
-    let points = (0..scene.height).flat_map(|y| (0..scene.width).map(move |x| Point::new(x as i32, y as i32)));
+    let points = (0..scene.height)
+        .flat_map(|y| (0..scene.width).map(move |x| Point::new(x as i32, y as i32)));
     display
         .draw_iter(points.zip(pixels.iter().copied()).map(|(p, c)| Pixel(p, c)))
         .expect("the simulator display accepts every pixel");
     let settings = OutputSettingsBuilder::new().build();
-    display.to_rgb_output_image(&settings).save_png(path).expect("write PNG");
+    display
+        .to_rgb_output_image(&settings)
+        .save_png(path)
+        .expect("write PNG");
 }
 
 /// Renders through a `DrawTarget` (the simulator display) with the adapter, as
@@ -40,7 +44,9 @@ fn render_to_display<S: Scalar>(scene: &Scene, path: &Path) -> render::Diff {
 }
 
 fn main() {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target").join("renders");
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("target")
+        .join("renders");
     std::fs::create_dir_all(&dir).expect("create target/renders");
     println!("Rendering the reference scenes into {}", dir.display());
     for scene in scenes() {
@@ -50,8 +56,14 @@ fn main() {
         println!("\n{} — {}", scene.name, scene.title);
         println!("  {}", ref_path.display());
         for (tier, d) in [
-            ("q14", render_to_display::<Q14<2>>(&scene, &dir.join(format!("{}_q14.png", scene.name)))),
-            ("q30", render_to_display::<Q30<3>>(&scene, &dir.join(format!("{}_q30.png", scene.name)))),
+            (
+                "q14",
+                render_to_display::<Q14<2>>(&scene, &dir.join(format!("{}_q14.png", scene.name))),
+            ),
+            (
+                "q30",
+                render_to_display::<Q30<3>>(&scene, &dir.join(format!("{}_q30.png", scene.name))),
+            ),
         ] {
             println!(
                 "  {}  max {} LSB, mean {:.3}, PSNR {:.1} dB, Rgb565 identical {:.1} %",
