@@ -223,14 +223,21 @@ def main(argv=None) -> int:
     p.add_argument("--check", action="store_true",
                    help=f"count only the configurations in {BOUNDS.name}; exit 1 if a bound is exceeded")
     a = p.parse_args(argv)
-    if not a.no_build:
-        build(a.profile)
     if a.check:
         bounds = json.loads(BOUNDS.read_text())
+        if not a.no_build:
+            try:
+                build(a.profile)
+            except subprocess.CalledProcessError as e:
+                print(f"FAIL build: {e}")
+                print(f"0 passed, {len(bounds['bounds'])} failed")
+                return 1
         configs = sorted({tuple(b["config"].split()) for b in bounds["bounds"]})
         res = run(configs, a.profile, sizes=False)
         table(res)
         return check(res, bounds)
+    if not a.no_build:
+        build(a.profile)
     res = run([(t, s, l) for t in TIERS for s in SHADINGS for l in SETS], a.profile)
     OUT.parent.mkdir(exist_ok=True)
     doc = {
