@@ -243,6 +243,12 @@ impl<S: Scalar> DirectionalLight<S> {
     pub fn direction(&self) -> Vec3<S> {
         self.dir
     }
+
+    /// The light's colours times the material's, and the halfway vector, as set by
+    /// the last [`LightSource::prepare`].
+    pub fn prepared(&self) -> &Prepared<S> {
+        &self.pre
+    }
 }
 
 impl<S: Scalar> LightSource<S> for DirectionalLight<S> {

@@ -365,6 +365,17 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         &self.material
     }
 
+    /// The lights (prepared for this material and viewer).
+    pub fn lights(&self) -> &L {
+        &self.lights
+    }
+
+    /// The part of the colour that is the same at every point: emission, global
+    /// ambient and the ambient of lights without attenuation.
+    pub fn base(&self) -> Rgb<S> {
+        self.base
+    }
+
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
     #[inline(always)]
     pub fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {

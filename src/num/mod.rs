@@ -25,7 +25,7 @@
 mod float;
 mod q14;
 mod q30;
-mod rsqrt;
+pub(crate) mod rsqrt;
 
 pub use float::{F32Fast, F32_LIMIT};
 pub use q14::Q14;

@@ -5,6 +5,7 @@
 //! | [`Flat`] | once per triangle, at the centroid | nothing | no (one colour, Mach bands) |
 //! | [`Gouraud`] | at the three vertices | encoded colour channels | no (misses or smears it) |
 //! | [`Phong`] | at every pixel | normal (and position when the lighting needs it) | yes |
+//! | [`IncrementalPhong`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `|N|²` by differences | yes |
 //!
 //! Every mode takes the same [`ShadeVertex`]es (screen position from the transform
 //! stage, eye-space position and unit normal for lighting), works with every
@@ -36,11 +37,13 @@
 mod encode;
 mod flat;
 mod gouraud;
+mod incremental;
 mod phong;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, CHANNEL_FRAC};
 pub use flat::Flat;
 pub use gouraud::Gouraud;
+pub use incremental::{DirectionalLighting, IncrementalModel, IncrementalPhong};
 pub use phong::Phong;
 
 use crate::num::Scalar;

@@ -709,3 +709,108 @@ pub fn config_scene(lights: LightSet, mode: Mode) -> Scene {
         }],
     }
 }
+
+/// Renders a scene with [`fixshade::shade::IncrementalPhong`] in `Q14<NW>` (every
+/// object Phong-shaded), if the scene has only directional lights (one or two) and
+/// Lambert or Blinn-Phong materials; `None` otherwise.
+pub fn render_incremental<const NW: u8, C: OutputColor + Default>(scene: &Scene) -> Option<Vec<C>> {
+    use fixshade::light::DirectionalLight;
+    use fixshade::num::Q14;
+    let dirs: Vec<DirectionalLight<Q14<NW>>> = scene
+        .lights
+        .iter()
+        .map(|d| match d.kind {
+            LightKind::Directional { towards_light } => {
+                fixshade::light::LightColors::new(d.ambient, d.diffuse, d.specular)
+                    .and_then(|c| DirectionalLight::new(towards_light, c))
+                    .ok()
+            }
+            _ => None,
+        })
+        .collect::<Option<_>>()?;
+    if scene
+        .objects
+        .iter()
+        .any(|o| !matches!(o.terms, Terms4::Lambert | Terms4::Blinn))
+    {
+        return None;
+    }
+    let (w, h) = (scene.width, scene.height);
+    let mut pixels = vec![C::from_channels([0; 3]); (w * h) as usize];
+    let mut depth = vec![u16::MAX; (w * h) as usize];
+    let prepared = prepare(scene);
+    {
+        let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
+        let mut db = DepthBuffer::new(&mut depth, w).unwrap();
+        for (obj, tris) in scene.objects.iter().zip(&prepared) {
+            match (dirs.len(), obj.terms) {
+                (1, Terms4::Lambert) => {
+                    draw_inc::<NW, 1, Lambert, C>(scene, obj, [dirs[0]], tris, &mut fb, &mut db)
+                }
+                (1, _) => {
+                    draw_inc::<NW, 1, BlinnPhong, C>(scene, obj, [dirs[0]], tris, &mut fb, &mut db)
+                }
+                (2, Terms4::Lambert) => draw_inc::<NW, 2, Lambert, C>(
+                    scene,
+                    obj,
+                    [dirs[0], dirs[1]],
+                    tris,
+                    &mut fb,
+                    &mut db,
+                ),
+                (2, _) => draw_inc::<NW, 2, BlinnPhong, C>(
+                    scene,
+                    obj,
+                    [dirs[0], dirs[1]],
+                    tris,
+                    &mut fb,
+                    &mut db,
+                ),
+                _ => return None,
+            };
+        }
+    }
+    Some(pixels)
+}
+
+/// Draws one object with incremental Phong shading; returns the shaded pixels.
+pub fn draw_inc<
+    const NW: u8,
+    const K: usize,
+    M: fixshade::shade::IncrementalModel,
+    C: OutputColor + Default,
+>(
+    scene: &Scene,
+    obj: &Object,
+    lights: [fixshade::light::DirectionalLight<fixshade::num::Q14<NW>>; K],
+    tris: &[[Vert; 3]],
+    fb: &mut SliceFramebuffer<'_, C>,
+    db: &mut DepthBuffer<'_>,
+) -> u64 {
+    use fixshade::num::Q14;
+    let lighting = Lighting::<Q14<NW>, _, M>::new(lights, Material::new(&obj.material).unwrap())
+        .with_global_ambient(Rgb::from_f32(scene.global_ambient));
+    let mut s = fixshade::shade::IncrementalPhong::<NW, K, M, C>::new(&lighting);
+    let o = opts();
+    tris.iter()
+        .map(|t| {
+            let sv = t.each_ref().map(|v| {
+                ShadeVertex::<Q14<NW>>::new(
+                    [v.screen.x, v.screen.y],
+                    v.screen.z,
+                    v.screen.inv_w,
+                    v.pos,
+                    v.normal,
+                )
+            });
+            s.draw(fb, Some(db), &sv, &o).pixels as u64
+        })
+        .sum()
+}
+
+/// The same scene with every object Phong-shaded (for the incremental comparison).
+pub fn all_phong(scene: &Scene) -> Scene {
+    let mut s = scene.clone();
+    s.objects.iter_mut().for_each(|o| o.mode = Mode::Phong);
+    s
+}

@@ -27,7 +27,7 @@ use fixshade::light::LightSet;
 use fixshade::lighting::Model;
 use fixshade::prelude::*;
 use fixshade::raster::{RasterOptions, SpanShader, SUBPIXEL_BITS};
-use fixshade::shade::{Flat, Gouraud, Linear, Phong as PhongShading, ShadeVertex, Shading};
+use fixshade::shade::{Flat, Gouraud, IncrementalModel, IncrementalPhong, Linear, Phong as PhongShading, ShadeVertex, Shading};
 use fixshade::target::SliceFramebuffer;
 
 // `out` is handed to the library as `&mut [Rgb565]`: Rgb565 is a newtype of a
@@ -159,6 +159,18 @@ unsafe fn span_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out
     n
 }
 
+/// `IncrementalPhong` over the same span (Q14, one directional light).
+#[inline(always)]
+unsafe fn span_phong_inc<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u16) -> u32 {
+    let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
+    let mut sh = IncrementalPhong::<NW, 1, M, Rgb565>::new(&lit);
+    let [v0, v1] = span_ends::<Q14<NW>>();
+    let n = black_box(n);
+    let (start, step) = ramp(normal_attrs(&v0), normal_attrs(&v1), n);
+    SpanShader::<3>::shade_span(&mut sh, black_box(0), black_box(0), &start, &step, pixels(out, n as usize));
+    n
+}
+
 // ---- triangle kernels ------------------------------------------------------------
 
 /// Draws the triangle with legs of `scale` pixels (`scale = 0`: no draw call).
@@ -199,6 +211,40 @@ unsafe fn tri_gouraud<S: Scalar, L: LightSet<S>, M: Model>(lights: L, scale: u32
 unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, scale: u32, out: *mut u16) -> u32 {
     let lit = lighting::<S, L, M>(lights);
     draw(&mut PhongShading::new(&lit, Linear), scale, out)
+}
+
+#[inline(always)]
+unsafe fn tri_phong_inc<const NW: u8, M: IncrementalModel>(scale: u32, out: *mut u16) -> u32 {
+    let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
+    draw(&mut IncrementalPhong::<NW, 1, M, Rgb565>::new(&lit), scale, out)
+}
+
+/// `span_<tier>_phong_inc_<set>` / `tri_…`: incremental Phong kernels (Q14 tiers,
+/// directional light sets only).
+macro_rules! incremental {
+    ($($tier:ident = $nw:literal, $set:ident = $M:ty;)*) => {
+        $(
+            const _: () = {
+                #[export_name = concat!("span_", stringify!($tier), "_phong_inc_", stringify!($set))]
+                pub unsafe extern "C" fn span(n: u32, out: *mut u16) -> u32 {
+                    span_phong_inc::<$nw, $M>(n, out)
+                }
+                #[export_name = concat!("tri_", stringify!($tier), "_phong_inc_", stringify!($set))]
+                pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
+                    tri_phong_inc::<$nw, $M>(scale, out)
+                }
+                #[used]
+                static KEEP_INC: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
+            };
+        )*
+    };
+}
+
+incremental! {
+    q14_1 = 1, dir_diffuse = Lambert;
+    q14_1 = 1, dir_blinn = BlinnPhong;
+    q14_2 = 2, dir_diffuse = Lambert;
+    q14_2 = 2, dir_blinn = BlinnPhong;
 }
 
 // ---- generation -------------------------------------------------------------------

@@ -1,0 +1,297 @@
+//! Incremental Phong shading: the Cortex-M0 fast path for directional lights and a
+//! viewer at infinity in the Q14 tier.
+
+use super::phong::Phong;
+use super::{Linear, ShadeVertex, Shading};
+use crate::color::{OutputColor, Rgb};
+use crate::light::DirectionalLight;
+use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
+use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
+use crate::num::{Scalar, Q14};
+use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
+use crate::target::{DepthBuffer, Framebuffer};
+use core::marker::PhantomData;
+
+/// The models [`IncrementalPhong`] evaluates: [`Lambert`] and [`BlinnPhong`].
+pub trait IncrementalModel: Model {}
+impl IncrementalModel for Lambert {}
+impl IncrementalModel for BlinnPhong {}
+
+/// The lighting configurations [`IncrementalPhong`] accepts.
+pub type DirectionalLighting<const NW: u8, const K: usize, M> =
+    Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M, InfiniteViewer<Q14<NW>>, NoFog>;
+
+/// Segments of the specular power table.
+const POW_SEGMENTS: usize = 64;
+
+/// Per-pixel Phong shading for `K` directional lights, a viewer at infinity and the
+/// [`Lambert`] or [`BlinnPhong`] model in the `Q14` tier, computed incrementally
+/// along each span (the same images as [`Phong`] up to the error stated below, at a
+/// fraction of the cost on a Cortex-M0):
+///
+/// - `N·L` and `N·H` of the *unnormalised* interpolated normal are linear along a
+///   span: one addition per light and pixel;
+/// - `|N|²` is quadratic: second-order forward differences, two additions;
+/// - `1/|N|` is refined by one Newton step from the previous pixel's value
+///   (exact at the start of every span; two steps on spans where `|N|` changes
+///   by more than 2^-8 per pixel), three multiplications per step;
+/// - `(N·H)^n` comes from a 65-entry table of the material's power over
+///   `[x0, 1]`, `x0 = 4096^(−1/n)` (below `x0` the power is under 1/4096), linearly
+///   interpolated: one multiplication;
+/// - the colour is accumulated directly in output channel units: one
+///   multiplication per channel and term.
+///
+/// Output is rounded to nearest like [`Linear`]. A span whose interpolated normal
+/// gets shorter than ½ or longer than 2 (normals more than ~120° apart across a
+/// triangle), or whose `|N|²` changes by more than 1/8 from one pixel to the next
+/// (tiny triangles with very different vertex normals), falls back to [`Phong`] for
+/// that span: the result stays within the bound, only the speed differs.
+///
+/// Error against the `f64` reference: see the golden tests and `docs/tradeoff.md`.
+#[derive(Debug)]
+pub struct IncrementalPhong<'l, const NW: u8, const K: usize, M: IncrementalModel, C> {
+    lighting: &'l DirectionalLighting<NW, K, M>,
+    lights: [LightTerms; K],
+    /// Constant part per channel, in channel units · 2^8, plus ½ for rounding.
+    base: [i32; 3],
+    pow: PowTable,
+    color: PhantomData<C>,
+}
+
+/// One light's constants in the units of the span loop.
+#[derive(Clone, Copy, Debug, Default)]
+struct LightTerms {
+    /// Direction to the light, Q14.
+    l: [i32; 3],
+    /// Halfway vector, Q14.
+    h: [i32; 3],
+    /// `Ld∘Kd` per channel in channel units · 2^8.
+    kd: [i32; 3],
+    /// `Ls∘Ks` per channel in channel units · 2^8.
+    ks: [i32; 3],
+}
+
+/// `x^n` over `[x0, 1]` at 65 points, Q14.
+#[derive(Clone, Copy, Debug)]
+struct PowTable {
+    /// `x0` in Q14.
+    x0: i32,
+    /// `u = (x − x0)·mul ≫ 16` is the table position in 1/256 segments.
+    mul: i32,
+    t: [i32; POW_SEGMENTS + 2],
+}
+
+impl PowTable {
+    fn new(n: u16) -> Self {
+        let x0 = if n == 0 {
+            0.0
+        } else {
+            libm::pow(4096.0, -1.0 / n as f64)
+        };
+        let x0q = libm::floor(x0 * 16384.0) as i32;
+        let width = (16384 - x0q).max(1);
+        let mut t = [0i32; POW_SEGMENTS + 2];
+        for (i, v) in t.iter_mut().enumerate() {
+            let x = (x0q as f64 + width as f64 * i.min(POW_SEGMENTS) as f64 / POW_SEGMENTS as f64)
+                / 16384.0;
+            *v = libm::round(libm::pow(x, n as f64) * 16384.0) as i32;
+        }
+        Self {
+            x0: x0q,
+            mul: (((POW_SEGMENTS as i64) << 24) / width as i64) as i32,
+            t,
+        }
+    }
+
+    /// `x^n` for `x` in Q14 (`x ≤ 1`), linearly interpolated.
+    #[inline(always)]
+    fn get(&self, x: i32) -> i32 {
+        if x <= self.x0 {
+            return 0;
+        }
+        // position in the table in 1/256 segments: (x − x0)·64·256/width
+        let u = ((x.min(16384) - self.x0) * self.mul) >> 16;
+        let i = ((u >> 8) as usize).min(POW_SEGMENTS);
+        let (a, b) = (self.t[i], self.t[i + 1]);
+        a + (((b - a) * (u & 255)) >> 8)
+    }
+}
+
+/// A colour's channels (`C::linear_channels`) in channel units · 2^8.
+fn channel_units<C: OutputColor, const NW: u8>(c: Rgb<Q14<NW>>) -> [i32; 3] {
+    let l = C::linear_channels(c);
+    // value (Q14, < 2) · max · 2^8 ≤ 2·255·256 < 2^17
+    core::array::from_fn(|i| (l[i].raw() * C::CHANNEL_MAX[i] as i32 * 256 + 8192) >> 14)
+}
+
+impl<'l, const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
+    IncrementalPhong<'l, NW, K, M, C>
+{
+    /// Incremental Phong shading with `lighting` (rounding to nearest, as [`Linear`]).
+    pub fn new(lighting: &'l DirectionalLighting<NW, K, M>) -> Self {
+        let lights = core::array::from_fn(|j| {
+            let light = &lighting.lights()[j];
+            let pre = light.prepared();
+            let d = light.direction();
+            let h = pre.half.unwrap_or(d);
+            LightTerms {
+                l: [d.x.raw(), d.y.raw(), d.z.raw()],
+                h: [h.x.raw(), h.y.raw(), h.z.raw()],
+                kd: channel_units::<C, NW>(pre.diffuse),
+                ks: channel_units::<C, NW>(pre.specular),
+            }
+        });
+        Self {
+            lighting,
+            lights,
+            base: channel_units::<C, NW>(lighting.base()).map(|v| v + 128),
+            pow: PowTable::new(lighting.material().shininess),
+            color: PhantomData,
+        }
+    }
+}
+
+/// `Σ a_i·b_i` in i64.
+#[inline(always)]
+fn dot64(a: &[i32; 3], b: &[i32; 3]) -> i64 {
+    a[0] as i64 * b[0] as i64 + a[1] as i64 * b[1] as i64 + a[2] as i64 * b[2] as i64
+}
+
+impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor> SpanShader<3>
+    for IncrementalPhong<'_, NW, K, M, C>
+{
+    type Color = C;
+
+    fn shade_span(&mut self, x: i32, y: i32, start: &[i32; 3], step: &[i32; 3], out: &mut [C]) {
+        let n = out.len() as i64;
+        // |N(k)|² = s0 + 2k·N0·dN + k²·|dN|² in Q52 (normals are Q26 attributes)
+        let (s0, nd, dd) = (dot64(start, start), dot64(start, step), dot64(step, step));
+        let at = |k: i64| s0 + 2 * k * nd + k * k * dd;
+        // smallest |N|² over the span (convex in k) and the largest (at an end)
+        let kmin = if dd > 0 {
+            (-nd).clamp(0, dd * (n - 1).max(0)) / dd
+        } else {
+            0
+        };
+        let (lo, hi) = (at(kmin), at(0).max(at(n - 1)));
+        // |N|² change per pixel: ds(k) = 2·N0·dN + (2k + 1)·|dN|², largest at an end
+        let ds_max = (2 * nd + dd)
+            .abs()
+            .max((2 * nd + (2 * n - 3).max(1) * dd).abs());
+        if lo < 1 << 50 || hi >= 1 << 54 || ds_max > lo >> 3 {
+            // |N| outside [½, 2), or changing by more than 1/8 per pixel: the general path
+            return Phong::new(self.lighting, Linear).shade_span(x, y, start, step, out);
+        }
+        // |N|² in Q28 with forward differences: s, ds, dds
+        let s = (s0 >> 24) as i32;
+        let ds = ((2 * nd + dd) >> 24) as i32;
+        let dds = ((2 * dd) >> 24) as i32;
+        // 1/|N| in Q14 at the span start: s ∈ [2^26, 2^30) splits with k = 2 or 4
+        let (t, k) = split_u32(s as u32);
+        let y0 = rsqrt_q14_mantissa(t, 2) as i32;
+        let r = if k == 2 { y0 >> 1 } else { y0 };
+        // N·L and N·H per light in Q24, with their per-pixel steps
+        let mut dots = [[0i32; 4]; K];
+        for (j, lt) in self.lights.iter().enumerate() {
+            dots[j] = [
+                (dot64(start, &lt.l) >> 16) as i32,
+                (dot64(step, &lt.l) >> 16) as i32,
+                (dot64(start, &lt.h) >> 16) as i32,
+                (dot64(step, &lt.h) >> 16) as i32,
+            ];
+        }
+        // One Newton step per pixel from the previous pixel's 1/|N| leaves a relative
+        // error of 1.5·e², e the relative change of |N| per pixel: below 2^-8 that is
+        // under the Q14 resolution; up to 2^-4 (the limit above) two steps are taken.
+        if ds_max <= lo >> 8 {
+            self.run::<1>(SpanState { s, ds, dds, r }, dots, out);
+        } else {
+            self.run::<2>(SpanState { s, ds, dds, r }, dots, out);
+        }
+    }
+}
+
+/// `|N|²` (Q28) with its forward differences, and `1/|N|` (Q14).
+#[derive(Clone, Copy, Debug)]
+struct SpanState {
+    s: i32,
+    ds: i32,
+    dds: i32,
+    r: i32,
+}
+
+impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
+    IncrementalPhong<'_, NW, K, M, C>
+{
+    /// The per-pixel loop; `dots[j]` = `[N·L, step, N·H, step]` of light `j` (Q24).
+    #[inline(always)]
+    fn run<const NEWTON: u32>(&self, st: SpanState, mut dots: [[i32; 4]; K], out: &mut [C]) {
+        let SpanState {
+            mut s,
+            mut ds,
+            dds,
+            mut r,
+        } = st;
+        let max = C::CHANNEL_MAX.map(|m| m as i32);
+        for p in out.iter_mut() {
+            // every term is ≥ 0, so only the upper clamp is needed
+            let mut acc = self.base;
+            for (lt, dot) in self.lights.iter().zip(dots.iter_mut()) {
+                // diffuse: N·L/|N| (Q14)
+                let d = ((dot[0] >> 10) * r) >> 14;
+                if d > 0 {
+                    let d = d.min(16384);
+                    acc[0] += (d * lt.kd[0]) >> 14;
+                    acc[1] += (d * lt.kd[1]) >> 14;
+                    acc[2] += (d * lt.kd[2]) >> 14;
+                    if M::SPECULAR == Specular::BlinnPhong {
+                        // specular: (N·H/|N|)^n
+                        let sp = self.pow.get(((dot[2] >> 10) * r) >> 14);
+                        acc[0] += (sp * lt.ks[0]) >> 14;
+                        acc[1] += (sp * lt.ks[1]) >> 14;
+                        acc[2] += (sp * lt.ks[2]) >> 14;
+                    }
+                }
+                dot[0] += dot[1];
+                dot[2] += dot[3];
+            }
+            *p = C::from_channels([
+                (acc[0] >> 8).min(max[0]) as u32,
+                (acc[1] >> 8).min(max[1]) as u32,
+                (acc[2] >> 8).min(max[2]) as u32,
+            ]);
+            // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
+            // seeded with this pixel's r
+            s += ds;
+            ds += dds;
+            for _ in 0..NEWTON {
+                let r2 = (r * r) >> 14;
+                let sr2 = ((s >> 14) * r2) >> 14;
+                r = (r * (49152 - sr2)) >> 15;
+            }
+        }
+    }
+}
+
+impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor> Shading<Q14<NW>>
+    for IncrementalPhong<'_, NW, K, M, C>
+{
+    type Color = C;
+
+    fn draw<Fb: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut Fb,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<Q14<NW>>; 3],
+        opts: &RasterOptions,
+    ) -> DrawStats {
+        let v = tri.map(|t| {
+            t.raster([
+                t.normal.x.to_attr(),
+                t.normal.y.to_attr(),
+                t.normal.z.to_attr(),
+            ])
+        });
+        draw_triangle(fb, depth, &v, opts, self)
+    }
+}

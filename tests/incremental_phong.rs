@@ -1,0 +1,122 @@
+//! `IncrementalPhong` (the Q14 fast path) against the f64 reference on the
+//! reference scenes it supports and the configuration spheres, and against the
+//! general `Phong` span shader on random spans.
+
+mod common;
+
+use common::render::{
+    all_phong, compare, config_scene, render_incremental, render_reference, scenes, LightSet, Mode,
+};
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use fixshade::prelude::*;
+use fixshade::raster::SpanShader;
+use fixshade::shade::IncrementalPhong;
+use proptest::prelude::*;
+
+/// The bound the README states for `IncrementalPhong` against the reference:
+/// max 2 LSB, PSNR ≥ 55 dB on every supported scene.
+const MAX_LSB: u32 = 2;
+const MIN_PSNR: f64 = 55.0;
+
+fn check_scene<const NW: u8>(scene: &common::render::Scene, failures: &mut Vec<String>) -> bool {
+    let scene = all_phong(scene);
+    let (Some(a), Some(b)) = (
+        render_incremental::<NW, Rgb888>(&scene),
+        render_incremental::<NW, Rgb565>(&scene),
+    ) else {
+        return false;
+    };
+    let d = compare(&a, &b, &render_reference(&scene));
+    println!(
+        "Q14<{NW}> incremental {:<16} max {} LSB mean {:.3} PSNR {:.1} dB Rgb565 identical {:.1} %",
+        scene.name,
+        d.max,
+        d.mean,
+        d.psnr,
+        100.0 * d.identical_565
+    );
+    if d.max > MAX_LSB || d.psnr < MIN_PSNR {
+        failures.push(format!(
+            "Q14<{NW}> {}: max {} PSNR {:.1}",
+            scene.name, d.max, d.psnr
+        ));
+    }
+    true
+}
+
+#[test]
+fn supported_scenes_against_the_reference() {
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    let mut all = scenes();
+    all.push(config_scene(LightSet::DirDiffuse, Mode::Phong));
+    all.push(config_scene(LightSet::DirBlinn, Mode::Phong));
+    for s in &all {
+        checked += check_scene::<1>(s, &mut failures) as u32;
+        check_scene::<2>(s, &mut failures);
+    }
+    assert!(checked >= 5, "only {checked} scenes were supported");
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// The Q14 bound of `tests/lighting_accuracy.rs` for a highlight of exponent `n`,
+/// plus 1 LSB for the incremental approximations (power table, Newton from the
+/// previous pixel).
+fn bound(n: f32) -> u32 {
+    match n as u32 {
+        0..=64 => 2 + 1,
+        65..=256 => 9 + 1,
+        _ => 29 + 1,
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]
+
+    /// Random spans of normals (any directions whose interpolation stays longer than
+    /// ½; others take the general path) against the f64 reference at every pixel,
+    /// away from N·L = 0, where rounding decides whether the specular term exists.
+    #[test]
+    fn random_spans_against_the_reference(
+        a in [-1.0f32..1.0, -1.0f32..1.0, 0.2f32..1.0],
+        b in [-1.0f32..1.0, -1.0f32..1.0, 0.2f32..1.0],
+        len in 1usize..240,
+        n in prop_oneof![Just(1.0f32), 5.0f32..64.0, Just(128.0f32)],
+        l in [-1.0f32..1.0, -1.0f32..1.0, 0.1f32..1.0],
+    ) {
+        use fixshade::light::{LightDesc, LightKind};
+        use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
+        let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, n);
+        let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
+        let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap());
+        let na = Vec3::<Q14<2>>::from_f32(a).normalize();
+        let nb = Vec3::<Q14<2>>::from_f32(b).normalize();
+        let start = [na.x.to_attr(), na.y.to_attr(), na.z.to_attr()];
+        let step = [0, 1, 2].map(|i| {
+            let (s, e) = ([nb.x, nb.y, nb.z][i].to_attr(), start[i]);
+            ((s as i64 - e as i64) / len as i64) as i32
+        });
+        let mut fast = vec![Rgb888::BLACK; len];
+        IncrementalPhong::<2, 1, BlinnPhong, Rgb888>::new(&lighting).shade_span(0, 0, &start, &step, &mut fast);
+        let lights = [LightDesc { kind: LightKind::Directional { towards_light: l }, ambient: [0.0; 3], diffuse: [1.0; 3], specular: [1.0; 3] }];
+        let r = Reference {
+            lights: &lights,
+            material: desc,
+            global_ambient: [0.0; 3],
+            viewer: ViewerDesc::Infinite([0.0, 0.0, 1.0]),
+            fog: None,
+            model: ModelDesc::of::<BlinnPhong>(),
+        };
+        let lf = fixshade::reference::normalize(l.map(|c| c as f64));
+        for (k, f) in fast.iter().enumerate() {
+            let nk = [0, 1, 2].map(|i| start[i] as f64 + k as f64 * step[i] as f64);
+            let nl = fixshade::reference::normalize(nk).iter().zip(lf).map(|(a, b)| a * b).sum::<f64>();
+            if nl.abs() < 2.0e-3 {
+                continue;
+            }
+            let want = r.shade([0.0; 3], nk).map(to_u8);
+            let e = [f.r().abs_diff(want[0]), f.g().abs_diff(want[1]), f.b().abs_diff(want[2])].into_iter().max().unwrap();
+            prop_assert!(e as u32 <= bound(n), "pixel {k}: incremental {f:?}, reference {want:?}, n = {n}");
+        }
+    }
+}
