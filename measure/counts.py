@@ -47,6 +47,8 @@ BOUNDS = HERE / "bounds.json"
 TIERS = ["q14_1", "q14_2", "q30", "f32", "f32fast"]
 SHADINGS = ["flat", "gouraud", "phong"]
 SETS = ["dir_diffuse", "dir_blinn", "dir_phong", "point4_blinn", "spot_blinn"]
+# IncrementalPhong exists for the Q14 tiers and directional Lambert / Blinn-Phong only
+INCREMENTAL = [(t, "phong_inc", l) for t in ("q14_1", "q14_2") for l in ("dir_diffuse", "dir_blinn")]
 FB = 64  # framebuffer side of the triangle kernels
 BIG = 32  # triangle legs for the whole-triangle figure
 
@@ -238,7 +240,7 @@ def main(argv=None) -> int:
         return check(res, bounds)
     if not a.no_build:
         build(a.profile)
-    res = run([(t, s, l) for t in TIERS for s in SHADINGS for l in SETS], a.profile)
+    res = run([(t, s, l) for t in TIERS for s in SHADINGS for l in SETS] + INCREMENTAL, a.profile)
     OUT.parent.mkdir(exist_ok=True)
     doc = {
         "about": __doc__.split("\n\n", 2)[2].strip().splitlines(),

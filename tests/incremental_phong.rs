@@ -89,13 +89,16 @@ proptest! {
         let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, n);
         let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
         let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap());
-        let na = Vec3::<Q14<2>>::from_f32(a).normalize();
-        let nb = Vec3::<Q14<2>>::from_f32(b).normalize();
-        let start = [na.x.to_attr(), na.y.to_attr(), na.z.to_attr()];
-        let step = [0, 1, 2].map(|i| {
-            let (s, e) = ([nb.x, nb.y, nb.z][i].to_attr(), start[i]);
-            ((s as i64 - e as i64) / len as i64) as i32
-        });
+        // the attributes IncrementalPhong::draw gives the rasterizer: N (Q26), N·L, N·H
+        let (ld, hd) = (light.direction(), lighting.lights()[0].prepared().half.unwrap());
+        let attrs = |v: [f32; 3]| {
+            let n = Vec3::<Q14<2>>::from_f32(v).normalize();
+            let a = [n.x.to_attr(), n.y.to_attr(), n.z.to_attr()];
+            let dot = |d: Vec3<Q14<2>>| ((a[0] as i64 * d.x.raw() as i64 + a[1] as i64 * d.y.raw() as i64 + a[2] as i64 * d.z.raw() as i64) >> 14) as i32;
+            [a[0], a[1], a[2], dot(ld), dot(hd)]
+        };
+        let (start, end) = (attrs(a), attrs(b));
+        let step: [i32; 5] = core::array::from_fn(|i| ((end[i] as i64 - start[i] as i64) / len as i64) as i32);
         let mut fast = vec![Rgb888::BLACK; len];
         IncrementalPhong::<2, 1, BlinnPhong, Rgb888>::new(&lighting).shade_span(0, 0, &start, &step, &mut fast);
         let lights = [LightDesc { kind: LightKind::Directional { towards_light: l }, ambient: [0.0; 3], diffuse: [1.0; 3], specular: [1.0; 3] }];

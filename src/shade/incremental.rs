@@ -29,8 +29,9 @@ const POW_SEGMENTS: usize = 64;
 /// along each span (the same images as [`Phong`] up to the error stated below, at a
 /// fraction of the cost on a Cortex-M0):
 ///
-/// - `N·L` and `N·H` of the *unnormalised* interpolated normal are linear along a
-///   span: one addition per light and pixel;
+/// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
+///   triangle: the rasterizer interpolates them as attributes (`3 + 2K` attributes:
+///   the normal, then `N·L` and `N·H` per light), one addition per light and pixel;
 /// - `|N|²` is quadratic: second-order forward differences, two additions;
 /// - `1/|N|` is refined by one Newton step from the previous pixel's value
 ///   (exact at the start of every span; two steps on spans where `|N|` changes
@@ -151,65 +152,132 @@ impl<'l, const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
     }
 }
 
-/// `Σ a_i·b_i` in i64.
-#[inline(always)]
-fn dot64(a: &[i32; 3], b: &[i32; 3]) -> i64 {
-    a[0] as i64 * b[0] as i64 + a[1] as i64 * b[1] as i64 + a[2] as i64 * b[2] as i64
-}
-
-impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor> SpanShader<3>
-    for IncrementalPhong<'_, NW, K, M, C>
+impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
+    IncrementalPhong<'_, NW, K, M, C>
 {
-    type Color = C;
-
-    fn shade_span(&mut self, x: i32, y: i32, start: &[i32; 3], step: &[i32; 3], out: &mut [C]) {
-        let n = out.len() as i64;
-        // |N(k)|² = s0 + 2k·N0·dN + k²·|dN|² in Q52 (normals are Q26 attributes)
-        let (s0, nd, dd) = (dot64(start, start), dot64(start, step), dot64(step, step));
-        let at = |k: i64| s0 + 2 * k * nd + k * k * dd;
-        // smallest |N|² over the span (convex in k) and the largest (at an end)
-        let kmin = if dd > 0 {
-            (-nd).clamp(0, dd * (n - 1).max(0)) / dd
-        } else {
-            0
+    /// The rasterizer attributes of a vertex: the normal (Q26), then `N·L` and
+    /// `N·H` of every light (Q26; affine over the triangle like the normal, so the
+    /// rasterizer interpolates them exactly).
+    fn attrs(&self, v: &ShadeVertex<Q14<NW>>) -> ([i32; 3], [[i32; 2]; K]) {
+        let n = [
+            v.normal.x.to_attr(),
+            v.normal.y.to_attr(),
+            v.normal.z.to_attr(),
+        ];
+        let dot = |d: &[i32; 3]| {
+            // Q26 · Q14 ≫ 14 = Q26, |N·L| ≤ |N| ≤ 2
+            ((n[0] as i64 * d[0] as i64 + n[1] as i64 * d[1] as i64 + n[2] as i64 * d[2] as i64)
+                >> 14) as i32
         };
-        let (lo, hi) = (at(kmin), at(0).max(at(n - 1)));
+        (
+            n,
+            core::array::from_fn(|j| [dot(&self.lights[j].l), dot(&self.lights[j].h)]),
+        )
+    }
+
+    /// Shades one span; `start`/`step` are `[Nx, Ny, Nz, N·L₁, N·H₁, …]`.
+    fn span(&self, x: i32, y: i32, start: &[i32], step: &[i32], out: &mut [C]) {
+        let n = out.len() as i64;
+        let (n0, dn) = ([start[0], start[1], start[2]], [step[0], step[1], step[2]]);
+        // |N(k)|² = s0 + k·(2·N0·dN) + k²·|dN|², in Q28 (the normal is Q26)
+        let s0 = n0
+            .iter()
+            .map(|&c| ((c >> 12) * (c >> 12)) as u32 as i64)
+            .sum::<i64>();
+        let nd = n0
+            .iter()
+            .zip(dn)
+            .map(|(&a, b)| a as i64 * b as i64)
+            .sum::<i64>()
+            >> 24;
+        let dd = dn.iter().map(|&b| b as i64 * b as i64).sum::<i64>() >> 24;
+        let general =
+            |out: &mut [C]| Phong::new(self.lighting, Linear).shade_span(x, y, &n0, &dn, out);
+        if dd > 1 << 24 {
+            // |dN| above ¼ per pixel
+            return general(out);
+        }
+        // the extremes of the convex |N(k)|² over the span: the ends, and the vertex
+        // when it is inside (tested as s0·dd − nd² ≥ ¼·dd, i.e. min ≥ ¼, no division)
+        let s_end = s0 + (n - 1).max(0) * (2 * nd + (n - 1).max(0) * dd);
+        let interior = nd < 0 && nd + (n - 1) * dd > 0;
+        let (lo, hi) = (s0.min(s_end), s0.max(s_end));
+        let lo = if interior { 1 << 26 } else { lo };
         // |N|² change per pixel: ds(k) = 2·N0·dN + (2k + 1)·|dN|², largest at an end
         let ds_max = (2 * nd + dd)
             .abs()
             .max((2 * nd + (2 * n - 3).max(1) * dd).abs());
-        if lo < 1 << 50 || hi >= 1 << 54 || ds_max > lo >> 3 {
+        if lo < 1 << 26
+            || hi >= 1 << 30
+            || (interior && s0 * dd - nd * nd < dd << 26)
+            || ds_max > lo >> 3
+        {
             // |N| outside [½, 2), or changing by more than 1/8 per pixel: the general path
-            return Phong::new(self.lighting, Linear).shade_span(x, y, start, step, out);
+            return general(out);
         }
-        // |N|² in Q28 with forward differences: s, ds, dds
-        let s = (s0 >> 24) as i32;
-        let ds = ((2 * nd + dd) >> 24) as i32;
-        let dds = ((2 * dd) >> 24) as i32;
         // 1/|N| in Q14 at the span start: s ∈ [2^26, 2^30) splits with k = 2 or 4
-        let (t, k) = split_u32(s as u32);
+        let (t, k) = split_u32(s0 as u32);
         let y0 = rsqrt_q14_mantissa(t, 2) as i32;
-        let r = if k == 2 { y0 >> 1 } else { y0 };
-        // N·L and N·H per light in Q24, with their per-pixel steps
-        let mut dots = [[0i32; 4]; K];
-        for (j, lt) in self.lights.iter().enumerate() {
-            dots[j] = [
-                (dot64(start, &lt.l) >> 16) as i32,
-                (dot64(step, &lt.l) >> 16) as i32,
-                (dot64(start, &lt.h) >> 16) as i32,
-                (dot64(step, &lt.h) >> 16) as i32,
-            ];
-        }
+        let st = SpanState {
+            s: s0 as i32,
+            ds: (2 * nd + dd) as i32,
+            dds: (2 * dd) as i32,
+            r: if k == 2 { y0 >> 1 } else { y0 },
+        };
+        let dots: [[i32; 4]; K] = core::array::from_fn(|j| {
+            [
+                start[3 + 2 * j],
+                step[3 + 2 * j],
+                start[4 + 2 * j],
+                step[4 + 2 * j],
+            ]
+        });
         // One Newton step per pixel from the previous pixel's 1/|N| leaves a relative
         // error of 1.5·e², e the relative change of |N| per pixel: below 2^-8 that is
         // under the Q14 resolution; up to 2^-4 (the limit above) two steps are taken.
         if ds_max <= lo >> 8 {
-            self.run::<1>(SpanState { s, ds, dds, r }, dots, out);
+            self.run::<1>(st, dots, out);
         } else {
-            self.run::<2>(SpanState { s, ds, dds, r }, dots, out);
+            self.run::<2>(st, dots, out);
         }
     }
 }
+
+/// `SpanShader` and `Shading` for `K` lights, with `N = 3 + 2K` attributes.
+macro_rules! incremental_lights {
+    ($($k:literal => $n:literal),*) => {$(
+        impl<const NW: u8, M: IncrementalModel, C: OutputColor> SpanShader<$n> for IncrementalPhong<'_, NW, $k, M, C> {
+            type Color = C;
+            fn shade_span(&mut self, x: i32, y: i32, start: &[i32; $n], step: &[i32; $n], out: &mut [C]) {
+                self.span(x, y, start, step, out)
+            }
+        }
+
+        impl<const NW: u8, M: IncrementalModel, C: OutputColor> Shading<Q14<NW>> for IncrementalPhong<'_, NW, $k, M, C> {
+            type Color = C;
+            fn draw<Fb: Framebuffer<Color = C>>(
+                &mut self,
+                fb: &mut Fb,
+                depth: Option<&mut DepthBuffer<'_>>,
+                tri: &[ShadeVertex<Q14<NW>>; 3],
+                opts: &RasterOptions,
+            ) -> DrawStats {
+                let v = tri.map(|t| {
+                    let (n, dots) = self.attrs(&t);
+                    let mut a = [0i32; $n];
+                    a[..3].copy_from_slice(&n);
+                    for (j, d) in dots.iter().enumerate() {
+                        a[3 + 2 * j] = d[0];
+                        a[4 + 2 * j] = d[1];
+                    }
+                    t.raster(a)
+                });
+                draw_triangle(fb, depth, &v, opts, self)
+            }
+        }
+    )*};
+}
+incremental_lights!(1 => 5, 2 => 7, 3 => 9, 4 => 11);
 
 /// `|N|²` (Q28) with its forward differences, and `1/|N|` (Q14).
 #[derive(Clone, Copy, Debug)]
@@ -223,7 +291,7 @@ struct SpanState {
 impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
     IncrementalPhong<'_, NW, K, M, C>
 {
-    /// The per-pixel loop; `dots[j]` = `[N·L, step, N·H, step]` of light `j` (Q24).
+    /// The per-pixel loop; `dots[j]` = `[N·L, step, N·H, step]` of light `j` (Q26).
     #[inline(always)]
     fn run<const NEWTON: u32>(&self, st: SpanState, mut dots: [[i32; 4]; K], out: &mut [C]) {
         let SpanState {
@@ -238,7 +306,7 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
             let mut acc = self.base;
             for (lt, dot) in self.lights.iter().zip(dots.iter_mut()) {
                 // diffuse: N·L/|N| (Q14)
-                let d = ((dot[0] >> 10) * r) >> 14;
+                let d = ((dot[0] >> 12) * r) >> 14;
                 if d > 0 {
                     let d = d.min(16384);
                     acc[0] += (d * lt.kd[0]) >> 14;
@@ -246,7 +314,7 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
                     acc[2] += (d * lt.kd[2]) >> 14;
                     if M::SPECULAR == Specular::BlinnPhong {
                         // specular: (N·H/|N|)^n
-                        let sp = self.pow.get(((dot[2] >> 10) * r) >> 14);
+                        let sp = self.pow.get(((dot[2] >> 12) * r) >> 14);
                         acc[0] += (sp * lt.ks[0]) >> 14;
                         acc[1] += (sp * lt.ks[1]) >> 14;
                         acc[2] += (sp * lt.ks[2]) >> 14;
@@ -270,28 +338,5 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
                 r = (r * (49152 - sr2)) >> 15;
             }
         }
-    }
-}
-
-impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor> Shading<Q14<NW>>
-    for IncrementalPhong<'_, NW, K, M, C>
-{
-    type Color = C;
-
-    fn draw<Fb: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut Fb,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[ShadeVertex<Q14<NW>>; 3],
-        opts: &RasterOptions,
-    ) -> DrawStats {
-        let v = tri.map(|t| {
-            t.raster([
-                t.normal.x.to_attr(),
-                t.normal.y.to_attr(),
-                t.normal.z.to_attr(),
-            ])
-        });
-        draw_triangle(fb, depth, &v, opts, self)
     }
 }

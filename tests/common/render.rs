@@ -786,7 +786,11 @@ pub fn draw_inc<
     tris: &[[Vert; 3]],
     fb: &mut SliceFramebuffer<'_, C>,
     db: &mut DepthBuffer<'_>,
-) -> u64 {
+) -> u64
+where
+    for<'a> fixshade::shade::IncrementalPhong<'a, NW, K, M, C>:
+        Shading<fixshade::num::Q14<NW>, Color = C>,
+{
     use fixshade::num::Q14;
     let lighting = Lighting::<Q14<NW>, _, M>::new(lights, Material::new(&obj.material).unwrap())
         .with_global_ambient(Rgb::from_f32(scene.global_ambient));

@@ -27,14 +27,15 @@ use fixshade::light::LightSet;
 use fixshade::lighting::Model;
 use fixshade::prelude::*;
 use fixshade::raster::{RasterOptions, SpanShader, SUBPIXEL_BITS};
-use fixshade::shade::{Flat, Gouraud, IncrementalModel, IncrementalPhong, Linear, Phong as PhongShading, ShadeVertex, Shading};
+use fixshade::shade::{
+    Flat, Gouraud, IncrementalModel, IncrementalPhong, Linear, Phong as PhongShading, ShadeVertex,
+    Shading,
+};
 use fixshade::target::SliceFramebuffer;
 
 // `out` is handed to the library as `&mut [Rgb565]`: Rgb565 is a newtype of a
 // newtype of the raw 5:6:5 `u16`, so its only possible layout is that `u16`.
-const _: () = assert!(
-    core::mem::size_of::<Rgb565>() == 2 && core::mem::align_of::<Rgb565>() == 2
-);
+const _: () = assert!(core::mem::size_of::<Rgb565>() == 2 && core::mem::align_of::<Rgb565>() == 2);
 
 /// Pixels of the reference span: attributes go from one end to the other over
 /// `max(n, SPAN)` pixels, so longer spans cross the same sphere, only larger.
@@ -64,7 +65,9 @@ fn dir<S: Scalar>() -> DirectionalLight<S> {
 
 fn point4<S: Scalar>() -> [PointLight<S>; 4] {
     let att = Attenuation::new::<S>(1.0, 0.05, 0.01).unwrap();
-    let p = |pos: [f32; 3], c: [f32; 3]| PointLight::new(pos, att, LightColors::rgb(c).unwrap()).unwrap();
+    let p = |pos: [f32; 3], c: [f32; 3]| {
+        PointLight::new(pos, att, LightColors::rgb(c).unwrap()).unwrap()
+    };
     [
         p([3.0, 2.0, 0.0], [0.6, 0.6, 0.6]),
         p([-3.0, 2.0, -1.0], [0.5, 0.4, 0.3]),
@@ -75,8 +78,15 @@ fn point4<S: Scalar>() -> [PointLight<S>; 4] {
 
 fn spot<S: Scalar>() -> SpotLight<S> {
     // at (0, 3, 0), aimed at the sphere's centre
-    SpotLight::new([0.0, 3.0, 0.0], [0.0, -3.0, -4.0], 8.0, 30.0, Attenuation::none::<S>(), LightColors::white())
-        .unwrap()
+    SpotLight::new(
+        [0.0, 3.0, 0.0],
+        [0.0, -3.0, -4.0],
+        8.0,
+        30.0,
+        Attenuation::none::<S>(),
+        LightColors::white(),
+    )
+    .unwrap()
 }
 
 /// The lighting, built out of line (its code is per configuration but not per
@@ -95,7 +105,10 @@ fn vertex<S: Scalar>(xy: [i32; 2], n: [f32; 3]) -> ShadeVertex<S> {
 
 /// The two ends of the reference span.
 fn span_ends<S: Scalar>() -> [ShadeVertex<S>; 2] {
-    [vertex([0, 0], [-0.6, 0.1, 0.79]), vertex([0, 0], [0.6, 0.1, 0.79])]
+    [
+        vertex([0, 0], [-0.6, 0.1, 0.79]),
+        vertex([0, 0], [0.6, 0.1, 0.79]),
+    ]
 }
 
 /// `(start, step)` going from `a` to `b` over `max(n, SPAN)` pixels.
@@ -107,13 +120,24 @@ fn ramp<const N: usize>(a: [i32; N], b: [i32; N], n: u32) -> ([i32; N], [i32; N]
 }
 
 fn normal_attrs<S: Scalar>(v: &ShadeVertex<S>) -> [i32; 3] {
-    [v.normal.x.to_attr(), v.normal.y.to_attr(), v.normal.z.to_attr()]
+    [
+        v.normal.x.to_attr(),
+        v.normal.y.to_attr(),
+        v.normal.z.to_attr(),
+    ]
 }
 
 fn normal_pos_attrs<S: Scalar>(v: &ShadeVertex<S>) -> [i32; 6] {
     let [a, b, c] = normal_attrs(v);
     let p = v.position;
-    [a, b, c, S::geo_to_attr(p.x), S::geo_to_attr(p.y), S::geo_to_attr(p.z)]
+    [
+        a,
+        b,
+        c,
+        S::geo_to_attr(p.x),
+        S::geo_to_attr(p.y),
+        S::geo_to_attr(p.z),
+    ]
 }
 
 // ---- span kernels ----------------------------------------------------------------
@@ -126,18 +150,36 @@ unsafe fn span_flat<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out:
     let mid = vertex::<S>([0, 0], [0.0, 0.1, 0.79]);
     sh.set_color(lit.shade(&mid.position, mid.normal));
     let n = black_box(n);
-    SpanShader::<0>::shade_span(&mut sh, black_box(0), black_box(0), &[], &[], pixels(out, n as usize));
+    SpanShader::<0>::shade_span(
+        &mut sh,
+        black_box(0),
+        black_box(0),
+        &[],
+        &[],
+        pixels(out, n as usize),
+    );
     n
 }
 
 #[inline(always)]
-unsafe fn span_gouraud<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
+unsafe fn span_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
+    lights: L,
+    n: u32,
+    out: *mut u16,
+) -> u32 {
     let lit = lighting::<S, L, M>(lights);
     let mut sh = Gouraud::new(&lit, Linear);
     let [v0, v1] = span_ends::<S>();
     let n = black_box(n);
     let (start, step) = ramp(sh.vertex_attrs(&v0), sh.vertex_attrs(&v1), n);
-    SpanShader::<3>::shade_span(&mut sh, black_box(0), black_box(0), &start, &step, pixels(out, n as usize));
+    SpanShader::<3>::shade_span(
+        &mut sh,
+        black_box(0),
+        black_box(0),
+        &start,
+        &step,
+        pixels(out, n as usize),
+    );
     n
 }
 
@@ -166,16 +208,48 @@ unsafe fn span_phong_inc<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u1
     let mut sh = IncrementalPhong::<NW, 1, M, Rgb565>::new(&lit);
     let [v0, v1] = span_ends::<Q14<NW>>();
     let n = black_box(n);
-    let (start, step) = ramp(normal_attrs(&v0), normal_attrs(&v1), n);
-    SpanShader::<3>::shade_span(&mut sh, black_box(0), black_box(0), &start, &step, pixels(out, n as usize));
+    // the attributes `IncrementalPhong::draw` gives the rasterizer: N, N·L, N·H
+    let attrs = |v: &ShadeVertex<Q14<NW>>| {
+        let a = normal_attrs(v);
+        let (l, h) = (
+            lit.lights()[0].direction(),
+            lit.lights()[0].prepared().half.unwrap_or(l_dir(&lit)),
+        );
+        let dot = |d: fixshade::vector::Vec3<Q14<NW>>| {
+            ((a[0] as i64 * d.x.raw() as i64
+                + a[1] as i64 * d.y.raw() as i64
+                + a[2] as i64 * d.z.raw() as i64)
+                >> 14) as i32
+        };
+        [a[0], a[1], a[2], dot(l), dot(h)]
+    };
+    let (start, step) = ramp(attrs(&v0), attrs(&v1), n);
+    SpanShader::<5>::shade_span(
+        &mut sh,
+        black_box(0),
+        black_box(0),
+        &start,
+        &step,
+        pixels(out, n as usize),
+    );
     n
+}
+
+fn l_dir<const NW: u8, M: Model>(
+    lit: &Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; 1], M>,
+) -> fixshade::vector::Vec3<Q14<NW>> {
+    lit.lights()[0].direction()
 }
 
 // ---- triangle kernels ------------------------------------------------------------
 
 /// Draws the triangle with legs of `scale` pixels (`scale = 0`: no draw call).
 #[inline(always)]
-unsafe fn draw<S: Scalar, Sh: Shading<S, Color = Rgb565>>(sh: &mut Sh, scale: u32, out: *mut u16) -> u32 {
+unsafe fn draw<S: Scalar, Sh: Shading<S, Color = Rgb565>>(
+    sh: &mut Sh,
+    scale: u32,
+    out: *mut u16,
+) -> u32 {
     // a patch of the sphere: top-left, top-right, bottom-left (y down on screen)
     let mut tri = [
         vertex::<S>([0, 0], [-0.5, 0.4, 0.77]),
@@ -192,23 +266,36 @@ unsafe fn draw<S: Scalar, Sh: Shading<S, Color = Rgb565>>(sh: &mut Sh, scale: u3
     tri[0].screen = [o, o];
     tri[1].screen = [o + d, o];
     tri[2].screen = [o, o + d];
-    sh.draw(&mut fb, None, &black_box(tri), &RasterOptions::default()).pixels
+    sh.draw(&mut fb, None, &black_box(tri), &RasterOptions::default())
+        .pixels
 }
 
 #[inline(always)]
-unsafe fn tri_flat<S: Scalar, L: LightSet<S>, M: Model>(lights: L, scale: u32, out: *mut u16) -> u32 {
+unsafe fn tri_flat<S: Scalar, L: LightSet<S>, M: Model>(
+    lights: L,
+    scale: u32,
+    out: *mut u16,
+) -> u32 {
     let lit = lighting::<S, L, M>(lights);
     draw(&mut Flat::new(&lit, Linear), scale, out)
 }
 
 #[inline(always)]
-unsafe fn tri_gouraud<S: Scalar, L: LightSet<S>, M: Model>(lights: L, scale: u32, out: *mut u16) -> u32 {
+unsafe fn tri_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
+    lights: L,
+    scale: u32,
+    out: *mut u16,
+) -> u32 {
     let lit = lighting::<S, L, M>(lights);
     draw(&mut Gouraud::new(&lit, Linear), scale, out)
 }
 
 #[inline(always)]
-unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, scale: u32, out: *mut u16) -> u32 {
+unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(
+    lights: L,
+    scale: u32,
+    out: *mut u16,
+) -> u32 {
     let lit = lighting::<S, L, M>(lights);
     draw(&mut PhongShading::new(&lit, Linear), scale, out)
 }
@@ -216,7 +303,11 @@ unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, scale: u32, 
 #[inline(always)]
 unsafe fn tri_phong_inc<const NW: u8, M: IncrementalModel>(scale: u32, out: *mut u16) -> u32 {
     let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
-    draw(&mut IncrementalPhong::<NW, 1, M, Rgb565>::new(&lit), scale, out)
+    draw(
+        &mut IncrementalPhong::<NW, 1, M, Rgb565>::new(&lit),
+        scale,
+        out,
+    )
 }
 
 /// `span_<tier>_phong_inc_<set>` / `tri_…`: incremental Phong kernels (Q14 tiers,
