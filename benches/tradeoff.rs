@@ -13,10 +13,12 @@
 mod render;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
+use fixshade::light::{DirectionalLight, LightColors, LightKind};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
+use fixshade::target::{DepthBuffer, SliceFramebuffer};
 use render::{
-    compare, config_scene, draw_prepared, prepare, render_reference, LightSet, Mode, LIGHT_SETS,
-    MODES,
+    compare, config_scene, draw_inc, draw_prepared, prepare, render_reference, LightSet, Mode,
+    LIGHT_SETS, MODES,
 };
 use std::fmt::Write;
 use std::time::Instant;
@@ -25,7 +27,7 @@ const RUNS: usize = 15;
 
 struct Row {
     tier: &'static str,
-    mode: Mode,
+    mode: &'static str,
     lights: LightSet,
     diff: render::Diff,
     ns_per_pixel: f64,
@@ -53,12 +55,77 @@ fn measure<S: Scalar>(key: &'static str, rows: &mut Vec<Row>) {
             times.sort_by(f64::total_cmp);
             rows.push(Row {
                 tier: key,
-                mode,
+                mode: mode.name(),
                 lights,
                 diff: compare(&rgb888, &rgb565, &reference),
                 ns_per_pixel: times[RUNS / 2] * 1e9 / shaded.max(1) as f64,
             });
         }
+    }
+}
+
+/// `IncrementalPhong` (Q14, directional light sets only).
+fn measure_inc<const NW: u8>(key: &'static str, rows: &mut Vec<Row>) {
+    use fixshade::lighting::{BlinnPhong, Lambert};
+    for lights in [LightSet::DirDiffuse, LightSet::DirBlinn] {
+        let scene = config_scene(lights, Mode::Phong);
+        let prepared = prepare(&scene);
+        let n = (scene.width * scene.height) as usize;
+        let reference = render_reference(&scene);
+        let light = match scene.lights[0].kind {
+            LightKind::Directional { towards_light } => {
+                let d = &scene.lights[0];
+                DirectionalLight::new(
+                    towards_light,
+                    LightColors::new(d.ambient, d.diffuse, d.specular).unwrap(),
+                )
+                .unwrap()
+            }
+            _ => unreachable!("directional light sets only"),
+        };
+        let draw = |pixels: &mut Vec<Rgb565>, depth: &mut Vec<u16>| {
+            let mut fb = SliceFramebuffer::new(pixels, scene.width, scene.height).unwrap();
+            let mut db = DepthBuffer::new(depth, scene.width).unwrap();
+            let obj = &scene.objects[0];
+            if lights == LightSet::DirDiffuse {
+                draw_inc::<NW, 1, Lambert, Rgb565>(
+                    &scene,
+                    obj,
+                    [light],
+                    &prepared[0],
+                    &mut fb,
+                    &mut db,
+                )
+            } else {
+                draw_inc::<NW, 1, BlinnPhong, Rgb565>(
+                    &scene,
+                    obj,
+                    [light],
+                    &prepared[0],
+                    &mut fb,
+                    &mut db,
+                )
+            }
+        };
+        let rgb888 = render::render_incremental::<NW, Rgb888>(&scene).expect("a supported scene");
+        let mut rgb565 = vec![Rgb565::default(); n];
+        let mut times = Vec::with_capacity(RUNS);
+        let mut shaded = 0;
+        for _ in 0..RUNS {
+            let mut depth = vec![u16::MAX; n];
+            let t = Instant::now();
+            shaded = draw(&mut rgb565, &mut depth);
+            times.push(t.elapsed().as_secs_f64());
+            std::hint::black_box(&rgb565);
+        }
+        times.sort_by(f64::total_cmp);
+        rows.push(Row {
+            tier: key,
+            mode: "phong_inc",
+            lights,
+            diff: compare(&rgb888, &rgb565, &reference),
+            ns_per_pixel: times[RUNS / 2] * 1e9 / shaded.max(1) as f64,
+        });
     }
 }
 
@@ -69,9 +136,11 @@ fn main() {
     measure::<Q30<3>>("q30", &mut rows);
     measure::<f32>("f32", &mut rows);
     measure::<F32Fast<2>>("f32fast", &mut rows);
+    measure_inc::<1>("q14_1", &mut rows);
+    measure_inc::<2>("q14_2", &mut rows);
     let base = rows
         .iter()
-        .find(|r| r.tier == "f32" && r.mode == Mode::Phong && r.lights == LightSet::DirBlinn)
+        .find(|r| r.tier == "f32" && r.mode == "phong" && r.lights == LightSet::DirBlinn)
         .map(|r| r.ns_per_pixel)
         .unwrap_or(1.0);
     let mut json = String::from("[\n");
@@ -84,7 +153,7 @@ fn main() {
         println!(
             "{:<8} {:<8} {:<13} {:>4} {:>7.3} {:>7.1} {:>7.1} {:>8.2} {:>7.2}",
             r.tier,
-            r.mode.name(),
+            r.mode,
             r.lights.name(),
             d.max,
             d.mean,
@@ -102,7 +171,7 @@ fn main() {
             json,
             "  {{\"tier\": \"{}\", \"shading\": \"{}\", \"lights\": \"{}\", \"max_lsb\": {}, \"mean_lsb\": {:.4}, \"psnr_db\": {}, \"identical_565\": {:.4}, \"pixels\": {}, \"host_ns_per_pixel\": {:.3}, \"host_ratio_to_f32_phong_dir_blinn\": {:.3}}}{}",
             r.tier,
-            r.mode.name(),
+            r.mode,
             r.lights.name(),
             d.max,
             d.mean,

@@ -84,7 +84,13 @@ pub unsafe extern "C" fn clamp_sum(a: *const i32, n: u32, lo: i32, hi: i32) -> u
     let (lo, hi) = (black_box(lo), black_box(hi));
     let mut acc = 0i32;
     for x in a {
-        let c = if *x < lo { lo } else if *x > hi { hi } else { *x };
+        let c = if *x < lo {
+            lo
+        } else if *x > hi {
+            hi
+        } else {
+            *x
+        };
         acc = acc.wrapping_add(c);
     }
     acc as u32
