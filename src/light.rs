@@ -115,6 +115,21 @@ pub trait LightSource<S: Scalar> {
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S>;
 }
 
+/// What receives each light's [`Incident`] from [`LightSet::for_each`] (a trait
+/// rather than a closure so that the per-light work is always inlined into the
+/// per-pixel loop; closures are also visitors).
+pub trait IncidentVisitor<S: Scalar> {
+    /// Called once per light.
+    fn visit(&mut self, inc: Incident<'_, S>);
+}
+
+impl<S: Scalar, F: FnMut(Incident<'_, S>)> IncidentVisitor<S> for F {
+    #[inline(always)]
+    fn visit(&mut self, inc: Incident<'_, S>) {
+        self(inc)
+    }
+}
+
 /// A set of lights, summed by the lighting equation.
 ///
 /// Implemented for every light type, for arrays `[L; K]`, for `heapless::Vec<L, K>`
@@ -127,8 +142,8 @@ pub trait LightSet<S: Scalar> {
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>);
     /// The sum of the lights' point-independent ambient contributions.
     fn constant_ambient(&self) -> Rgb<S>;
-    /// Calls `f` with each light's [`Incident`] at `p`.
-    fn for_each<F: FnMut(Incident<'_, S>)>(&self, p: &Point3<S>, f: F);
+    /// Hands each light's [`Incident`] at `p` to `visitor`.
+    fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V);
 }
 
 macro_rules! light_set_for_source {
@@ -144,8 +159,8 @@ macro_rules! light_set_for_source {
                 LightSource::constant_ambient(self).unwrap_or(Rgb::BLACK)
             }
             #[inline(always)]
-            fn for_each<F: FnMut(Incident<'_, S>)>(&self, p: &Point3<S>, mut f: F) {
-                f(self.incident(p))
+            fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
+                visitor.visit(self.incident(p))
             }
         }
     )*};
@@ -162,9 +177,9 @@ impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for [L; K] {
             .fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
     }
     #[inline(always)]
-    fn for_each<F: FnMut(Incident<'_, S>)>(&self, p: &Point3<S>, mut f: F) {
+    fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
         for l in self {
-            l.for_each(p, &mut f);
+            l.for_each(p, visitor);
         }
     }
 }
@@ -179,9 +194,9 @@ impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for heapless::Vec<L,
             .fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
     }
     #[inline(always)]
-    fn for_each<F: FnMut(Incident<'_, S>)>(&self, p: &Point3<S>, mut f: F) {
+    fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
         for l in self {
-            l.for_each(p, &mut f);
+            l.for_each(p, visitor);
         }
     }
 }
@@ -197,8 +212,8 @@ macro_rules! light_set_tuple {
                 Rgb::BLACK $(.add(self.$idx.constant_ambient()))*
             }
             #[inline(always)]
-            fn for_each<F: FnMut(Incident<'_, S>)>(&self, p: &Point3<S>, mut f: F) {
-                $(self.$idx.for_each(p, &mut f);)*
+            fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
+                $(self.$idx.for_each(p, visitor);)*
             }
         }
     };

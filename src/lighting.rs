@@ -30,7 +30,7 @@
 
 use crate::color::Rgb;
 use crate::error::{finite, ParamError};
-use crate::light::{Incident, LightSet};
+use crate::light::{Incident, IncidentVisitor, LightSet};
 use crate::material::Material;
 use crate::num::Scalar;
 use crate::vector::{point_from_f32, point_sub, Point3, Vec3};
@@ -380,16 +380,15 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     #[inline(always)]
     pub fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
         let (v, dist) = self.viewer.view(p);
-        let mut ambient = self.base;
-        let mut direct = Rgb::BLACK;
-        self.lights.for_each(p, |inc| {
-            let (a, d) = self.light_terms(&inc, n, v);
-            if let Some(a) = a {
-                ambient = ambient.add(a);
-            }
-            direct = direct.add(d);
-        });
-        ambient.add(self.fog.apply(direct, dist))
+        let mut sum = LightSum {
+            lighting: self,
+            n,
+            v,
+            ambient: self.base,
+            direct: Rgb::BLACK,
+        };
+        self.lights.for_each(p, &mut sum);
+        sum.ambient.add(self.fog.apply(sum.direct, dist))
     }
 
     /// [`Lighting::shade`] for a normal of any length (normalised first).
@@ -445,6 +444,28 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             Some(k) => (ambient.map(|a| a.scale(k)), direct.scale(k)),
             None => (ambient, direct),
         }
+    }
+}
+
+/// Σ over the lights: the per-point ambient and the light-dependent part.
+struct LightSum<'a, S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> {
+    lighting: &'a Lighting<S, L, M, V, F>,
+    n: Vec3<S>,
+    v: Vec3<S>,
+    ambient: Rgb<S>,
+    direct: Rgb<S>,
+}
+
+impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> IncidentVisitor<S>
+    for LightSum<'_, S, L, M, V, F>
+{
+    #[inline(always)]
+    fn visit(&mut self, inc: Incident<'_, S>) {
+        let (a, d) = self.lighting.light_terms(&inc, self.n, self.v);
+        if let Some(a) = a {
+            self.ambient = self.ambient.add(a);
+        }
+        self.direct = self.direct.add(d);
     }
 }
 
