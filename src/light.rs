@@ -456,7 +456,7 @@ impl<S: Scalar> SpotLight<S> {
         Ok(Self {
             pos: point_from_f32::<S>(position),
             axis: Vec3::from_f32(axis),
-            cos_cutoff: S::from_f32(libm::cos(cutoff as f64 * core::f64::consts::PI / 180.0) as f32),
+            cos_cutoff: S::from_f32(libm::cosf(cutoff.to_radians())),
             exponent,
             att: attenuation,
             colors,

@@ -68,8 +68,9 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
 
     #[inline]
     fn from_f32(v: f32) -> Self {
-        // f64 keeps all 30 fraction bits; `as` saturates and maps NaN to 0.
-        Self::from_wide(libm::round(v as f64 * (1u64 << FRAC) as f64) as i64)
+        // v·2^30 is exact in f32 (a power of two only moves the exponent), so no
+        // f64 is needed; `as` saturates and maps NaN to 0.
+        Self::from_wide(libm::roundf(v * (1u64 << FRAC) as f32) as i64)
     }
     #[inline]
     fn to_f32(self) -> f32 {

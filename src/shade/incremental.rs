@@ -84,18 +84,19 @@ struct PowTable {
 
 impl PowTable {
     fn new(n: u16) -> Self {
+        // f32 (libm's powf is exact to an ulp) so that the fast path links no f64
         let x0 = if n == 0 {
             0.0
         } else {
-            libm::pow(4096.0, -1.0 / n as f64)
+            libm::powf(4096.0, -1.0 / n as f32)
         };
-        let x0q = libm::floor(x0 * 16384.0) as i32;
+        let x0q = libm::floorf(x0 * 16384.0) as i32;
         let width = (16384 - x0q).max(1);
         let mut t = [0i32; POW_SEGMENTS + 2];
         for (i, v) in t.iter_mut().enumerate() {
-            let x = (x0q as f64 + width as f64 * i.min(POW_SEGMENTS) as f64 / POW_SEGMENTS as f64)
+            let x = (x0q as f32 + width as f32 * i.min(POW_SEGMENTS) as f32 / POW_SEGMENTS as f32)
                 / 16384.0;
-            *v = libm::round(libm::pow(x, n as f64) * 16384.0) as i32;
+            *v = libm::roundf(libm::powf(x, n as f32) * 16384.0) as i32;
         }
         Self {
             x0: x0q,
