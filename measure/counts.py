@@ -214,6 +214,14 @@ def check(res: dict, bounds: dict) -> int:
         passed += ok
         failed += not ok
         print(f"{'ok  ' if ok else 'FAIL'} {key} {core} {metric} = {got} (bound {limit})")
+    # a scene pays only for what it uses: the smaller model must cost less
+    for r in bounds.get("cheaper", []):
+        core, metric = r["core"], r["metric"]
+        a, b = res[r["config"]][core][metric], res[r["than"]][core][metric]
+        ok = a < b
+        passed += ok
+        failed += not ok
+        print(f"{'ok  ' if ok else 'FAIL'} {r['config']} ({a}) < {r['than']} ({b}) {core} {metric}")
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 
@@ -234,7 +242,8 @@ def main(argv=None) -> int:
                 print(f"FAIL build: {e}")
                 print(f"0 passed, {len(bounds['bounds'])} failed")
                 return 1
-        configs = sorted({tuple(b["config"].split()) for b in bounds["bounds"]})
+        configs = sorted({tuple(b["config"].split()) for b in bounds["bounds"]}
+                         | {tuple(r[k].split()) for r in bounds.get("cheaper", []) for k in ("config", "than")})
         res = run(configs, a.profile, sizes=False)
         table(res)
         return check(res, bounds)
