@@ -167,39 +167,27 @@ macro_rules! light_set_for_source {
 }
 light_set_for_source!(DirectionalLight, PointLight, SpotLight, AnyLight);
 
-impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for [L; K] {
-    const NEEDS_POSITION: bool = L::NEEDS_POSITION;
-    fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
-        self.iter_mut().for_each(|l| l.prepare(material, view));
-    }
-    fn constant_ambient(&self) -> Rgb<S> {
-        self.iter()
-            .fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
-    }
-    #[inline(always)]
-    fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
-        for l in self {
-            l.for_each(p, visitor);
+/// `LightSet` for a container of light sets that iterates by reference.
+macro_rules! light_set_for_container {
+    ($($ty:ty),*) => {$(
+        impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for $ty {
+            const NEEDS_POSITION: bool = L::NEEDS_POSITION;
+            fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
+                self.iter_mut().for_each(|l| l.prepare(material, view));
+            }
+            fn constant_ambient(&self) -> Rgb<S> {
+                self.iter().fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
+            }
+            #[inline(always)]
+            fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
+                for l in self.iter() {
+                    l.for_each(p, visitor);
+                }
+            }
         }
-    }
+    )*};
 }
-
-impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for heapless::Vec<L, K> {
-    const NEEDS_POSITION: bool = L::NEEDS_POSITION;
-    fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
-        self.iter_mut().for_each(|l| l.prepare(material, view));
-    }
-    fn constant_ambient(&self) -> Rgb<S> {
-        self.iter()
-            .fold(Rgb::BLACK, |a, l| a.add(l.constant_ambient()))
-    }
-    #[inline(always)]
-    fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
-        for l in self {
-            l.for_each(p, visitor);
-        }
-    }
-}
+light_set_for_container!([L; K], heapless::Vec<L, K>);
 
 macro_rules! light_set_tuple {
     ($($name:ident $idx:tt),*) => {

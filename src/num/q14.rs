@@ -207,26 +207,7 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         Q14::<3>::normalize(Vec3::new(Q14(v.x.0), Q14(v.y.0), Q14(v.z.0))).map_tier()
     }
 
-    #[inline]
-    fn geo_from_f32(v: f32) -> Geo16 {
-        geo16_from_f32(v)
-    }
-    #[inline]
-    fn geo_to_f32(g: Geo16) -> f32 {
-        g.to_num::<f32>()
-    }
-    #[inline(always)]
-    fn geo_add(a: Geo16, b: Geo16) -> Geo16 {
-        a.saturating_add(b)
-    }
-    #[inline(always)]
-    fn geo_sub(a: Geo16, b: Geo16) -> Geo16 {
-        a.saturating_sub(b)
-    }
-    #[inline(always)]
-    fn geo_mul(a: Geo16, b: Geo16) -> Geo16 {
-        a.saturating_mul(b)
-    }
+    geo16_ops!();
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
         Self((g.to_bits().clamp(0, 1 << 16) + 2) >> 2)
@@ -253,6 +234,34 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         )
     }
 }
+
+/// The geometry operations of the tiers whose geometry type is [`Geo16`]:
+/// saturating Q16.16 arithmetic (inside an `impl Scalar`).
+macro_rules! geo16_ops {
+    () => {
+        #[inline]
+        fn geo_from_f32(v: f32) -> Geo16 {
+            $crate::num::q14::geo16_from_f32(v)
+        }
+        #[inline]
+        fn geo_to_f32(g: Geo16) -> f32 {
+            g.to_num::<f32>()
+        }
+        #[inline(always)]
+        fn geo_add(a: Geo16, b: Geo16) -> Geo16 {
+            a.saturating_add(b)
+        }
+        #[inline(always)]
+        fn geo_sub(a: Geo16, b: Geo16) -> Geo16 {
+            a.saturating_sub(b)
+        }
+        #[inline(always)]
+        fn geo_mul(a: Geo16, b: Geo16) -> Geo16 {
+            a.saturating_mul(b)
+        }
+    };
+}
+pub(crate) use geo16_ops;
 
 /// Converts `f32` to [`Geo16`]: NaN → 0, saturating.
 #[inline]

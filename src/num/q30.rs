@@ -1,6 +1,6 @@
 //! The accurate fixed tier: Q2.30 values with 64-bit products.
 
-use super::q14::{geo16_direction, geo16_from_f32};
+use super::q14::{geo16_direction, geo16_ops};
 use super::rsqrt::{rsqrt_q30_mantissa, split_u64};
 use super::{Geo16, Scalar};
 use crate::vector::Vec3;
@@ -157,26 +157,7 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
         Vec3::new(Self(n.x.0), Self(n.y.0), Self(n.z.0))
     }
 
-    #[inline]
-    fn geo_from_f32(v: f32) -> Geo16 {
-        geo16_from_f32(v)
-    }
-    #[inline]
-    fn geo_to_f32(g: Geo16) -> f32 {
-        g.to_num::<f32>()
-    }
-    #[inline(always)]
-    fn geo_add(a: Geo16, b: Geo16) -> Geo16 {
-        a.saturating_add(b)
-    }
-    #[inline(always)]
-    fn geo_sub(a: Geo16, b: Geo16) -> Geo16 {
-        a.saturating_sub(b)
-    }
-    #[inline(always)]
-    fn geo_mul(a: Geo16, b: Geo16) -> Geo16 {
-        a.saturating_mul(b)
-    }
+    geo16_ops!();
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
         Self(g.to_bits().clamp(0, 1 << 16) << 14)
