@@ -22,11 +22,14 @@ pub trait Encoder<C: OutputColor> {
 #[inline]
 fn scaled_channels<C: OutputColor, S: Scalar>(c: Rgb<S>) -> [i32; 3] {
     let l = C::linear_channels(c);
-    // u·max·2^16/65535 with u = unorm16(v): ≤ 255·2^16, fits in i32
-    core::array::from_fn(|i| {
-        let u = l[i].to_unorm(16) as u64;
-        (((u * C::CHANNEL_MAX[i] as u64) << CHANNEL_FRAC) / 65535) as i32
-    })
+    core::array::from_fn(|i| scale_65535(l[i].to_unorm(16) * C::CHANNEL_MAX[i]) as i32)
+}
+
+/// `⌊x·2^16/65535⌋` for `x ≤ 65535·255`, as `x + ⌊(x + ⌊x/2^16⌋ + 1)/2^16⌋`: no
+/// 64-bit division per vertex on a Cortex-M0 (equal for every such `x`: see the test).
+#[inline(always)]
+fn scale_65535(x: u32) -> u32 {
+    x + ((x + (x >> 16) + 1) >> 16)
 }
 
 /// Rounds each channel to nearest; no gamma (the display receives linear values).
@@ -111,5 +114,24 @@ impl<C: OutputColor, const N: usize> Encoder<C> for Gamma<'_, N> {
             let e = self.0.apply_unorm16(a[i].clamp(0, 65535) as u32) as u32;
             (e * max[i] + 127) / 255
         }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scale_65535_is_exact() {
+        for max in [31u32, 63, 255] {
+            for u in 0..=65535u32 {
+                let x = u * max;
+                assert_eq!(
+                    scale_65535(x) as u64,
+                    ((x as u64) << 16) / 65535,
+                    "{u} {max}"
+                );
+            }
+        }
     }
 }
