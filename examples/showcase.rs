@@ -17,7 +17,10 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use fixshade::num::{Scalar, Q14, Q30};
-use render::{compare, reference_rgb888, render_reference, render_tier, scenes, Scene};
+use fixshade::target::DrawTargetAdapter;
+use render::{
+    compare, draw_into, prepare, reference_rgb888, render_reference, render_tier, scenes, Scene,
+};
 use std::path::{Path, PathBuf};
 
 fn save(scene: &Scene, pixels: &[Rgb888], path: &Path) {
@@ -34,13 +37,34 @@ fn save(scene: &Scene, pixels: &[Rgb888], path: &Path) {
         .expect("write PNG");
 }
 
-/// Renders through a `DrawTarget` (the simulator display) with the adapter, as
-/// firmware would drive a real display, then saves the PNG.
+/// Renders straight into the simulator display through `DrawTargetAdapter`, as
+/// firmware drives a real display, saves the PNG, and compares the display's pixels
+/// (and an Rgb565 render) with the reference.
 fn render_to_display<S: Scalar>(scene: &Scene, path: &Path) -> render::Diff {
-    let rgb888 = render_tier::<S, Rgb888>(scene);
-    let rgb565 = render_tier::<S, Rgb565>(scene);
-    save(scene, &rgb888, path);
-    compare(&rgb888, &rgb565, &render_reference(scene))
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(scene.width, scene.height));
+    let mut depth = vec![u16::MAX; (scene.width * scene.height) as usize];
+    {
+        let mut fb = DrawTargetAdapter::new(&mut display);
+        draw_into::<S, Rgb888, _>(scene, &prepare(scene), &mut fb, &mut depth);
+        assert!(
+            fb.take_error().is_none(),
+            "the simulator display accepts every pixel"
+        );
+    }
+    let settings = OutputSettingsBuilder::new().build();
+    display
+        .to_rgb_output_image(&settings)
+        .save_png(path)
+        .expect("write PNG");
+    let shown: Vec<Rgb888> = (0..scene.height)
+        .flat_map(|y| (0..scene.width).map(move |x| Point::new(x as i32, y as i32)))
+        .map(|p| display.get_pixel(p))
+        .collect();
+    compare(
+        &shown,
+        &render_tier::<S, Rgb565>(scene),
+        &render_reference(scene),
+    )
 }
 
 fn main() {

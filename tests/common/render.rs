@@ -17,7 +17,7 @@ use fixshade::num::Scalar;
 use fixshade::raster::{draw_triangle, Cull, RasterOptions, SpanShader};
 use fixshade::reference::{normalize, ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::shade::{Flat, Gouraud, Linear, Phong, ShadeVertex, Shading};
-use fixshade::target::{DepthBuffer, SliceFramebuffer};
+use fixshade::target::{DepthBuffer, Framebuffer, SliceFramebuffer};
 
 /// Pixels per eye-space unit of the orthographic camera.
 pub const PIXELS_PER_UNIT: f32 = 100.0;
@@ -374,28 +374,38 @@ pub fn draw_prepared<S: Scalar, C: OutputColor + Default>(
     pixels: &mut [C],
     depth: &mut [u16],
 ) -> u64 {
-    let (w, h) = (scene.width, scene.height);
-    let mut fb = SliceFramebuffer::new(pixels, w, h).unwrap();
-    let mut db = DepthBuffer::new(depth, w).unwrap();
+    let mut fb = SliceFramebuffer::new(pixels, scene.width, scene.height).unwrap();
+    draw_into::<S, C, _>(scene, prepared, &mut fb, depth)
+}
+
+/// Draws prepared triangles into any framebuffer (e.g. a `DrawTargetAdapter` over
+/// a display); `depth` must be cleared and hold `width × height` values.
+pub fn draw_into<S: Scalar, C: OutputColor + Default, F: Framebuffer<Color = C>>(
+    scene: &Scene,
+    prepared: &[Vec<[Vert; 3]>],
+    fb: &mut F,
+    depth: &mut [u16],
+) -> u64 {
+    let mut db = DepthBuffer::new(depth, scene.width).unwrap();
     let mut shaded = 0;
     for (obj, tris) in scene.objects.iter().zip(prepared) {
         shaded += match obj.terms {
-            Terms4::Lambert => draw_object::<S, Lambert, C>(scene, obj, tris, &mut fb, &mut db),
-            Terms4::Brilliance => draw_object::<S, Terms<0, true, false, false>, C>(
-                scene, obj, tris, &mut fb, &mut db,
-            ),
-            Terms4::Phong => draw_object::<S, PhongSpec, C>(scene, obj, tris, &mut fb, &mut db),
-            Terms4::Blinn => draw_object::<S, BlinnPhong, C>(scene, obj, tris, &mut fb, &mut db),
+            Terms4::Lambert => draw_object::<S, Lambert, C, F>(scene, obj, tris, fb, &mut db),
+            Terms4::Brilliance => {
+                draw_object::<S, Terms<0, true, false, false>, C, F>(scene, obj, tris, fb, &mut db)
+            }
+            Terms4::Phong => draw_object::<S, PhongSpec, C, F>(scene, obj, tris, fb, &mut db),
+            Terms4::Blinn => draw_object::<S, BlinnPhong, C, F>(scene, obj, tris, fb, &mut db),
         };
     }
     shaded
 }
 
-fn draw_object<S: Scalar, M: Model, C: OutputColor + Default>(
+fn draw_object<S: Scalar, M: Model, C: OutputColor + Default, F: Framebuffer<Color = C>>(
     scene: &Scene,
     obj: &Object,
     tris: &[[Vert; 3]],
-    fb: &mut SliceFramebuffer<'_, C>,
+    fb: &mut F,
     db: &mut DepthBuffer<'_>,
 ) -> u64 {
     let lights: heapless::Vec<AnyLight<S>, 4> = scene
