@@ -447,6 +447,29 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     }
 }
 
+/// What the shading stage lights with: anything that gives the colour of a surface
+/// point. Implemented by every [`Lighting`] configuration; the shading modes take
+/// one type parameter for it instead of the five of [`Lighting`].
+pub trait Illuminate {
+    /// The number tier.
+    type Scalar: Scalar;
+    /// Whether [`Illuminate::shade`] reads the position (see [`Lighting::NEEDS_POSITION`]).
+    const NEEDS_POSITION: bool;
+    /// The colour of surface point `p` with unit normal `n`, linear RGB.
+    fn shade(&self, p: &Point3<Self::Scalar>, n: Vec3<Self::Scalar>) -> Rgb<Self::Scalar>;
+}
+
+impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illuminate
+    for Lighting<S, L, M, V, F>
+{
+    type Scalar = S;
+    const NEEDS_POSITION: bool = Self::NEEDS_POSITION;
+    #[inline(always)]
+    fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
+        Lighting::shade(self, p, n)
+    }
+}
+
 /// Σ over the lights: the per-point ambient and the light-dependent part.
 struct LightSum<'a, S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> {
     lighting: &'a Lighting<S, L, M, V, F>,

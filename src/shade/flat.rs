@@ -2,8 +2,7 @@
 
 use super::{Encoder, ShadeVertex, Shading};
 use crate::color::OutputColor;
-use crate::light::LightSet;
-use crate::lighting::{FogModel, Lighting, Model, Viewer};
+use crate::lighting::Illuminate;
 use crate::num::Scalar;
 use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
 use crate::target::{DepthBuffer, Framebuffer};
@@ -15,32 +14,16 @@ use core::marker::PhantomData;
 /// each vertex of a face the face normal), and filled with that colour. Shows the
 /// seeds' Mach bands on curved surfaces; the cheapest mode.
 #[derive(Debug)]
-pub struct Flat<'l, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-{
-    lighting: &'l Lighting<S, L, M, V, F>,
+pub struct Flat<'l, I, E, C> {
+    lighting: &'l I,
     encoder: E,
     channels: [i32; 3],
     color: PhantomData<C>,
 }
 
-impl<'l, S, L, M, V, F, E, C> Flat<'l, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
-{
+impl<'l, I: Illuminate, E: Encoder<C>, C: OutputColor> Flat<'l, I, E, C> {
     /// Flat shading with `lighting`, writing pixels through `encoder`.
-    pub fn new(lighting: &'l Lighting<S, L, M, V, F>, encoder: E) -> Self {
+    pub fn new(lighting: &'l I, encoder: E) -> Self {
         Self {
             lighting,
             encoder,
@@ -51,22 +34,13 @@ where
 
     /// Sets the colour [`SpanShader::shade_span`] fills with (what
     /// [`Shading::draw`] does with the colour lit at the centroid).
-    pub fn set_color(&mut self, color: crate::color::Rgb<S>) {
+    pub fn set_color(&mut self, color: crate::color::Rgb<I::Scalar>) {
         self.channels = self.encoder.vertex(color);
     }
 }
 
 /// Fills runs with the encoded colour of the triangle being drawn.
-impl<S, L, M, V, F, E, C> SpanShader<0> for Flat<'_, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
-{
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> SpanShader<0> for Flat<'_, I, E, C> {
     type Color = C;
     #[inline]
     fn shade_span(&mut self, x: i32, y: i32, _start: &[i32; 0], _step: &[i32; 0], out: &mut [C]) {
@@ -76,15 +50,8 @@ where
     }
 }
 
-impl<S, L, M, V, F, E, C> Shading<S> for Flat<'_, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
+    for Flat<'_, I, E, C>
 {
     type Color = C;
 

@@ -2,8 +2,7 @@
 
 use super::{Encoder, ShadeVertex, Shading};
 use crate::color::OutputColor;
-use crate::light::LightSet;
-use crate::lighting::{FogModel, Lighting, Model, Viewer};
+use crate::lighting::Illuminate;
 use crate::num::Scalar;
 use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
 use crate::target::{DepthBuffer, Framebuffer};
@@ -14,38 +13,22 @@ use core::marker::PhantomData;
 /// three additions per pixel) and each pixel only reads them. Misses a highlight
 /// that falls inside a large triangle and smears highlights near vertices.
 #[derive(Debug)]
-pub struct Gouraud<'l, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-{
-    lighting: &'l Lighting<S, L, M, V, F>,
+pub struct Gouraud<'l, I, E, C> {
+    lighting: &'l I,
     encoder: E,
     color: PhantomData<C>,
 }
 
-impl<'l, S, L, M, V, F, E, C> Gouraud<'l, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
-{
+impl<'l, I: Illuminate, E: Encoder<C>, C: OutputColor> Gouraud<'l, I, E, C> {
     /// The encoded channel attributes of a vertex lit with `lighting` (what
     /// [`Shading::draw`] hands to the rasterizer).
-    pub fn vertex_attrs(&self, v: &ShadeVertex<S>) -> [i32; 3] {
+    pub fn vertex_attrs(&self, v: &ShadeVertex<I::Scalar>) -> [i32; 3] {
         self.encoder
             .vertex(self.lighting.shade(&v.position, v.normal))
     }
 
     /// Gouraud shading with `lighting`, writing pixels through `encoder`.
-    pub fn new(lighting: &'l Lighting<S, L, M, V, F>, encoder: E) -> Self {
+    pub fn new(lighting: &'l I, encoder: E) -> Self {
         Self {
             lighting,
             encoder,
@@ -55,16 +38,7 @@ where
 }
 
 /// Steps the encoded channels along a run.
-impl<S, L, M, V, F, E, C> SpanShader<3> for Gouraud<'_, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
-{
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> SpanShader<3> for Gouraud<'_, I, E, C> {
     type Color = C;
     #[inline]
     fn shade_span(&mut self, x: i32, y: i32, start: &[i32; 3], step: &[i32; 3], out: &mut [C]) {
@@ -79,15 +53,8 @@ where
     }
 }
 
-impl<S, L, M, V, F, E, C> Shading<S> for Gouraud<'_, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
+    for Gouraud<'_, I, E, C>
 {
     type Color = C;
 

@@ -2,12 +2,11 @@
 
 use super::{Encoder, ShadeVertex, Shading};
 use crate::color::OutputColor;
-use crate::light::LightSet;
-use crate::lighting::{FogModel, Lighting, Model, Viewer};
+use crate::lighting::Illuminate;
 use crate::num::Scalar;
 use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
 use crate::target::{DepthBuffer, Framebuffer};
-use crate::vector::Vec3;
+use crate::vector::{point_from_f32, Vec3};
 use core::marker::PhantomData;
 
 /// Phong shading: the vertex normals (as [`Scalar::to_attr`] attributes) are
@@ -17,31 +16,15 @@ use core::marker::PhantomData;
 /// lights, a local viewer, fog) the eye-space position is interpolated too.
 /// Catches the highlight in the middle of a large triangle.
 #[derive(Debug)]
-pub struct Phong<'l, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-{
-    lighting: &'l Lighting<S, L, M, V, F>,
+pub struct Phong<'l, I, E, C> {
+    lighting: &'l I,
     encoder: E,
     color: PhantomData<C>,
 }
 
-impl<'l, S, L, M, V, F, E, C> Phong<'l, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
-{
+impl<'l, S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Phong<'l, I, E, C> {
     /// Phong shading with `lighting`, writing pixels through `encoder`.
-    pub fn new(lighting: &'l Lighting<S, L, M, V, F>, encoder: E) -> Self {
+    pub fn new(lighting: &'l I, encoder: E) -> Self {
         Self {
             lighting,
             encoder,
@@ -65,21 +48,14 @@ where
                 S::geo_from_attr(a[5]),
             )
         } else {
-            Lighting::<S, L, M, V, F>::origin()
+            point_from_f32::<S>([0.0; 3])
         };
         self.encoder.encode(self.lighting.shade(&p, n), x, y)
     }
 }
 
-impl<S, L, M, V, F, E, C, const N: usize> SpanShader<N> for Phong<'_, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor, const N: usize>
+    SpanShader<N> for Phong<'_, I, E, C>
 {
     type Color = C;
     #[inline]
@@ -95,15 +71,8 @@ where
     }
 }
 
-impl<S, L, M, V, F, E, C> Shading<S> for Phong<'_, S, L, M, V, F, E, C>
-where
-    S: Scalar,
-    L: LightSet<S>,
-    M: Model,
-    V: Viewer<S>,
-    F: FogModel<S>,
-    E: Encoder<C>,
-    C: OutputColor,
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
+    for Phong<'_, I, E, C>
 {
     type Color = C;
 
@@ -121,7 +90,7 @@ where
                 t.normal.z.to_attr(),
             ]
         };
-        if Lighting::<S, L, M, V, F>::NEEDS_POSITION {
+        if I::NEEDS_POSITION {
             let v = tri.map(|t| {
                 let [nx, ny, nz] = normal(&t);
                 let p = t.position;
