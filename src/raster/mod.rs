@@ -4,7 +4,7 @@
 //!
 //! [`draw_triangle`] turns three [`RasterVertex`]es into horizontal runs of
 //! pixels and hands each run to a [`SpanShader`], which writes the colours
-//! into a [`Framebuffer`](crate::target::Framebuffer) span.
+//! into a [`Framebuffer`] span.
 //!
 //! # Conventions
 //!

@@ -22,7 +22,7 @@ mod slice;
 
 pub use band::BandBuffer;
 pub use depth::DepthBuffer;
-pub use draw_target::DrawTargetAdapter;
+pub use draw_target::{DrawTargetAdapter, ADAPTER_CHUNK};
 pub use slice::SliceFramebuffer;
 
 /// A surface that accepts horizontal spans of pixels.
