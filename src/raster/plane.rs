@@ -51,6 +51,12 @@ impl Plane {
             + self.gx * (half - self.origin.0)
     }
 
+    /// `row(y + 1) − row(y)`: `gy·16`.
+    #[inline]
+    pub(crate) fn row_step(&self) -> i64 {
+        self.gy << SUBPIXEL_BITS
+    }
+
     /// Value at the centre of pixel `(x, y)` given `row = self.row(y)`: `row + gx·16x`.
     #[inline]
     pub(crate) fn at(&self, row: i64, x: i64) -> i64 {
