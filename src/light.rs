@@ -73,6 +73,20 @@ pub struct Prepared<S> {
 }
 
 impl<S: Scalar> Prepared<S> {
+    /// For a point or spot light: a constant attenuation `1/a` (b = c = 0) is
+    /// folded into the colours here, once, instead of per point.
+    fn positional(c: &LightColors<S>, m: &Material<S>, att: &Attenuation<S::Geo>) -> Self {
+        let mut p = Self::new(c, m, None, None);
+        if att.constant {
+            let k = att.factor::<S>(S::geo_from_f32(0.0));
+            p.ambient = p.ambient.scale(k);
+            p.diffuse = p.diffuse.scale(k);
+            p.specular = p.specular.scale(k);
+            p.transmission = p.transmission.scale(k);
+        }
+        p
+    }
+
     fn new(c: &LightColors<S>, m: &Material<S>, l: Option<Vec3<S>>, v: Option<Vec3<S>>) -> Self {
         Self {
             ambient: c.ambient.mul(m.ambient),
@@ -329,14 +343,6 @@ impl<G> Attenuation<G> {
     }
 }
 
-/// Scales every prepared colour by `k` (a constant attenuation `1/a`).
-fn scale_prepared<S: Scalar>(p: &mut Prepared<S>, k: S) {
-    p.ambient = p.ambient.scale(k);
-    p.diffuse = p.diffuse.scale(k);
-    p.specular = p.specular.scale(k);
-    p.transmission = p.transmission.scale(k);
-}
-
 /// A point light at a position, with distance attenuation.
 ///
 /// ```
@@ -376,11 +382,7 @@ impl<S: Scalar> PointLight<S> {
 impl<S: Scalar> LightSource<S> for PointLight<S> {
     const NEEDS_POSITION: bool = true;
     fn prepare(&mut self, material: &Material<S>, _view: Option<Vec3<S>>) {
-        self.pre = Prepared::new(&self.colors, material, None, None);
-        if self.att.constant {
-            let k = self.att.factor::<S>(S::geo_from_f32(0.0));
-            scale_prepared(&mut self.pre, k);
-        }
+        self.pre = Prepared::positional(&self.colors, material, &self.att);
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
         self.att.constant.then_some(self.pre.ambient)
@@ -465,11 +467,7 @@ pub(crate) fn exponent_u16(name: &'static str, e: f32) -> Result<u16, ParamError
 impl<S: Scalar> LightSource<S> for SpotLight<S> {
     const NEEDS_POSITION: bool = true;
     fn prepare(&mut self, material: &Material<S>, _view: Option<Vec3<S>>) {
-        self.pre = Prepared::new(&self.colors, material, None, None);
-        if self.att.constant {
-            let k = self.att.factor::<S>(S::geo_from_f32(0.0));
-            scale_prepared(&mut self.pre, k);
-        }
+        self.pre = Prepared::positional(&self.colors, material, &self.att);
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
         None

@@ -34,6 +34,18 @@ pub use q30::Q30;
 use crate::vector::Vec3;
 use core::fmt::Debug;
 
+/// `v · 2^-shift` rounded to nearest (ties up), for `shift` in 0..=62: an
+/// arithmetic shift, so it cannot overflow for any `v` whose magnitude is below
+/// 2^62.
+#[inline(always)]
+pub(crate) fn round_shr(v: i64, shift: u32) -> i64 {
+    if shift == 0 {
+        v
+    } else {
+        (v + (1i64 << (shift - 1))) >> shift
+    }
+}
+
 /// Geometry scalar of the fixed-point tiers: Q16.16 in an `i32`
 /// ([`fixed::types::I16F16`]), range ±32768 scene units, resolution 1.5·10⁻⁵.
 pub type Geo16 = fixed::types::I16F16;

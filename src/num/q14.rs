@@ -1,7 +1,7 @@
 //! The fast tier: Q2.14 values whose products stay within 32 bits.
 
 use super::rsqrt::{rsqrt_q14_mantissa, split_u32};
-use super::{Geo16, Scalar};
+use super::{round_shr, Geo16, Scalar};
 use crate::vector::Vec3;
 
 /// The fast 32-bit tier: a Q2.14 fixed-point value, range [−2, 2), resolution 2⁻¹⁴.
@@ -89,16 +89,6 @@ const fn clamp_raw(raw: i32) -> i32 {
         RAW_MIN
     } else {
         raw
-    }
-}
-
-/// `v · 2^-shift` rounded, for `shift` in 0..=31 (arithmetic shift, no overflow).
-#[inline(always)]
-fn round_shr(v: i64, shift: u32) -> i64 {
-    if shift == 0 {
-        v
-    } else {
-        (v + (1i64 << (shift - 1))) >> shift
     }
 }
 

@@ -2,7 +2,7 @@
 
 use super::q14::{geo16_direction, geo16_ops};
 use super::rsqrt::{rsqrt_q30_mantissa, split_u64};
-use super::{Geo16, Scalar};
+use super::{round_shr, Geo16, Scalar};
 use crate::vector::Vec3;
 
 /// The accurate fixed tier: a Q2.30 fixed-point value in an `i32`, range [−2, 2),
@@ -41,16 +41,6 @@ impl<const NEWTON: u8> Q30<NEWTON> {
     #[inline(always)]
     fn from_wide(v: i64) -> Self {
         Self(v.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
-    }
-}
-
-/// `v · 2^-shift` rounded, for `shift` in 0..=62.
-#[inline(always)]
-fn round_shr(v: i64, shift: u32) -> i64 {
-    if shift == 0 {
-        v
-    } else {
-        (v + (1i64 << (shift - 1))) >> shift
     }
 }
 
