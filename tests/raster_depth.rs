@@ -46,7 +46,8 @@ fn render(order: [usize; 2]) -> Vec<u8> {
             &t,
             &RasterOptions::default(),
             &mut Solid(grey, 0),
-        );
+        )
+        .unwrap();
     }
     px.iter().map(|p| p.luma()).collect()
 }
@@ -84,7 +85,7 @@ fn runs_split_around_failing_pixels_and_write_only_when_asked() {
     };
     let mut shader = Solid(7, 0);
     for t in &quad {
-        draw_triangle(&mut fb, Some(&mut depth), t, &opts, &mut shader);
+        draw_triangle(&mut fb, Some(&mut depth), t, &opts, &mut shader).unwrap();
     }
     assert!(px
         .chunks(16)

@@ -2,7 +2,10 @@
 //! that is linear in 3D, on a tilted quad.
 
 use embedded_graphics_core::pixelcolor::Gray8;
-use fixshade::raster::{draw_triangle, RasterOptions, RasterVertex, SpanShader, SUBPIXEL_BITS};
+use fixshade::raster::{
+    draw_triangle, draw_triangle_perspective, RasterOptions, RasterVertex, SpanShader,
+    SUBPIXEL_BITS,
+};
 use fixshade::target::SliceFramebuffer;
 
 const W: usize = 128;
@@ -72,12 +75,14 @@ fn render(perspective: bool) -> f64 {
     let mut px = vec![Gray8::new(0); W * H];
     let mut fb = SliceFramebuffer::new(&mut px, W as u32, H as u32).unwrap();
     let mut rec = Record(vec![None; W * H]);
-    let opts = RasterOptions {
-        perspective,
-        ..RasterOptions::default()
-    };
-    draw_triangle(&mut fb, None, &[q[0], q[1], q[2]], &opts, &mut rec);
-    draw_triangle(&mut fb, None, &[q[0], q[2], q[3]], &opts, &mut rec);
+    let opts = RasterOptions::default();
+    for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+        if perspective {
+            draw_triangle_perspective(&mut fb, None, &t, &opts, &mut rec).unwrap();
+        } else {
+            draw_triangle(&mut fb, None, &t, &opts, &mut rec).unwrap();
+        }
+    }
     let mut worst = 0.0f64;
     let mut n = 0;
     for y in 0..H {

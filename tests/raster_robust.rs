@@ -2,7 +2,9 @@
 //! shader values always inside the vertex range.
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
-use fixshade::raster::{draw_triangle, Cull, RasterOptions, RasterVertex, SpanShader};
+use fixshade::raster::{
+    draw_triangle, draw_triangle_perspective, Cull, RasterOptions, RasterVertex, SpanShader,
+};
 use fixshade::target::{BandBuffer, DepthBuffer, Framebuffer, SliceFramebuffer};
 use proptest::prelude::*;
 
@@ -63,23 +65,44 @@ fn vertex() -> impl Strategy<Value = RasterVertex<2>> {
         })
 }
 
-fn options() -> impl Strategy<Value = RasterOptions> {
+fn options() -> impl Strategy<Value = (RasterOptions, bool)> {
     (0u8..3, any::<bool>(), any::<bool>(), any::<bool>()).prop_map(
         |(c, perspective, depth_test, depth_write)| {
             let cull = [Cull::None, Cull::Back, Cull::Front][c as usize];
-            RasterOptions {
+            let opts = RasterOptions {
                 cull,
-                perspective,
                 depth_test,
                 depth_write,
-            }
+            };
+            (opts, perspective)
         },
     )
 }
 
+/// Draws with the screen-linear or the perspective-correct rasterizer.
+fn draw<F: fixshade::target::Framebuffer<Color = Gray8, Error = core::convert::Infallible>>(
+    fb: &mut F,
+    depth: Option<&mut DepthBuffer<'_>>,
+    v: &[RasterVertex<2>; 3],
+    (opts, perspective): &(RasterOptions, bool),
+    shader: &mut Check,
+) -> fixshade::raster::DrawStats {
+    let r = if *perspective {
+        draw_triangle_perspective(fb, depth, v, opts, shader)
+    } else {
+        draw_triangle(fb, depth, v, opts, shader)
+    };
+    match r {
+        Ok(s) => s,
+        Err(e) => match e {},
+    }
+}
+
 fn checker(v: &[RasterVertex<2>; 3], rows: core::ops::Range<i32>) -> Check {
     let r = |i: usize| {
-        let a = v.map(|v| i64::from(v.attrs[i]));
+        // attributes are clamped to ±ATTR_LIMIT before set-up
+        let lim = i64::from(fixshade::raster::ATTR_LIMIT);
+        let a = v.map(|v| i64::from(v.attrs[i]).clamp(-lim, lim));
         (a[0].min(a[1]).min(a[2]), a[0].max(a[1]).max(a[2]))
     };
     Check {
@@ -100,7 +123,7 @@ proptest! {
         let mut z = vec![u16::MAX; (W * H) as usize];
         let mut depth = DepthBuffer::new(&mut z, W).unwrap();
         let mut shader = checker(&v, 0..H as i32);
-        let stats = draw_triangle(&mut fb, use_depth.then_some(&mut depth), &v, &opts, &mut shader);
+        let stats = draw(&mut fb, use_depth.then_some(&mut depth), &v, &opts, &mut shader);
         prop_assert_eq!(stats.pixels, shader.pixels);
         prop_assert!(px.iter().all(|p| p.luma() <= 1), "pixel written twice by one triangle");
         prop_assert_eq!(px.iter().filter(|p| p.luma() == 1).count() as u32, stats.pixels);
@@ -118,7 +141,7 @@ proptest! {
             depth.set_first_row(band.rows().start);
             depth.clear(u16::MAX);
             let mut shader = checker(&v, band.rows());
-            draw_triangle(&mut band, Some(&mut depth), &v, &opts, &mut shader);
+            draw(&mut band, Some(&mut depth), &v, &opts, &mut shader);
         }
     }
 }

@@ -35,7 +35,10 @@ fn v(x: i32, y: i32) -> RasterVertex<0> {
     }
 }
 
-fn draw_all<F: Framebuffer<Color = Gray8>>(fb: &mut F, tris: &[Tri]) {
+fn draw_all<F: Framebuffer<Color = Gray8, Error = core::convert::Infallible>>(
+    fb: &mut F,
+    tris: &[Tri],
+) {
     for t in tris {
         draw_triangle(
             fb,
@@ -46,7 +49,8 @@ fn draw_all<F: Framebuffer<Color = Gray8>>(fb: &mut F, tris: &[Tri]) {
                 ..Default::default()
             },
             &mut Count,
-        );
+        )
+        .unwrap();
     }
 }
 

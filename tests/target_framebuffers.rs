@@ -56,9 +56,11 @@ fn slice_framebuffer_validates_its_slice() {
     // Stride 12, 8 rows: 12·7 + 10 = 94 elements suffice.
     let mut fb = SliceFramebuffer::with_stride(&mut buf, 10, 8, 12).unwrap();
     fb.clear(Gray8::new(9));
-    fb.fill_span(8, 7, 2, |_, p| p.fill(Gray8::new(1)));
-    fb.fill_span(9, 7, 2, |_, _| panic!("out of range span must be ignored"));
-    fb.fill_span(0, -1, 1, |_, _| panic!("out of range span must be ignored"));
+    fb.fill_span(8, 7, 2, |_, p| p.fill(Gray8::new(1))).unwrap();
+    fb.fill_span(9, 7, 2, |_, _| panic!("out of range span must be ignored"))
+        .unwrap();
+    fb.fill_span(0, -1, 1, |_, _| panic!("out of range span must be ignored"))
+        .unwrap();
     assert_eq!(fb.get(9, 7), Some(Gray8::new(1)));
     assert_eq!(fb.as_slice()[10], Gray8::new(0), "padding untouched");
 }
@@ -75,8 +77,8 @@ fn adapter_draws_on_the_simulator_like_the_slice_framebuffer() {
         &t,
         &RasterOptions::default(),
         &mut Solid(Rgb565::GREEN),
-    );
-    assert!(fb.take_error().is_none());
+    )
+    .unwrap();
 
     let mut px = vec![Rgb565::BLACK; 160 * 100];
     let mut slice = SliceFramebuffer::new(&mut px, 160, 100).unwrap();
@@ -86,7 +88,8 @@ fn adapter_draws_on_the_simulator_like_the_slice_framebuffer() {
         &t,
         &RasterOptions::default(),
         &mut Solid(Rgb565::GREEN),
-    );
+    )
+    .unwrap();
     assert_eq!(stats.pixels, stats2.pixels);
     for y in 0..100 {
         for x in 0..160 {
@@ -120,18 +123,28 @@ impl DrawTarget for Flaky {
 }
 
 #[test]
-fn adapter_keeps_the_first_display_error() {
+fn adapter_returns_the_display_error() {
     let mut display = Flaky(0);
     let mut fb = DrawTargetAdapter::new(&mut display);
-    // 200 pixels = 4 chunks of at most 64: calls 1..=4, errors at 2 and 4.
+    // 200 pixels = 4 chunks of at most 64: call 1 succeeds, call 2 fails and
+    // stops the span
     let mut pieces = Vec::new();
-    fb.fill_span(0, 3, 200, |x, p| {
+    let r = fb.fill_span(0, 3, 200, |x, p| {
         pieces.push((x, p.len()));
         p.fill(Gray8::new(1));
     });
-    assert_eq!(pieces, [(0, 64), (64, 64), (128, 64), (192, 8)]);
-    assert_eq!(fb.take_error(), Some(2));
-    assert_eq!(fb.take_error(), None);
+    assert_eq!(r, Err(2));
+    assert_eq!(pieces, [(0, 64), (64, 64)]);
+    // a triangle drawn through the adapter reports the error too
+    let t = tri([(0, 0, 0), (150, 2, 0), (10, 9, 0)]);
+    let r = draw_triangle(
+        &mut fb,
+        None,
+        &t,
+        &RasterOptions::default(),
+        &mut Solid(Gray8::new(3)),
+    );
+    assert_eq!(r.map(|_| ()), Err(4));
 }
 
 #[test]
@@ -151,7 +164,8 @@ fn band_rendering_with_depth_matches_full_frame() {
             t,
             &RasterOptions::default(),
             &mut Solid(*c),
-        );
+        )
+        .unwrap();
     }
 
     for rows in [1u32, 3, 8, 64] {
@@ -173,7 +187,8 @@ fn band_rendering_with_depth_matches_full_frame() {
                         t,
                         &RasterOptions::default(),
                         &mut Solid(*c),
-                    );
+                    )
+                    .unwrap();
                 }
             },
         );

@@ -26,6 +26,7 @@ mod float;
 mod q14;
 mod q30;
 pub(crate) mod rsqrt;
+pub(crate) mod wide;
 
 pub use float::{F32Fast, F32_LIMIT};
 pub use q14::Q14;

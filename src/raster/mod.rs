@@ -1,10 +1,11 @@
-//! Triangle rasterization: exact fixed-point edge walking with a top-left
-//! fill rule, scissor clipping, optional depth test and perspective-correct
-//! attribute interpolation.
+//! Triangle rasterization in 32-bit integer arithmetic: exact edge walking with
+//! a top-left fill rule, clipping to a guard window, optional depth test and
+//! screen-linear or perspective-correct attribute interpolation.
 //!
 //! [`draw_triangle`] turns three [`RasterVertex`]es into horizontal runs of
 //! pixels and hands each run to a [`SpanShader`], which writes the colours
-//! into a [`Framebuffer`] span.
+//! into a [`Framebuffer`] span. The mesh renderer ([`crate::render`]) uses the
+//! same set-up and walker with its own depth-fused span kernels.
 //!
 //! # Conventions
 //!
@@ -18,60 +19,75 @@
 //! - **Winding**: a triangle is *front-facing* when its vertices run
 //!   counter-clockwise as seen on the screen (y down), e.g. `(0,0) → (0,10) →
 //!   (10,0)`. [`Cull::Back`] drops the others; with [`Cull::None`] both draw.
-//! - **Guard band**: coordinates are clamped to ±[`GUARD_BAND`] pixels before
-//!   setup, so no input can overflow. Geometry beyond the guard band is
-//!   distorted: clip it before rasterizing (near-plane clipping belongs to the
-//!   transform stage).
+//! - **Window**: set-up works on vertices inside a window of 2^15 sub-pixels
+//!   per axis, [`WINDOW_MIN`]`..=`[`WINDOW_MAX`] (−512 to 1536 pixels), so
+//!   that every product of the set-up fits 32 bits. A triangle reaching beyond
+//!   it is clipped to the window first (Sutherland–Hodgman; every cut point is
+//!   computed from its edge's endpoints in a fixed order, so neighbours that
+//!   share the edge get the same point and stay watertight). Frames up to
+//!   1024 × 1024 pixels lie inside the window with a guard band of at least
+//!   512 pixels; columns and rows beyond 1536 are never drawn.
 //! - **Depth**: `z` is interpolated linearly in screen space; smaller is
 //!   nearer; a pixel passes when `z < stored` (see [`DepthBuffer`]).
 //!
+//! # Arithmetic
+//!
+//! The set-up of a triangle takes one 32-bit division (the reciprocal of its
+//! area) and a few dozen 32 × 32 → 32-bit multiplications; edges are walked
+//! column by column without division (exact: the same integers as evaluating
+//! the edge functions at every pixel). Clipping to the window, which only
+//! triangles larger than the window need, uses 64-bit values built from
+//! 32-bit operations (no 64-bit multiply or divide routine is linked).
+//!
 //! # Attribute precision
 //!
-//! Attributes are interpolated in i64 from the exact plane through the three
-//! vertices (gradients carry 16 fractional bits per sub-pixel). For every run
-//! of pixels the rasterizer recomputes `start` from the plane, so:
+//! Attributes are interpolated from the plane through the three vertex values,
+//! with barycentric coefficients carrying 14 significant bits (the reciprocal
+//! of the area and the coordinate differences carry 15–16). The value handed to
+//! a shader for the first pixel of a run is the plane value rounded to a unit,
+//! within `½ + ε` units of the exact plane, where `ε` is about
+//! `2^−13·(|Δa₁| + |Δa₂|)` for a well-shaped triangle (`Δa` the differences of
+//! the vertex values) and grows with the triangle's aspect ratio (a bound is
+//! computed per triangle). The step is the per-pixel gradient rounded to a
+//! unit. Values are always clamped: `start + k·step` stays within the range of
+//! the three vertex values for every `k < len` of a run, so shaders may use
+//! plain `i32` arithmetic. Framebuffers that hand out a run in several pieces
+//! get `start + k·step` continued across the pieces: the image does not
+//! depend on how a framebuffer splits spans.
 //!
-//! - `start` is the plane value at the first pixel centre to within
-//!   `½ + d·2⁻¹²` units, `d` being the distance in pixels from vertex 0
-//!   (exact at vertex positions);
-//! - `step` is the per-pixel gradient rounded to the nearest unit, so pixel
-//!   `k` of the run is within `½ + d·2⁻¹² + k·½` units of the plane;
-//! - `start + k·step` never leaves the range of the three vertex values for
-//!   any `k < out.len()`, so shaders may use plain `i32` arithmetic;
-//! - triangles whose attributes change by more than 2^29 units per pixel
-//!   (only thinner than a pixel with huge attribute ranges) get clamped
-//!   gradients: values stay within the vertex range but may be off.
-//!
-//! With [`RasterOptions::perspective`], values are exact (±1 unit) at the
-//! ends of sub-spans of [`PERSPECTIVE_SPAN`] pixels and linear in between; the
-//! extra error inside a sub-span is about `¼·|Δa|·|Δq/q|`, `Δa` and `Δq/q`
-//! being the change of the attribute and the relative change of `1/w`
-//! across that sub-span.
+//! With [`draw_triangle_perspective`], attribute values are computed
+//! perspective-correctly at the ends of sub-spans of [`PERSPECTIVE_SPAN`]
+//! pixels and interpolated linearly in between.
 
 use crate::target::{DepthBuffer, Framebuffer};
 
+mod clip;
 mod edge;
-mod perspective;
-mod plane;
-mod setup;
+mod exact;
+pub(crate) mod setup;
 
-use edge::EdgeWalker;
-use perspective::Perspective;
-use plane::{fit, Plane, FRAC};
-use setup::Setup;
+pub(crate) use edge::Walker;
+pub use setup::ATTR_FRAC;
+pub(crate) use setup::{ClampTo, Plane, Setup};
 
 /// Fractional bits of [`RasterVertex::x`] and [`RasterVertex::y`]: 4, i.e.
 /// positions are in 1/16 pixel.
 pub const SUBPIXEL_BITS: u32 = 4;
 
-/// Vertex coordinates are clamped to `-GUARD_BAND..=GUARD_BAND` pixels
-/// (2^15) before setup; the framebuffer is clipped to `0..GUARD_BAND` columns
-/// and `-GUARD_BAND..GUARD_BAND` rows.
-pub const GUARD_BAND: i32 = 1 << 15;
+/// The smallest sub-pixel coordinate set-up works on: −512 pixels.
+pub const WINDOW_MIN: i32 = -(1 << 13);
+/// The largest sub-pixel coordinate set-up works on: just below 1536 pixels
+/// (`WINDOW_MAX − WINDOW_MIN = 2^15 − 1`).
+pub const WINDOW_MAX: i32 = (3 << 13) - 1;
 
-/// Length of the sub-spans whose ends are computed exactly in perspective mode (16).
+/// Length of the sub-spans whose ends are computed exactly by
+/// [`draw_triangle_perspective`] (16).
 pub const PERSPECTIVE_SPAN: usize = 1 << PERSPECTIVE_SHIFT;
 const PERSPECTIVE_SHIFT: u32 = 4;
+
+/// Attribute values of [`RasterVertex::attrs`] are clamped to ±`ATTR_LIMIT`
+/// (2^29) before set-up.
+pub const ATTR_LIMIT: i32 = 1 << 29;
 
 /// One corner of a triangle in screen space.
 ///
@@ -98,14 +114,15 @@ pub struct RasterVertex<const N: usize> {
     pub z: u16,
     /// `1/w` of the vertex in any positive fixed-point scale shared by the
     /// three vertices (only ratios matter; ratios beyond 2^15 lose precision).
-    /// Used only with [`RasterOptions::perspective`]; values `<= 0` count as
-    /// the smallest positive value.
+    /// Used only by [`draw_triangle_perspective`]; values `<= 0` count as the
+    /// smallest positive value.
     pub inv_w: i32,
-    /// Attributes in caller-chosen fixed-point units (any `i32`).
+    /// Attributes in caller-chosen fixed-point units, within ±[`ATTR_LIMIT`]
+    /// (larger values are clamped).
     pub attrs: [i32; N],
 }
 
-/// Which triangles [`draw_triangle`] skips.
+/// Which triangles are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub enum Cull {
     /// Draw both windings.
@@ -122,8 +139,6 @@ pub enum Cull {
 pub struct RasterOptions {
     /// Face culling.
     pub cull: Cull,
-    /// Perspective-correct attributes (from [`RasterVertex::inv_w`]).
-    pub perspective: bool,
     /// Test `z < stored` against the depth buffer, if one is given.
     pub depth_test: bool,
     /// Store `z` of drawn pixels in the depth buffer, if one is given.
@@ -131,11 +146,10 @@ pub struct RasterOptions {
 }
 
 impl Default for RasterOptions {
-    /// No culling, screen-linear attributes, depth test and write on.
+    /// No culling, depth test and write on.
     fn default() -> Self {
         RasterOptions {
             cull: Cull::None,
-            perspective: false,
             depth_test: true,
             depth_write: true,
         }
@@ -151,6 +165,16 @@ pub struct DrawStats {
     pub spans: u32,
 }
 
+impl DrawStats {
+    /// The sum of two statistics (saturating).
+    pub fn add(self, o: DrawStats) -> DrawStats {
+        DrawStats {
+            pixels: self.pixels.saturating_add(o.pixels),
+            spans: self.spans.saturating_add(o.spans),
+        }
+    }
+}
+
 /// Writes the colours of runs of pixels; implemented by the shading stage.
 ///
 /// The shader owns the per-pixel loop, so it can be specialised per scene.
@@ -162,8 +186,9 @@ pub trait SpanShader<const N: usize> {
     ///
     /// `start` holds the attribute values at the centre of the first pixel,
     /// `step` their change per pixel to the right: pixel `k` gets
-    /// `start + k·step`, which stays within the vertex range (no `i32`
-    /// overflow). See the [module docs](self) for the error bounds.
+    /// `start + k·step`, which stays within the vertex range for `k <
+    /// out.len()` (no `i32` overflow; `start + out.len()·step` may overflow,
+    /// so do not compute it). See the [module docs](self) for the error bounds.
     fn shade_span(
         &mut self,
         x: i32,
@@ -174,16 +199,17 @@ pub trait SpanShader<const N: usize> {
     );
 }
 
-/// Rasterizes one triangle into `fb`, shading every covered pixel with `shader`.
+/// Rasterizes one triangle into `fb`, shading every covered pixel with
+/// `shader`, attributes interpolated linearly in screen space.
 ///
 /// Pixels are covered by the top-left rule, clipped to `fb.width()` ×
 /// `fb.rows()` (and to the depth buffer when it is used). If `depth` is given
 /// and `opts.depth_test` is set, only pixels with `z < stored` are drawn; if
 /// `opts.depth_write` is set, drawn pixels store their `z`. The shader is
-/// called once per maximal run of drawn pixels (per framebuffer piece, and per
-/// [`PERSPECTIVE_SPAN`] pixels in perspective mode).
+/// called once per maximal run of drawn pixels (per framebuffer piece).
 ///
-/// Never panics, for any vertex values.
+/// Never panics, for any vertex values. Returns the first error of the
+/// framebuffer (drawing stops there).
 ///
 /// ```
 /// use embedded_graphics_core::pixelcolor::Gray8;
@@ -195,11 +221,9 @@ pub trait SpanShader<const N: usize> {
 /// impl SpanShader<1> for Ramp {
 ///     type Color = Gray8;
 ///     fn shade_span(&mut self, _x: i32, _y: i32, start: &[i32; 1], step: &[i32; 1], out: &mut [Gray8]) {
-///         let mut a = start[0];
-///         for p in out.iter_mut() {
-///             // luma = a / 256
-///             *p = Gray8::new((a >> 8) as u8);
-///             a += step[0];
+///         for (k, p) in out.iter_mut().enumerate() {
+///             // luma = (start + k·step) / 256
+///             *p = Gray8::new(((start[0] + k as i32 * step[0]) >> 8) as u8);
 ///         }
 ///     }
 /// }
@@ -210,7 +234,7 @@ pub trait SpanShader<const N: usize> {
 ///     x: x << SUBPIXEL_BITS, y: y << SUBPIXEL_BITS, z: 0, inv_w: 1, attrs: [grey << 8],
 /// };
 /// let tri = [v(0, 0, 0), v(16, 0, 160), v(0, 16, 0)];
-/// let stats = draw_triangle(&mut fb, None, &tri, &RasterOptions::default(), &mut Ramp);
+/// let stats = draw_triangle(&mut fb, None, &tri, &RasterOptions::default(), &mut Ramp).unwrap();
 /// assert_eq!(stats.pixels, 120); // 15 + 14 + … + 1: centres on the hypotenuse (a right edge) are out
 /// assert_eq!(fb.get(5, 0), Some(Gray8::new(55))); // centre x = 5.5: 160 · 5.5/16
 /// ```
@@ -220,216 +244,249 @@ pub fn draw_triangle<F, S, const N: usize>(
     v: &[RasterVertex<N>; 3],
     opts: &RasterOptions,
     shader: &mut S,
-) -> DrawStats
+) -> Result<DrawStats, F::Error>
+where
+    F: Framebuffer,
+    S: SpanShader<N, Color = F::Color>,
+{
+    draw_clipped::<F, S, N, false>(fb, depth, v, opts, shader)
+}
+
+/// [`draw_triangle`] with perspective-correct attributes: with `qᵢ` the
+/// [`RasterVertex::inv_w`] of the vertices and `βᵢ` the screen-space
+/// barycentric weights, a pixel gets `Σ βᵢ·qᵢ·aᵢ / Σ βᵢ·qᵢ`, computed at the
+/// ends of sub-spans of [`PERSPECTIVE_SPAN`] pixels (one division per sub-span
+/// end and attribute) and interpolated linearly in between. Depth stays
+/// screen-linear.
+///
+/// The extra error inside a sub-span is about `¼·|Δa|·|Δq/q|`, `Δa` and
+/// `Δq/q` being the change of the attribute and the relative change of `1/w`
+/// across it.
+pub fn draw_triangle_perspective<F, S, const N: usize>(
+    fb: &mut F,
+    depth: Option<&mut DepthBuffer<'_>>,
+    v: &[RasterVertex<N>; 3],
+    opts: &RasterOptions,
+    shader: &mut S,
+) -> Result<DrawStats, F::Error>
+where
+    F: Framebuffer,
+    S: SpanShader<N, Color = F::Color>,
+{
+    draw_clipped::<F, S, N, true>(fb, depth, v, opts, shader)
+}
+
+/// Whether a sub-pixel position lies inside the window.
+#[inline(always)]
+pub(crate) fn in_window(x: i32, y: i32) -> bool {
+    (WINDOW_MIN..=WINDOW_MAX).contains(&x) && (WINDOW_MIN..=WINDOW_MAX).contains(&y)
+}
+
+fn draw_clipped<F, S, const N: usize, const PERSP: bool>(
+    fb: &mut F,
+    mut depth: Option<&mut DepthBuffer<'_>>,
+    v: &[RasterVertex<N>; 3],
+    opts: &RasterOptions,
+    shader: &mut S,
+) -> Result<DrawStats, F::Error>
+where
+    F: Framebuffer,
+    S: SpanShader<N, Color = F::Color>,
+{
+    let mut v = *v;
+    for p in v.iter_mut() {
+        for a in p.attrs.iter_mut() {
+            *a = (*a).clamp_to(-ATTR_LIMIT, ATTR_LIMIT);
+        }
+        p.inv_w = p.inv_w.max(1);
+    }
+    if v.iter().all(|p| in_window(p.x, p.y)) {
+        return draw_inside::<F, S, N, PERSP>(fb, depth, &v, opts, shader);
+    }
+    // cull on the unclipped triangle (clipping keeps the winding)
+    let mut poly = clip::Polygon::<N, PERSP>::new(&v);
+    let Some(front) = poly.facing() else {
+        return Ok(DrawStats::default());
+    };
+    let culled = match opts.cull {
+        Cull::None => false,
+        Cull::Back => !front,
+        Cull::Front => front,
+    };
+    if culled {
+        return Ok(DrawStats::default());
+    }
+    poly.clip_to_window();
+    let mut stats = DrawStats::default();
+    let mut tri = [v[0]; 3];
+    let mut k = 0;
+    while poly.fan(k, &mut tri) {
+        let s = draw_inside::<F, S, N, PERSP>(fb, depth.as_deref_mut(), &tri, opts, shader)?;
+        stats = stats.add(s);
+        k += 1;
+    }
+    Ok(stats)
+}
+
+/// Draws a triangle whose vertices are inside the window.
+fn draw_inside<F, S, const N: usize, const PERSP: bool>(
+    fb: &mut F,
+    depth: Option<&mut DepthBuffer<'_>>,
+    v: &[RasterVertex<N>; 3],
+    opts: &RasterOptions,
+    shader: &mut S,
+) -> Result<DrawStats, F::Error>
 where
     F: Framebuffer,
     S: SpanShader<N, Color = F::Color>,
 {
     let mut stats = DrawStats::default();
-    let Some(s) = Setup::new(v, opts.cull) else {
-        return stats;
+    let Some(s) = Setup::new(
+        [(v[0].x, v[0].y), (v[1].x, v[1].y), (v[2].x, v[2].y)],
+        opts.cull,
+    ) else {
+        return Ok(stats);
     };
-    let depth = if opts.depth_test || opts.depth_write {
+    let mut depth = if opts.depth_test || opts.depth_write {
         depth
     } else {
         None
     };
-
-    // Scissor: columns 0..x_end, rows y_start..y_end.
-    let guard = i64::from(GUARD_BAND);
+    // scissor: columns 0..x_end, rows y_start..y_end
     let fb_rows = fb.rows();
-    let mut x_end = i64::from(fb.width()).min(guard);
-    let mut y_start = i64::from(fb_rows.start).max(-guard).max(s.rows.0);
-    let mut y_end = i64::from(fb_rows.end).min(guard).min(s.rows.1 + 1);
+    let mut x_end = fb.width().min((WINDOW_MAX >> SUBPIXEL_BITS) as u32) as i32;
+    let mut y_start = fb_rows.start.max(s.rows.0);
+    let mut y_end = fb_rows.end.min(s.rows.1.saturating_add(1));
     if let Some(d) = depth.as_deref() {
-        x_end = x_end.min(i64::from(d.width()));
-        y_start = y_start.max(i64::from(d.rows().start));
-        y_end = y_end.min(i64::from(d.rows().end));
+        x_end = x_end.min(d.width().min(i32::MAX as u32) as i32);
+        y_start = y_start.max(d.rows().start);
+        y_end = y_end.min(d.rows().end);
     }
     if y_start >= y_end || x_end <= 0 {
-        return stats;
+        return Ok(stats);
     }
-
-    let mut edges = [
-        EdgeWalker::new(s.xy[0], s.xy[1], y_start, SUBPIXEL_BITS),
-        EdgeWalker::new(s.xy[1], s.xy[2], y_start, SUBPIXEL_BITS),
-        EdgeWalker::new(s.xy[2], s.xy[0], y_start, SUBPIXEL_BITS),
-    ];
-    let mut interp = SpanInterpolator {
-        planes: core::array::from_fn(|i| {
-            Plane::new(&s.xy, s.area, s.v.map(|v| i64::from(v.attrs[i])))
-        }),
-        values: core::array::from_fn(|i| s.v.map(|v| i64::from(v.attrs[i]))),
-        perspective: opts.perspective.then(|| Perspective::new(&s)),
-        row: [0; N],
-        y: 0,
-        last: 0,
+    let mut walker = s.walker(y_start);
+    let exact = exact::Exact::<N, PERSP>::new(&s, v);
+    let mut run = Runner {
+        exact: &exact,
         shader,
     };
-    let zplane = Plane::new(&s.xy, s.area, s.v.map(|v| i64::from(v.z)));
-    let mut depth = depth;
-    // plane values at column 0 step by a constant per row: one i64 addition per
-    // attribute and row instead of two 64-bit multiplications (library calls on a
-    // Cortex-M0); exact, since every term is an integer
-    interp.first_row(y_start);
-    let mut zrow_next = zplane.row(y_start);
-
-    for y in y_start..y_end {
-        let zrow = zrow_next;
-        zrow_next += zplane.row_step();
-        interp.next_row(y);
-        // Inside columns of this row: the intersection of the three edge half-planes.
-        let (mut lo, mut hi) = (0i64, x_end - 1);
-        for e in edges.iter() {
-            e.clip(&mut lo, &mut hi);
-        }
-        for e in edges.iter_mut() {
-            e.step();
-        }
+    while walker.more() && walker.y < y_end {
+        let y = walker.y;
+        let (lo, hi) = walker.next();
+        let (lo, hi) = (lo.max(0), hi.min(x_end - 1));
         if lo > hi {
             continue;
         }
         match depth.as_deref_mut() {
-            None => emit(fb, &mut interp, lo, hi, &mut stats),
+            None => run.emit(fb, y, lo, hi, &mut stats)?,
             Some(d) => {
-                let Some(stored) = d.row_mut(y as i32, lo as u32..(hi + 1) as u32) else {
+                let Some(stored) = d.row_mut(y, lo as u32..(hi + 1) as u32) else {
                     continue;
                 };
-                // z(x) = plane value at each pixel centre; runs of passing pixels are shaded.
-                let mut z = zplane.at(zrow, lo);
-                let dz = zplane.step();
-                let mut run: Option<i64> = None;
+                // z at each pixel centre: exact at both ends, stepped between
+                let (z0, dz) = exact.depth_run(lo, hi, y);
+                let mut z = z0;
+                let mut start: Option<i32> = None;
                 for (x, old) in (lo..).zip(stored.iter_mut()) {
-                    let zi = zplane.round(z) as u16;
+                    let zi = (z >> exact::Z_FRAC) as u16;
                     if !opts.depth_test || zi < *old {
                         if opts.depth_write {
                             *old = zi;
                         }
-                        run.get_or_insert(x);
-                    } else if let Some(r) = run.take() {
-                        emit(fb, &mut interp, r, x - 1, &mut stats);
+                        start.get_or_insert(x);
+                    } else if let Some(r) = start.take() {
+                        run.emit(fb, y, r, x - 1, &mut stats)?;
                     }
-                    z += dz;
+                    // the value after the last pixel is not used: wrapping is harmless
+                    z = z.wrapping_add(dz);
                 }
-                if let Some(r) = run {
-                    emit(fb, &mut interp, r, hi, &mut stats);
+                if let Some(r) = start {
+                    run.emit(fb, y, r, hi, &mut stats)?;
                 }
             }
         }
     }
-    stats
+    Ok(stats)
 }
 
-/// Hands pixels `lo..=hi` of the interp's row to the framebuffer and shader.
-fn emit<F, S, const N: usize>(
-    fb: &mut F,
-    p: &mut SpanInterpolator<'_, S, N>,
-    lo: i64,
-    hi: i64,
-    stats: &mut DrawStats,
-) where
-    F: Framebuffer,
-    S: SpanShader<N, Color = F::Color>,
-{
-    let len = (hi - lo + 1) as u32;
-    stats.pixels = stats.pixels.saturating_add(len);
-    stats.spans = stats.spans.saturating_add(1);
-    p.last = hi;
-    let y = p.y;
-    fb.fill_span(lo as u32, y as i32, len, |x, piece| {
-        p.paint(i64::from(x), piece)
-    });
+/// Hands runs to the framebuffer and the shader, with exact attribute values.
+struct Runner<'a, S, const N: usize, const PERSP: bool> {
+    exact: &'a exact::Exact<N, PERSP>,
+    shader: &'a mut S,
 }
 
-/// Computes `start`/`step` for runs of one row and calls the shader.
-struct SpanInterpolator<'s, S, const N: usize> {
-    planes: [Plane; N],
-    /// Vertex values per attribute, for perspective evaluation.
-    values: [[i64; 3]; N],
-    perspective: Option<Perspective>,
-    /// Plane values at column 0 of the current row ([`FRAC`] bits).
-    row: [i64; N],
-    y: i64,
-    /// Last column of the current run.
-    last: i64,
-    shader: &'s mut S,
-}
-
-impl<S: SpanShader<N>, const N: usize> SpanInterpolator<'_, S, N> {
-    /// Sets the plane values for row `y`; then [`next_row`](Self::next_row) is called
-    /// for every row from `y` on, in order.
-    fn first_row(&mut self, y: i64) {
-        if self.perspective.is_none() {
-            for (r, p) in self.row.iter_mut().zip(self.planes.iter()) {
-                *r = p.row(y) - p.row_step();
-            }
-        }
-        self.y = y - 1;
-    }
-
-    /// Moves to row `y = previous + 1`: `row += gy·16` per attribute.
-    fn next_row(&mut self, y: i64) {
-        self.y = y;
-        if self.perspective.is_none() {
-            for (r, p) in self.row.iter_mut().zip(self.planes.iter()) {
-                *r += p.row_step();
-            }
-        }
-    }
-
-    /// Shades `piece`, whose first pixel is column `x` of the current row.
-    fn paint(&mut self, x: i64, piece: &mut [S::Color]) {
-        let mut start = [0i32; N];
-        let mut step = [0i32; N];
-        let Some(persp) = self.perspective else {
-            // start = round(plane(x + ½, y + ½)), step = round(∂a/∂x)
-            for i in 0..N {
-                let p = &self.planes[i];
-                let a = p.round(p.at(self.row[i], x));
-                let d = (p.step() + (1 << (FRAC - 1))) >> FRAC;
-                (start[i], step[i]) = fit(a, d, piece.len(), p.lo, p.hi);
-            }
-            self.shader
-                .shade_span(x as i32, self.y as i32, &start, &step, piece);
-            return;
+impl<S: SpanShader<N>, const N: usize, const PERSP: bool> Runner<'_, S, N, PERSP> {
+    /// Hands pixels `lo..=hi` of row `y` to the framebuffer and shader.
+    fn emit<F: Framebuffer<Color = S::Color>>(
+        &mut self,
+        fb: &mut F,
+        y: i32,
+        lo: i32,
+        hi: i32,
+        stats: &mut DrawStats,
+    ) -> Result<(), F::Error> {
+        let len = (hi - lo + 1) as u32;
+        stats.pixels = stats.pixels.saturating_add(len);
+        stats.spans = stats.spans.saturating_add(1);
+        let exact = self.exact;
+        let shader = &mut *self.shader;
+        // segments: the whole run (screen-linear) or PERSPECTIVE_SPAN pixels from
+        // its first pixel (perspective), whatever pieces the framebuffer hands out
+        let seg = if PERSP {
+            PERSPECTIVE_SPAN as i32
+        } else {
+            i32::MAX
         };
-        // Sub-spans of PERSPECTIVE_SPAN pixels: exact values at both ends,
-        // step = (a(end) − a(start)) / (end − start).
-        let y = self.y;
-        let eval = |x: i64| {
-            let beta = persp.weights(x, y);
-            let mut a = [0i64; N];
-            for (a, v) in a.iter_mut().zip(self.values.iter()) {
-                *a = Perspective::value(&beta, v);
-            }
-            a
-        };
-        let mut cached: Option<(i64, [i64; N])> = None;
-        let mut sx = x;
-        for seg in piece.chunks_mut(PERSPECTIVE_SPAN) {
-            let a0 = match cached {
-                Some((cx, a)) if cx == sx => a,
-                _ => eval(sx),
-            };
-            let ex = (sx + PERSPECTIVE_SPAN as i64).min(self.last).max(sx);
-            let a1 = if ex > sx { eval(ex) } else { a0 };
-            let span = ex - sx;
-            for i in 0..N {
-                let delta = a1[i] - a0[i];
-                let d = match span {
-                    0 => 0,
-                    n if n == PERSPECTIVE_SPAN as i64 => (delta + n / 2) >> PERSPECTIVE_SHIFT,
-                    n => (2 * delta + n).div_euclid(2 * n),
+        let mut cur: Option<(i32, [i32; N], [i32; N])> = None;
+        fb.fill_span(lo as u32, y, len, |px, piece| {
+            let mut x = px as i32;
+            let mut rest = piece;
+            while !rest.is_empty() {
+                let k0 = if PERSP {
+                    lo + (((x - lo) >> PERSPECTIVE_SHIFT) << PERSPECTIVE_SHIFT)
+                } else {
+                    lo
                 };
-                let p = &self.planes[i];
-                (start[i], step[i]) = fit(a0[i], d, seg.len(), p.lo, p.hi);
+                let k1 = k0.saturating_add(seg).min(hi + 1) - 1;
+                let (s0, d) = match cur {
+                    Some((k, s0, d)) if k == k0 => (s0, d),
+                    _ => {
+                        let (s0, d) = exact.segment(k0, k1, y);
+                        cur = Some((k0, s0, d));
+                        (s0, d)
+                    }
+                };
+                let n = ((k1 + 1 - x) as usize).min(rest.len());
+                let (part, tail) = rest.split_at_mut(n);
+                // pixel k of the segment is s0 + k·d; this part starts at k = x − k0
+                let start = core::array::from_fn(|i| s0[i].wrapping_add(d[i].wrapping_mul(x - k0)));
+                shader.shade_span(x, y, &start, &d, part);
+                x += n as i32;
+                rest = tail;
             }
-            self.shader
-                .shade_span(sx as i32, y as i32, &start, &step, seg);
-            cached = Some((ex, a1));
-            sx += seg.len() as i64;
-        }
+        })
     }
+}
+
+/// `step` shrunk toward zero if needed so that `start + k·step` stays in
+/// `lo..=hi` for every `k < n` (`start` already in range).
+#[inline]
+pub(crate) fn fit(start: i32, step: i32, n: i32, lo: i32, hi: i32) -> (i32, i32) {
+    if n <= 1 {
+        return (start, 0);
+    }
+    let k = n - 1;
+    let up = hi.wrapping_sub(start) as u32; // hi ≥ start
+    let dn = start.wrapping_sub(lo) as u32; // start ≥ lo
+    let d = if step > 0 && step.unsigned_abs() > up / k as u32 {
+        (up / k as u32) as i32
+    } else if step < 0 && step.unsigned_abs() > dn / k as u32 {
+        -((dn / k as u32) as i32)
+    } else {
+        step
+    };
+    (start, d)
 }
 
 #[cfg(test)]

@@ -1,36 +1,122 @@
-//! Per-triangle setup: guard-band clamp, orientation, culling, row range.
+//! Triangle set-up in 32-bit arithmetic: orientation, culling, the barycentric
+//! coefficients (one reciprocal of the area per triangle) and attribute planes.
+//!
+//! Every product here is a 32 × 32 → 32-bit multiplication (one `MULS` on a
+//! Cortex-M0) whose operands are bounded so that it cannot overflow, and the
+//! only division is the reciprocal of the area. The bounds come from the
+//! [window](super::WINDOW_MIN): every vertex lies within a span of 2^15
+//! sub-pixels, so coordinate differences are below 2^15 and edge-function
+//! products below 2^30.
 
-use super::{Cull, RasterVertex, GUARD_BAND, SUBPIXEL_BITS};
+use super::edge::Walker;
+use super::{Cull, SUBPIXEL_BITS};
 
-/// A triangle ready to walk: sub-pixel coordinates clamped to the guard band,
-/// vertices ordered so that the doubled signed area is positive.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct Setup<const N: usize> {
-    /// Sub-pixel positions.
-    pub(crate) xy: [(i64, i64); 3],
-    /// The (possibly reordered) vertices, for z, 1/w and attributes.
-    pub(crate) v: [RasterVertex<N>; 3],
-    /// Doubled area in sub-pixel units², `> 0`.
-    pub(crate) area: i64,
-    /// Pixel rows whose centres lie between the lowest and highest vertex.
-    pub(crate) rows: (i64, i64),
+/// Fraction bits of the interpolated attribute values handed to kernels: a value
+/// `v` is `v · 2^ATTR_FRAC`.
+pub const ATTR_FRAC: u32 = 14;
+
+/// Number of significant bits of `|x|` (0 for 0): `32 − leading_zeros`, without
+/// a library call on cores lacking a count-leading-zeros instruction.
+#[inline]
+pub(crate) fn bit_length(x: u32) -> u32 {
+    let mut x = x;
+    let mut n = 0;
+    if x >= 1 << 16 {
+        x >>= 16;
+        n += 16;
+    }
+    if x >= 1 << 8 {
+        x >>= 8;
+        n += 8;
+    }
+    if x >= 1 << 4 {
+        x >>= 4;
+        n += 4;
+    }
+    if x >= 1 << 2 {
+        x >>= 2;
+        n += 2;
+    }
+    if x >= 1 << 1 {
+        x >>= 1;
+        n += 1;
+    }
+    n + x
 }
 
-/// Largest sub-pixel coordinate magnitude kept by the clamp.
-pub(crate) const GUARD_SUB: i64 = (GUARD_BAND as i64) << SUBPIXEL_BITS;
-
-impl<const N: usize> Setup<N> {
-    /// Clamps, orients and culls; `None` for zero-area or culled triangles.
-    pub(crate) fn new(v: &[RasterVertex<N>; 3], cull: Cull) -> Option<Self> {
-        let clamp = |c: i32| i64::from(c).clamp(-GUARD_SUB, GUARD_SUB);
-        let mut xy = [(0i64, 0i64); 3];
-        for (p, vert) in xy.iter_mut().zip(v.iter()) {
-            *p = (clamp(vert.x), clamp(vert.y));
+/// `v · 2^s` for a signed shift `s`: a right shift rounds to nearest, a left
+/// shift saturates at ±2^30 (gradients of triangles smaller than a pixel).
+#[inline]
+pub(crate) fn scale(v: i32, s: i32) -> i32 {
+    if s <= 0 {
+        let r = (-s) as u32;
+        if r == 0 {
+            v
+        } else if r >= 31 {
+            0
+        } else {
+            // (v + half) >> r without overflow: halve first
+            ((v >> (r - 1)) + 1) >> 1
         }
-        // A = (x1 − x0)(y2 − y0) − (y1 − y0)(x2 − x0): positive when the
-        // vertices run clockwise as seen on a y-down screen.
-        let area =
-            (xy[1].0 - xy[0].0) * (xy[2].1 - xy[0].1) - (xy[1].1 - xy[0].1) * (xy[2].0 - xy[0].0);
+    } else if s >= 30 {
+        if v > 0 {
+            1 << 30
+        } else if v < 0 {
+            -(1 << 30)
+        } else {
+            0
+        }
+    } else {
+        let lim = (1i32 << 30) >> s;
+        if v >= lim {
+            1 << 30
+        } else if v <= -lim {
+            -(1 << 30)
+        } else {
+            v << s
+        }
+    }
+}
+
+/// A triangle whose vertices lie in the window, oriented so that its doubled
+/// area is positive, with the barycentric coefficients of its plane.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Setup {
+    /// Sub-pixel positions, oriented (`A > 0`: clockwise on a y-down screen).
+    pub xy: [(i32, i32); 3],
+    /// Which input vertex each oriented vertex is.
+    pub order: [usize; 3],
+    /// Index (into `xy`) of the top, middle and bottom vertex (by `y`).
+    pub tmb: [usize; 3],
+    /// First and last pixel row whose centre lies in `[y_top, y_bottom]`.
+    pub rows: (i32, i32),
+    /// Barycentric coefficients relative to the top vertex.
+    pub bary: Bary,
+}
+
+/// `∂β/∂X` and `∂β/∂Y` (per sub-pixel) of the barycentric weights of the two
+/// vertices other than the top one, as `C · 2^−k` with `|C| < 2^14`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Bary {
+    /// The two vertices (indices into `Setup::xy`) whose weights these are.
+    pub other: [usize; 2],
+    c1x: i32,
+    c2x: i32,
+    c1y: i32,
+    c2y: i32,
+    /// The scale exponent `k`.
+    k: i32,
+    /// The largest `|C|` (for error bounds).
+    cmax: i32,
+}
+
+impl Setup {
+    /// Orients and culls three sub-pixel positions already inside the window.
+    /// `None` for zero-area or culled triangles. Needs no division.
+    #[inline]
+    pub(crate) fn new(p: [(i32, i32); 3], cull: Cull) -> Option<Setup> {
+        // A = (x1 − x0)(y2 − y0) − (y1 − y0)(x2 − x0): each product < 2^30
+        let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0);
         let front = area < 0;
         let culled = match cull {
             Cull::None => false,
@@ -40,25 +126,280 @@ impl<const N: usize> Setup<N> {
         if area == 0 || culled {
             return None;
         }
-        let mut v = *v;
-        let mut area = area;
-        if area < 0 {
-            xy.swap(1, 2);
-            v.swap(1, 2);
-            area = -area;
+        let (xy, order) = if area < 0 {
+            ([p[0], p[2], p[1]], [0, 2, 1])
+        } else {
+            (p, [0, 1, 2])
+        };
+        // sort by y: t ≤ m ≤ b
+        let (mut t, mut m, mut b) = (0usize, 1usize, 2usize);
+        if xy[m].1 < xy[t].1 {
+            core::mem::swap(&mut t, &mut m);
         }
-        let half = 1i64 << (SUBPIXEL_BITS - 1);
-        let (lo, hi) = xy.iter().fold((i64::MAX, i64::MIN), |(lo, hi), p| {
-            (lo.min(p.1), hi.max(p.1))
-        });
-        // Rows whose centre Y = 16y + 8 lies in [lo, hi].
-        let first = (lo - half + (1 << SUBPIXEL_BITS) - 1).div_euclid(1 << SUBPIXEL_BITS);
-        let last = (hi - half).div_euclid(1 << SUBPIXEL_BITS);
+        if xy[b].1 < xy[m].1 {
+            core::mem::swap(&mut m, &mut b);
+        }
+        if xy[m].1 < xy[t].1 {
+            core::mem::swap(&mut t, &mut m);
+        }
+        let half = 1 << (SUBPIXEL_BITS - 1);
+        // rows whose centre Y = 16y + 8 lies in [y_t, y_b]
+        let first = (xy[t].1 - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS;
+        let last = (xy[b].1 - half) >> SUBPIXEL_BITS;
         Some(Setup {
             xy,
-            v,
-            area,
+            order,
+            tmb: [t, m, b],
             rows: (first, last),
+            bary: Bary::default(),
         })
+    }
+
+    /// Computes the barycentric coefficients (one division). Needed before
+    /// [`Setup::plane`].
+    #[inline]
+    pub(crate) fn prepare_planes(&mut self) {
+        let t = self.tmb[0];
+        let (i1, i2) = ((t + 1) % 3, (t + 2) % 3);
+        let o = self.xy[t];
+        let d1 = (self.xy[i1].0 - o.0, self.xy[i1].1 - o.1);
+        let d2 = (self.xy[i2].0 - o.0, self.xy[i2].1 - o.1);
+        // A' = d1 × d2 = the doubled area (the orientation is kept by rotation)
+        let a = d1.0 * d2.1 - d1.1 * d2.0;
+        // 1/A' ≈ R·2^−(31 + sh) with a_n = A' / 2^sh in [2^15, 2^16)
+        let bits = bit_length(a as u32) as i32;
+        let sh = bits - 16;
+        let an = if sh >= 0 { a >> sh } else { a << -sh };
+        // R in (2^15, 2^16]: relative error ≤ 2^−15 each for a_n and R
+        let r = ((1u32 << 31) / an as u32) as i32;
+        // ∂β1/∂X = d2.y/A', ∂β2/∂X = −d1.y/A', ∂β1/∂Y = −d2.x/A', ∂β2/∂Y = d1.x/A'
+        // |d|·R < 2^15·2^16 = 2^31
+        let raw = [d2.1 * r, -(d1.1 * r), -(d2.0 * r), d1.0 * r];
+        let m = raw.iter().fold(0u32, |m, &c| m.max(c.unsigned_abs()));
+        // |C| < 2^14
+        let shift = (bit_length(m) as i32 - 14).max(0);
+        let c = raw.map(|v| scale(v, -shift));
+        let cmax = c.iter().fold(0, |m, &v| m.max(v.abs()));
+        self.bary = Bary {
+            other: [i1, i2],
+            c1x: c[0],
+            c2x: c[1],
+            c1y: c[2],
+            c2y: c[3],
+            k: 31 + sh - shift,
+            cmax,
+        };
+    }
+
+    /// The plane of an attribute with values `a` at the oriented vertices
+    /// (`a[i]` belongs to `xy[i]`), relative to the top vertex's value, in
+    /// `2^ATTR_FRAC` units of `a >> sa`, where `sa` is chosen so that the
+    /// differences fit 16 bits. The row value is positioned at the pixel centre
+    /// `(c0, r0)` = (column of the top vertex, `row`).
+    #[inline]
+    pub(crate) fn plane(&self, a: [i32; 3], row: i32) -> Plane {
+        let b = &self.bary;
+        let t = self.tmb[0];
+        // differences may need 32 bits (attributes in ±2^30)
+        let d1 = a[b.other[0]].wrapping_sub(a[t]);
+        let d2 = a[b.other[1]].wrapping_sub(a[t]);
+        let big = d1.unsigned_abs().max(d2.unsigned_abs());
+        let sa = (bit_length(big) as i32 - 16).max(0);
+        let (d1, d2) = (d1 >> sa, d2 >> sa);
+        // |d|·|C| < 2^16·2^14: each product < 2^30, the sum < 2^31
+        let gx = d1 * b.c1x + d2 * b.c2x;
+        let gy = d1 * b.c1y + d2 * b.c2y;
+        // per sub-pixel: g·2^(ATTR_FRAC − k); per pixel: ·16
+        let s = ATTR_FRAC as i32 + SUBPIXEL_BITS as i32 - b.k;
+        let dx = scale(gx, s);
+        let dy = scale(gy, s);
+        // value at (c0, row) relative to the top vertex: g_sub·δ, |δ| < 2^15 for δY
+        let (xt, yt) = self.xy[t];
+        let half = 1 << (SUBPIXEL_BITS - 1);
+        let c0 = xt >> SUBPIXEL_BITS;
+        let dxs = (c0 << SUBPIXEL_BITS) + half - xt; // in −8..8
+        let dys = (row << SUBPIXEL_BITS) + half - yt;
+        let sx = dx >> SUBPIXEL_BITS; // per sub-pixel, |·| < 2^27
+        let sy = dy >> SUBPIXEL_BITS;
+        // δY can be large (a band far below the top vertex): whole rows first
+        let rows = dys >> SUBPIXEL_BITS;
+        let rem = dys & ((1 << SUBPIXEL_BITS) - 1);
+        let v = (sx * dxs)
+            .wrapping_add(sy * rem)
+            .wrapping_add(dy.wrapping_mul(rows));
+        let lo = 0.min(d1).min(d2);
+        let hi = 0.max(d1).max(d2);
+        // error bound of computed values inside the triangle (see `Plane::err`)
+        let spread = d1.unsigned_abs() + d2.unsigned_abs();
+        Plane {
+            row: v,
+            dx,
+            dy,
+            c0,
+            lo: lo << ATTR_FRAC,
+            hi: hi << ATTR_FRAC,
+            sa: sa as u32,
+            spread,
+        }
+    }
+
+    /// An upper bound of `|computed − exact|` (in `2^ATTR_FRAC` units) of every
+    /// value a [`Plane`] of this triangle yields inside the triangle; `spread`
+    /// is `|Δa1| + |Δa2|` (after the plane's shift).
+    ///
+    /// Sources: each coefficient `C` is within 1.5 of its exact value (`R`
+    /// and the normalised area carry 2^−15 relative error each, and `C` is
+    /// rounded), so a pixel gradient is off by at most
+    /// `½ + 1.5·spread·2^(18 − k)`; row values accumulate ½ per row; the start
+    /// value is within 32 units. Over the bounding box (`w` × `h` pixels) that
+    /// gives the bound below (computed generously, saturating).
+    pub(crate) fn err(&self, spread: u32) -> u32 {
+        let (mut x0, mut x1) = (i32::MAX, i32::MIN);
+        for p in &self.xy {
+            x0 = x0.min(p.0);
+            x1 = x1.max(p.0);
+        }
+        let w = ((x1 - x0) >> SUBPIXEL_BITS) as u32 + 2;
+        let h = (self.rows.1 - self.rows.0).max(0) as u32 + 2;
+        // 1.5·spread·2^(18 − k) per pixel, rounded up: (3·spread) << (17 − k)
+        let s = 18 - 1 - self.bary.k;
+        let g = 3u32.saturating_mul(spread);
+        let per_px = if s >= 0 {
+            if s >= 31 || g > (u32::MAX >> s) {
+                u32::MAX
+            } else {
+                g << s
+            }
+        } else {
+            let r = (-s) as u32;
+            if r >= 32 {
+                1
+            } else {
+                (g >> r) + 1
+            }
+        };
+        per_px
+            .saturating_add(1)
+            .saturating_mul(w.saturating_add(h))
+            .saturating_add(64)
+    }
+
+    /// The walker over this triangle's rows, positioned at `row` (clamped to
+    /// the triangle's first row).
+    #[inline]
+    pub(crate) fn walker(&self, row: i32) -> Walker {
+        Walker::new(self, row)
+    }
+}
+
+/// One attribute over a triangle: the value at column `c0` of the current row
+/// and its changes per pixel and per row, in `2^ATTR_FRAC` units of
+/// `attribute >> sa`, relative to the top vertex's value. Values are computed
+/// with wrapping arithmetic: only values inside the triangle are read, and
+/// those are within the vertex range up to [`Setup::err`].
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Plane {
+    /// Value at the centre of pixel `(c0, current row)`.
+    pub row: i32,
+    /// Change per pixel to the right.
+    pub dx: i32,
+    /// Change per row down.
+    pub dy: i32,
+    /// The reference column.
+    pub c0: i32,
+    /// The vertex range (relative values).
+    pub lo: i32,
+    pub hi: i32,
+    /// The shift applied to the attribute's differences.
+    pub sa: u32,
+    /// `|Δa1| + |Δa2|` after the shift.
+    pub spread: u32,
+}
+
+impl Plane {
+    /// Value at the centre of pixel `x` of the current row.
+    #[inline(always)]
+    pub(crate) fn at(&self, x: i32) -> i32 {
+        self.row.wrapping_add(self.dx.wrapping_mul(x - self.c0))
+    }
+
+    /// Moves to the next row.
+    #[inline(always)]
+    pub(crate) fn next_row(&mut self) {
+        self.row = self.row.wrapping_add(self.dy);
+    }
+
+    /// Moves `n` rows down.
+    #[inline(always)]
+    pub(crate) fn skip_rows(&mut self, n: i32) {
+        self.row = self.row.wrapping_add(self.dy.wrapping_mul(n));
+    }
+
+    /// `(start, step)` of a run of `n ≥ 1` pixels from column `x`, clamped so
+    /// that `start + k·step` stays within the vertex range for `k < n` (the step
+    /// shrinks toward zero when the end would leave it: one division, rare).
+    #[inline]
+    pub(crate) fn clamped(&self, x: i32, n: i32) -> (i32, i32) {
+        let s = self.at(x).clamp_to(self.lo, self.hi);
+        let mut d = self.dx;
+        if n > 1 {
+            let k = n - 1;
+            // |d·k| may exceed i32 for extreme gradients: compare without overflow
+            let room_up = self.hi - s;
+            let room_dn = self.lo - s; // ≤ 0
+            if d > 0 && d > room_up / k {
+                d = room_up / k;
+            } else if d < 0 && d < room_dn / k {
+                d = room_dn / k;
+            }
+        } else {
+            d = 0;
+        }
+        (s, d)
+    }
+}
+
+/// `clamp` without `Ord::clamp`'s `min ≤ max` assertion (and its panic path).
+pub(crate) trait ClampTo {
+    fn clamp_to(self, lo: Self, hi: Self) -> Self;
+}
+
+impl ClampTo for i32 {
+    #[inline(always)]
+    fn clamp_to(self, lo: i32, hi: i32) -> i32 {
+        if self < lo {
+            lo
+        } else if self > hi {
+            hi
+        } else {
+            self
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bit_length_matches_leading_zeros() {
+        for x in (0..=20u32)
+            .chain((0..32).map(|s| 1u32 << s))
+            .chain((1..32).map(|s| (1u32 << s) - 1))
+            .chain([u32::MAX, 12345, 0x8000_0001])
+        {
+            assert_eq!(bit_length(x), 32 - x.leading_zeros(), "{x}");
+        }
+    }
+
+    #[test]
+    fn scale_rounds_and_saturates() {
+        assert_eq!(scale(5, -1), 3); // 2.5 → 3
+        assert_eq!(scale(-5, -1), -2); // −2.5 → −2 (ties up)
+        assert_eq!(scale(7, 2), 28);
+        assert_eq!(scale(1 << 29, 2), 1 << 30);
+        assert_eq!(scale(-(1 << 29), 3), -(1 << 30));
+        assert_eq!(scale(i32::MAX, -31), 0);
+        assert_eq!(scale(i32::MIN, -1), -(1 << 30));
     }
 }

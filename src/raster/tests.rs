@@ -45,7 +45,7 @@ fn coverage(tris: &[[RasterVertex<0>; 3]], opts: &RasterOptions) -> [[u8; 16]; 1
     let mut px = [Gray8::new(0); 256];
     let mut fb = SliceFramebuffer::new(&mut px, 16, 16).unwrap();
     for t in tris {
-        draw_triangle(&mut fb, None, t, opts, &mut Count);
+        draw_triangle(&mut fb, None, t, opts, &mut Count).unwrap();
     }
     let mut out = [[0u8; 16]; 16];
     for (i, p) in px.iter().enumerate() {
@@ -164,7 +164,7 @@ fn attributes_exact_at_vertices_and_on_the_plane() {
     let c = |p: i32| p * S + S / 2;
     for attrs in [
         [0, 1 << 16, -(1 << 16)],
-        [i32::MIN, i32::MAX, 12345],
+        [-ATTR_LIMIT, ATTR_LIMIT, 12345],
         [1000, 1000, 1000],
         [7, -3, 100_000_000],
     ] {
@@ -195,11 +195,12 @@ fn attributes_exact_at_vertices_and_on_the_plane() {
             let mut px = [Gray8::new(0); 256];
             let mut fb = SliceFramebuffer::new(&mut px, 16, 16).unwrap();
             let mut rec = Record([[None; 16]; 16]);
-            let opts = RasterOptions {
-                perspective,
-                ..RasterOptions::default()
-            };
-            draw_triangle(&mut fb, None, &v, &opts, &mut rec);
+            let opts = RasterOptions::default();
+            if perspective {
+                draw_triangle_perspective(&mut fb, None, &v, &opts, &mut rec).unwrap();
+            } else {
+                draw_triangle(&mut fb, None, &v, &opts, &mut rec).unwrap();
+            }
             let range =
                 f64::from(*attrs.iter().max().unwrap()) - f64::from(*attrs.iter().min().unwrap());
             for (y, row) in rec.0.iter().enumerate() {
@@ -232,19 +233,20 @@ fn attribute_exact_at_a_drawn_vertex_whatever_its_index() {
     // Only the top-left vertex P lies on a top and a left edge: its pixel is drawn.
     let (p, q, r) = (
         vert(1, 1, -123_456_789),
-        vert(14, 1, i32::MAX),
-        vert(1, 14, i32::MIN),
+        vert(14, 1, ATTR_LIMIT),
+        vert(1, 14, -ATTR_LIMIT),
     );
     for tri in [[p, q, r], [q, r, p], [r, p, q]] {
         for perspective in [false, true] {
             let mut px = [Gray8::new(0); 256];
             let mut fb = SliceFramebuffer::new(&mut px, 16, 16).unwrap();
             let mut rec = Record([[None; 16]; 16]);
-            let opts = RasterOptions {
-                perspective,
-                ..RasterOptions::default()
-            };
-            draw_triangle(&mut fb, None, &tri, &opts, &mut rec);
+            let opts = RasterOptions::default();
+            if perspective {
+                draw_triangle_perspective(&mut fb, None, &tri, &opts, &mut rec).unwrap();
+            } else {
+                draw_triangle(&mut fb, None, &tri, &opts, &mut rec).unwrap();
+            }
             assert_eq!(rec.0[1][1], Some(-123_456_789), "perspective {perspective}");
         }
     }
@@ -254,7 +256,7 @@ fn attribute_exact_at_a_drawn_vertex_whatever_its_index() {
 fn huge_and_offscreen_triangles_do_not_panic() {
     let big = [vtx(i32::MIN, i32::MIN), vtx(i32::MAX, 0), vtx(0, i32::MAX)];
     let cov = coverage(&[big], &RasterOptions::default());
-    // The clamped triangle covers the whole 16×16 frame exactly once.
+    // The clipped triangle covers the whole 16×16 frame exactly once.
     assert!(cov.iter().flatten().all(|&n| n == 1));
     let off = [
         vtx(-100 * S, -100 * S),

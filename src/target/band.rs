@@ -1,5 +1,6 @@
 //! A full frame rendered strip by strip through a small buffer.
 
+use core::convert::Infallible;
 use core::ops::Range;
 
 use embedded_graphics_core::draw_target::DrawTarget;
@@ -190,6 +191,7 @@ impl<'a, C: PixelColor> BandBuffer<'a, C> {
 
 impl<C: PixelColor> Framebuffer for BandBuffer<'_, C> {
     type Color = C;
+    type Error = Infallible;
 
     fn width(&self) -> u32 {
         self.width
@@ -201,14 +203,21 @@ impl<C: PixelColor> Framebuffer for BandBuffer<'_, C> {
         first as i32..end as i32
     }
 
-    fn fill_span<F: FnMut(u32, &mut [C])>(&mut self, x: u32, y: i32, len: u32, mut fill: F) {
+    fn fill_span<F: FnMut(u32, &mut [C])>(
+        &mut self,
+        x: u32,
+        y: i32,
+        len: u32,
+        mut fill: F,
+    ) -> Result<(), Infallible> {
         let rows = self.rows();
         let Some(cols) = span_in(self.width, &rows, x, y, len) else {
-            return;
+            return Ok(());
         };
         let row = (y - rows.start) as usize * self.width as usize;
         if let Some(piece) = self.buf.get_mut(row + cols.start..row + cols.end) {
             fill(x, piece);
         }
+        Ok(())
     }
 }

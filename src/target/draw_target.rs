@@ -17,8 +17,8 @@ pub const ADAPTER_CHUNK: usize = 64;
 ///
 /// Each span is shaded into a stack buffer of [`ADAPTER_CHUNK`] pixels (longer
 /// spans in several pieces) and sent with `fill_contiguous` on a 1-pixel-high
-/// rectangle. Display errors never panic: the first one is kept, later ones
-/// are dropped, and [`take_error`](DrawTargetAdapter::take_error) returns it.
+/// rectangle. A display error stops the span and is returned from
+/// [`Framebuffer::fill_span`] (and from the drawing call that made it).
 ///
 /// The accepted area comes from the display's `bounding_box()`: columns
 /// `0..right edge`, rows `top..bottom`.
@@ -31,8 +31,7 @@ pub const ADAPTER_CHUNK: usize = 64;
 /// let mut display = MockDisplay::<BinaryColor>::new();
 /// let mut fb = DrawTargetAdapter::new(&mut display);
 /// assert_eq!((fb.width(), fb.rows()), (64, 0..64));
-/// fb.fill_span(2, 1, 3, |_x, piece| piece.fill(BinaryColor::On));
-/// assert!(fb.take_error().is_none());
+/// fb.fill_span(2, 1, 3, |_x, piece| piece.fill(BinaryColor::On)).unwrap();
 /// assert_eq!(display.get_pixel(embedded_graphics_core::geometry::Point::new(4, 1)), Some(BinaryColor::On));
 /// ```
 pub struct DrawTargetAdapter<'a, D: DrawTarget> {
@@ -40,7 +39,6 @@ pub struct DrawTargetAdapter<'a, D: DrawTarget> {
     buf: [D::Color; ADAPTER_CHUNK],
     width: u32,
     rows: Range<i32>,
-    error: Option<D::Error>,
 }
 
 impl<'a, D: DrawTarget> DrawTargetAdapter<'a, D>
@@ -59,17 +57,11 @@ where
             buf: [D::Color::default(); ADAPTER_CHUNK],
             width,
             rows: top..bottom,
-            error: None,
         }
     }
 }
 
 impl<D: DrawTarget> DrawTargetAdapter<'_, D> {
-    /// The first display error since the last call, if any.
-    pub fn take_error(&mut self) -> Option<D::Error> {
-        self.error.take()
-    }
-
     /// The wrapped display.
     pub fn display(&mut self) -> &mut D {
         self.display
@@ -81,13 +73,13 @@ impl<D: DrawTarget> fmt::Debug for DrawTargetAdapter<'_, D> {
         f.debug_struct("DrawTargetAdapter")
             .field("width", &self.width)
             .field("rows", &self.rows)
-            .field("has_error", &self.error.is_some())
             .finish_non_exhaustive()
     }
 }
 
 impl<D: DrawTarget> Framebuffer for DrawTargetAdapter<'_, D> {
     type Color = D::Color;
+    type Error = D::Error;
 
     fn width(&self) -> u32 {
         self.width
@@ -97,9 +89,15 @@ impl<D: DrawTarget> Framebuffer for DrawTargetAdapter<'_, D> {
         self.rows.clone()
     }
 
-    fn fill_span<F: FnMut(u32, &mut [D::Color])>(&mut self, x: u32, y: i32, len: u32, mut fill: F) {
+    fn fill_span<F: FnMut(u32, &mut [D::Color])>(
+        &mut self,
+        x: u32,
+        y: i32,
+        len: u32,
+        mut fill: F,
+    ) -> Result<(), D::Error> {
         let Some(cols) = span_in(self.width, &self.rows, x, y, len) else {
-            return;
+            return Ok(());
         };
         let mut px = cols.start;
         while px < cols.end {
@@ -107,10 +105,9 @@ impl<D: DrawTarget> Framebuffer for DrawTargetAdapter<'_, D> {
             let piece = &mut self.buf[..n];
             fill(px as u32, piece);
             let area = Rectangle::new(Point::new(px as i32, y), Size::new(n as u32, 1));
-            if let Err(e) = self.display.fill_contiguous(&area, piece.iter().copied()) {
-                self.error.get_or_insert(e);
-            }
+            self.display.fill_contiguous(&area, piece.iter().copied())?;
             px += n;
         }
+        Ok(())
     }
 }

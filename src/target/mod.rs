@@ -43,12 +43,16 @@ pub use slice::SliceFramebuffer;
 ///     for (i, p) in piece.iter_mut().enumerate() {
 ///         *p = Gray8::new((x as usize + i) as u8);
 ///     }
-/// });
+/// })?;
 /// assert_eq!(fb.get(3, 1), Some(Gray8::new(3)));
+/// # Ok::<(), core::convert::Infallible>(())
 /// ```
 pub trait Framebuffer {
     /// The colour stored per pixel.
     type Color: PixelColor;
+    /// What can go wrong when pixels are written: [`Infallible`](core::convert::Infallible) for buffers in
+    /// memory, the display's error for a [`DrawTargetAdapter`].
+    type Error;
 
     /// Number of pixel columns: spans live in `x` in `0..width()`.
     fn width(&self) -> u32;
@@ -62,12 +66,20 @@ pub trait Framebuffer {
     /// `fill(px, piece)` is called one or more times with consecutive pieces,
     /// in order from left to right, that together cover the span; `px` is the
     /// column of the first pixel of `piece`. `fill` must write every pixel of
-    /// every piece. Spans outside `0..width()` × `rows()` are ignored.
-    fn fill_span<F: FnMut(u32, &mut [Self::Color])>(&mut self, x: u32, y: i32, len: u32, fill: F);
+    /// every piece. Spans outside `0..width()` × `rows()` are ignored. An error
+    /// of the underlying surface stops the span and is returned.
+    fn fill_span<F: FnMut(u32, &mut [Self::Color])>(
+        &mut self,
+        x: u32,
+        y: i32,
+        len: u32,
+        fill: F,
+    ) -> Result<(), Self::Error>;
 }
 
 /// Why a framebuffer could not be built over a caller's slice.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum TargetError {
     /// Width or height is zero.
     ZeroSize,

@@ -1,5 +1,6 @@
 //! A whole frame in a caller-owned slice.
 
+use core::convert::Infallible;
 use core::ops::Range;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
@@ -113,6 +114,7 @@ impl<'a, C: PixelColor> SliceFramebuffer<'a, C> {
 
 impl<C: PixelColor> Framebuffer for SliceFramebuffer<'_, C> {
     type Color = C;
+    type Error = Infallible;
 
     fn width(&self) -> u32 {
         self.width
@@ -122,13 +124,20 @@ impl<C: PixelColor> Framebuffer for SliceFramebuffer<'_, C> {
         0..self.height as i32
     }
 
-    fn fill_span<F: FnMut(u32, &mut [C])>(&mut self, x: u32, y: i32, len: u32, mut fill: F) {
+    fn fill_span<F: FnMut(u32, &mut [C])>(
+        &mut self,
+        x: u32,
+        y: i32,
+        len: u32,
+        mut fill: F,
+    ) -> Result<(), Infallible> {
         let Some(cols) = span_in(self.width, &self.rows(), x, y, len) else {
-            return;
+            return Ok(());
         };
         let row = y as usize * self.stride;
         if let Some(piece) = self.buf.get_mut(row + cols.start..row + cols.end) {
             fill(x, piece);
         }
+        Ok(())
     }
 }
