@@ -79,6 +79,7 @@
 #[cfg(test)]
 extern crate std;
 
+pub mod camera;
 pub mod color;
 pub mod error;
 pub mod gl;
@@ -90,7 +91,9 @@ pub mod num;
 pub mod raster;
 #[cfg(feature = "reference")]
 pub mod reference;
+pub mod render;
 pub mod shade;
+pub mod standard;
 pub mod target;
 pub mod vector;
 
@@ -109,7 +112,8 @@ pub mod prelude {
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
     pub use crate::raster::{Cull, RasterOptions};
     pub use crate::shade::{
-        Dithered, Flat, Gamma, Gouraud, Linear, Phong as PhongShading, ShadeVertex, Shading,
+        Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Linear,
+        PhongShading, ShadeVertex, Shader, Shading,
     };
     pub use crate::target::{
         BandBuffer, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer,

@@ -42,12 +42,14 @@
 //! ```
 
 mod clip;
+mod compact;
 mod error;
 mod normals;
 mod sphere;
 mod transform;
 
 pub use clip::{clip_near, ClipVertex};
+pub use compact::{Mesh, MeshData, NORMAL_ONE};
 pub use error::MeshError;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};

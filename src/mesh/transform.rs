@@ -4,7 +4,10 @@
 use super::error::{finite, MeshError};
 use super::normals::geo16;
 use crate::num::{Geo16, Scalar};
-use crate::raster::{RasterVertex, GUARD_BAND, SUBPIXEL_BITS};
+use crate::raster::{RasterVertex, SUBPIXEL_BITS};
+
+/// Screen coordinates are saturated to ±`GUARD_BAND` pixels.
+const GUARD_BAND: i32 = 1 << 15;
 use crate::vector::{Point3, Vec3};
 
 /// A 4×4 matrix in `f32`, row-major (`m[row][col]`), applied to column vectors:

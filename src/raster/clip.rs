@@ -14,14 +14,64 @@ use core::cmp::Ordering;
 /// At most 3 + 4 vertices: each window line adds at most one.
 const MAX: usize = 7;
 
+/// A vertex the clipper can cut edges at.
+pub(crate) trait ClipPoint: Copy {
+    /// The sub-pixel position.
+    fn xy(&self) -> (i32, i32);
+    /// The point `num/den` of the way from `self` to `other` (`num ≤ den`),
+    /// with its position set to `xy`.
+    fn cut(&self, other: &Self, num: u32, den: u32, xy: (i32, i32)) -> Self;
+}
+
+/// A rasterizer vertex, attributes screen-linear (`PERSP = false`) or
+/// perspective-correct.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Cut<const N: usize, const PERSP: bool>(pub(crate) RasterVertex<N>);
+
+impl<const N: usize, const PERSP: bool> ClipPoint for Cut<N, PERSP> {
+    #[inline]
+    fn xy(&self) -> (i32, i32) {
+        (self.0.x, self.0.y)
+    }
+
+    fn cut(&self, other: &Self, num: u32, den: u32, xy: (i32, i32)) -> Self {
+        let (a, b) = (&self.0, &other.0);
+        let mut c = *a;
+        let lerp = |x: i32, y: i32| lerp_i32(x, y, num, den);
+        (c.x, c.y) = xy;
+        c.z = lerp(i32::from(a.z), i32::from(b.z)) as u16;
+        c.inv_w = lerp(a.inv_w, b.inv_w).max(1);
+        if PERSP {
+            // the attribute parameter s = t·q_b / (t·q_b + (1 − t)·q_a)
+            let qa = a.inv_w.max(1) as u32;
+            let qb = b.inv_w.max(1) as u32;
+            let mut sn = mul_u32(num, qb);
+            let mut sd = sn + mul_u32(den - num, qa);
+            while sd >> 32 != 0 {
+                sn >>= 1;
+                sd >>= 1;
+            }
+            let (sn, sd) = (sn as u32, (sd as u32).max(1));
+            for (o, (&x, &y)) in c.attrs.iter_mut().zip(a.attrs.iter().zip(b.attrs.iter())) {
+                *o = lerp_i32(x, y, sn, sd);
+            }
+        } else {
+            for (o, (&x, &y)) in c.attrs.iter_mut().zip(a.attrs.iter().zip(b.attrs.iter())) {
+                *o = lerp(x, y);
+            }
+        }
+        Cut(c)
+    }
+}
+
 /// A convex polygon in screen space.
-pub(crate) struct Polygon<const N: usize, const PERSP: bool> {
-    v: [RasterVertex<N>; MAX],
+pub(crate) struct Polygon<V: ClipPoint> {
+    v: [V; MAX],
     n: usize,
 }
 
 /// `sign(a·b − c·d)` for differences of `i32` values (magnitudes below 2^32).
-fn cmp_products(a: i64, b: i64, c: i64, d: i64) -> Ordering {
+pub(crate) fn cmp_products(a: i64, b: i64, c: i64, d: i64) -> Ordering {
     let prod = |x: i64, y: i64| {
         let m = mul_u32(x.unsigned_abs() as u32, y.unsigned_abs() as u32);
         ((x < 0) != (y < 0) && m != 0, m)
@@ -47,29 +97,29 @@ enum Line {
 
 impl Line {
     #[inline]
-    fn inside<const N: usize>(self, v: &RasterVertex<N>) -> bool {
+    fn inside(self, (x, y): (i32, i32)) -> bool {
         match self {
-            Line::XMin => v.x >= WINDOW_MIN,
-            Line::XMax => v.x <= WINDOW_MAX,
-            Line::YMin => v.y >= WINDOW_MIN,
-            Line::YMax => v.y <= WINDOW_MAX,
+            Line::XMin => x >= WINDOW_MIN,
+            Line::XMax => x <= WINDOW_MAX,
+            Line::YMin => y >= WINDOW_MIN,
+            Line::YMax => y <= WINDOW_MAX,
         }
     }
 
     /// The coordinate this line constrains, and the line's value.
     #[inline]
-    fn coord<const N: usize>(self, v: &RasterVertex<N>) -> (i32, i32) {
+    fn coord(self, (x, y): (i32, i32)) -> (i32, i32) {
         match self {
-            Line::XMin => (v.x, WINDOW_MIN),
-            Line::XMax => (v.x, WINDOW_MAX),
-            Line::YMin => (v.y, WINDOW_MIN),
-            Line::YMax => (v.y, WINDOW_MAX),
+            Line::XMin => (x, WINDOW_MIN),
+            Line::XMax => (x, WINDOW_MAX),
+            Line::YMin => (y, WINDOW_MIN),
+            Line::YMax => (y, WINDOW_MAX),
         }
     }
 }
 
-impl<const N: usize, const PERSP: bool> Polygon<N, PERSP> {
-    pub(crate) fn new(t: &[RasterVertex<N>; 3]) -> Self {
+impl<V: ClipPoint> Polygon<V> {
+    pub(crate) fn new(t: &[V; 3]) -> Self {
         let mut v = [t[0]; MAX];
         v[..3].copy_from_slice(t);
         Polygon { v, n: 3 }
@@ -79,9 +129,10 @@ impl<const N: usize, const PERSP: bool> Polygon<N, PERSP> {
     /// `Some(false)` for a back face, `None` for zero area.
     pub(crate) fn facing(&self) -> Option<bool> {
         let d = |i: usize, j: usize| {
+            let (a, b) = (self.v[i].xy(), self.v[j].xy());
             (
-                i64::from(self.v[j].x) - i64::from(self.v[i].x),
-                i64::from(self.v[j].y) - i64::from(self.v[i].y),
+                i64::from(b.0) - i64::from(a.0),
+                i64::from(b.1) - i64::from(a.1),
             )
         };
         let (d1, d2) = (d(0, 1), d(0, 2));
@@ -108,7 +159,7 @@ impl<const N: usize, const PERSP: bool> Polygon<N, PERSP> {
         let mut m = 0;
         for i in 0..self.n {
             let (p, q) = (self.v[i], self.v[(i + 1) % self.n]);
-            let (pin, qin) = (line.inside(&p), line.inside(&q));
+            let (pin, qin) = (line.inside(p.xy()), line.inside(q.xy()));
             if pin && m < MAX {
                 out[m] = p;
                 m += 1;
@@ -124,51 +175,24 @@ impl<const N: usize, const PERSP: bool> Polygon<N, PERSP> {
 
     /// The point of segment `p`–`q` on `line` (the endpoints are on opposite
     /// sides), from the endpoints in canonical order.
-    fn cut(p: &RasterVertex<N>, q: &RasterVertex<N>, line: Line) -> RasterVertex<N> {
-        let (a, b) = if (p.x, p.y) <= (q.x, q.y) {
-            (p, q)
-        } else {
-            (q, p)
-        };
-        let (ca, at) = line.coord(a);
-        let (cb, _) = line.coord(b);
+    fn cut(p: &V, q: &V, line: Line) -> V {
+        let (a, b) = if p.xy() <= q.xy() { (p, q) } else { (q, p) };
+        let (pa, pb) = (a.xy(), b.xy());
+        let (ca, at) = line.coord(pa);
+        let (cb, _) = line.coord(pb);
         // t = (at − ca) / (cb − ca) ∈ [0, 1]
         let num = (i64::from(at) - i64::from(ca)).unsigned_abs() as u32;
         let den = (i64::from(cb) - i64::from(ca)).unsigned_abs() as u32;
-        let mut c = *a;
         let lerp = |x: i32, y: i32| lerp_i32(x, y, num, den);
-        c.x = lerp(a.x, b.x);
-        c.y = lerp(a.y, b.y);
-        match line {
-            Line::XMin | Line::XMax => c.x = at,
-            Line::YMin | Line::YMax => c.y = at,
-        }
-        c.z = lerp(i32::from(a.z), i32::from(b.z)) as u16;
-        c.inv_w = lerp(a.inv_w, b.inv_w).max(1);
-        if PERSP {
-            // the attribute parameter s = t·q_b / (t·q_b + (1 − t)·q_a)
-            let qa = a.inv_w.max(1) as u32;
-            let qb = b.inv_w.max(1) as u32;
-            let mut sn = mul_u32(num, qb);
-            let mut sd = sn + mul_u32(den - num, qa);
-            while sd >> 32 != 0 {
-                sn >>= 1;
-                sd >>= 1;
-            }
-            let (sn, sd) = (sn as u32, (sd as u32).max(1));
-            for (o, (&x, &y)) in c.attrs.iter_mut().zip(a.attrs.iter().zip(b.attrs.iter())) {
-                *o = lerp_i32(x, y, sn, sd);
-            }
-        } else {
-            for (o, (&x, &y)) in c.attrs.iter_mut().zip(a.attrs.iter().zip(b.attrs.iter())) {
-                *o = lerp(x, y);
-            }
-        }
-        c
+        let xy = match line {
+            Line::XMin | Line::XMax => (at, lerp(pa.1, pb.1)),
+            Line::YMin | Line::YMax => (lerp(pa.0, pb.0), at),
+        };
+        a.cut(b, num, den, xy)
     }
 
     /// Triangle `k` of the fan from vertex 0; `false` when there is none.
-    pub(crate) fn fan(&self, k: usize, tri: &mut [RasterVertex<N>; 3]) -> bool {
+    pub(crate) fn fan(&self, k: usize, tri: &mut [V; 3]) -> bool {
         if k + 2 >= self.n {
             return false;
         }

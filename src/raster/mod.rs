@@ -61,14 +61,16 @@
 
 use crate::target::{DepthBuffer, Framebuffer};
 
-mod clip;
+pub(crate) mod clip;
 mod edge;
 mod exact;
 pub(crate) mod setup;
 
 pub(crate) use edge::Walker;
+pub(crate) use setup::ClampTo;
 pub use setup::ATTR_FRAC;
-pub(crate) use setup::{ClampTo, Plane, Setup};
+#[doc(hidden)]
+pub use setup::{Plane, Setup};
 
 /// Fractional bits of [`RasterVertex::x`] and [`RasterVertex::y`]: 4, i.e.
 /// positions are in 1/16 pixel.
@@ -304,7 +306,7 @@ where
         return draw_inside::<F, S, N, PERSP>(fb, depth, &v, opts, shader);
     }
     // cull on the unclipped triangle (clipping keeps the winding)
-    let mut poly = clip::Polygon::<N, PERSP>::new(&v);
+    let mut poly = clip::Polygon::new(&v.map(clip::Cut::<N, PERSP>));
     let Some(front) = poly.facing() else {
         return Ok(DrawStats::default());
     };
@@ -318,10 +320,11 @@ where
     }
     poly.clip_to_window();
     let mut stats = DrawStats::default();
-    let mut tri = [v[0]; 3];
+    let mut tri = [clip::Cut(v[0]); 3];
     let mut k = 0;
     while poly.fan(k, &mut tri) {
-        let s = draw_inside::<F, S, N, PERSP>(fb, depth.as_deref_mut(), &tri, opts, shader)?;
+        let t = tri.map(|c| c.0);
+        let s = draw_inside::<F, S, N, PERSP>(fb, depth.as_deref_mut(), &t, opts, shader)?;
         stats = stats.add(s);
         k += 1;
     }

@@ -79,27 +79,28 @@ pub(crate) fn scale(v: i32, s: i32) -> i32 {
 }
 
 /// A triangle whose vertices lie in the window, oriented so that its doubled
-/// area is positive, with the barycentric coefficients of its plane.
+/// area is positive, with the barycentric coefficients of its plane (opaque:
+/// made by the rasterizer, read by the shading kernels).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Setup {
+pub struct Setup {
     /// Sub-pixel positions, oriented (`A > 0`: clockwise on a y-down screen).
-    pub xy: [(i32, i32); 3],
+    pub(crate) xy: [(i32, i32); 3],
     /// Which input vertex each oriented vertex is.
-    pub order: [usize; 3],
+    pub(crate) order: [usize; 3],
     /// Index (into `xy`) of the top, middle and bottom vertex (by `y`).
-    pub tmb: [usize; 3],
+    pub(crate) tmb: [usize; 3],
     /// First and last pixel row whose centre lies in `[y_top, y_bottom]`.
-    pub rows: (i32, i32),
+    pub(crate) rows: (i32, i32),
     /// Barycentric coefficients relative to the top vertex.
-    pub bary: Bary,
+    pub(crate) bary: Bary,
 }
 
 /// `∂β/∂X` and `∂β/∂Y` (per sub-pixel) of the barycentric weights of the two
 /// vertices other than the top one, as `C · 2^−k` with `|C| < 2^14`.
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Bary {
+pub struct Bary {
     /// The two vertices (indices into `Setup::xy`) whose weights these are.
-    pub other: [usize; 2],
+    pub(crate) other: [usize; 2],
     c1x: i32,
     c2x: i32,
     c1y: i32,
@@ -298,22 +299,22 @@ impl Setup {
 /// with wrapping arithmetic: only values inside the triangle are read, and
 /// those are within the vertex range up to [`Setup::err`].
 #[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Plane {
+pub struct Plane {
     /// Value at the centre of pixel `(c0, current row)`.
-    pub row: i32,
+    pub(crate) row: i32,
     /// Change per pixel to the right.
-    pub dx: i32,
+    pub(crate) dx: i32,
     /// Change per row down.
-    pub dy: i32,
+    pub(crate) dy: i32,
     /// The reference column.
-    pub c0: i32,
+    pub(crate) c0: i32,
     /// The vertex range (relative values).
-    pub lo: i32,
-    pub hi: i32,
+    pub(crate) lo: i32,
+    pub(crate) hi: i32,
     /// The shift applied to the attribute's differences.
-    pub sa: u32,
+    pub(crate) sa: u32,
     /// `|Δa1| + |Δa2|` after the shift.
-    pub spread: u32,
+    pub(crate) spread: u32,
 }
 
 impl Plane {

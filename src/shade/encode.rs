@@ -4,32 +4,64 @@
 
 use crate::color::{GammaTable, OutputColor, Rgb};
 use crate::num::Scalar;
+use crate::raster::ATTR_FRAC;
 
-/// Fraction bits of the channel values Gouraud shading interpolates.
-pub const CHANNEL_FRAC: u32 = 16;
+/// Vertex values are below `2^VERTEX_BITS` (the rasterizer's attribute range).
+pub const VERTEX_BITS: u32 = 15;
 
 /// Turns linear colours into pixels of colour type `C`.
-pub trait Encoder<C: OutputColor> {
+///
+/// Gouraud shading stores [`Encoder::vertex`] values (per channel, below
+/// 2^15) at the vertices, interpolates them with [`ATTR_FRAC`] extra fraction
+/// bits, and turns them into pixels with [`Encoder::pixel`].
+pub trait Encoder<C: OutputColor>: Copy {
+    /// Whether [`Encoder::pixel`] depends on the pixel position (dithering).
+    const POSITIONAL: bool;
     /// The pixel at (`x`, `y`) of linear colour `c` (flat and Phong shading).
     fn encode<S: Scalar>(&self, c: Rgb<S>, x: i32, y: i32) -> C;
-    /// What a Gouraud vertex of linear colour `c` carries, per channel.
+    /// What a Gouraud vertex of linear colour `c` carries, per channel (each
+    /// value in `0..2^15`).
     fn vertex<S: Scalar>(&self, c: Rgb<S>) -> [i32; 3];
-    /// The pixel at (`x`, `y`) of interpolated Gouraud channel values.
+    /// The pixel at (`x`, `y`) of interpolated vertex values `a` (with
+    /// [`ATTR_FRAC`] fraction bits, within the range of the vertex values).
     fn pixel(&self, a: [i32; 3], x: i32, y: i32) -> C;
 }
 
-/// Channel values `v·max·2^16` of the clamped linear channels (`v` in [0, 1]).
-#[inline]
-fn scaled_channels<C: OutputColor, S: Scalar>(c: Rgb<S>) -> [i32; 3] {
-    let l = C::linear_channels(c);
-    core::array::from_fn(|i| scale_65535(l[i].to_unorm(16) * C::CHANNEL_MAX[i]) as i32)
+/// Bits of a channel whose largest value is `max` (0 for an unused channel).
+const fn bits(max: u32) -> u32 {
+    32 - max.leading_zeros()
+}
+
+/// The shift `s` of channel values `v·max·2^s`: the largest with
+/// `(max + 1)·2^s ≤ 2^15`.
+pub(crate) const fn vertex_shift(max: u32) -> u32 {
+    VERTEX_BITS - bits(max)
 }
 
 /// `⌊x·2^16/65535⌋` for `x ≤ 65535·255`, as `x + ⌊(x + ⌊x/2^16⌋ + 1)/2^16⌋`: no
-/// 64-bit division per vertex on a Cortex-M0 (equal for every such `x`: see the test).
+/// division (equal for every such `x`: see the test).
 #[inline(always)]
 fn scale_65535(x: u32) -> u32 {
     x + ((x + (x >> 16) + 1) >> 16)
+}
+
+/// `round(v·max·2^s)` per channel of the clamped linear channels `v`.
+#[inline]
+fn scaled_channels<C: OutputColor, S: Scalar>(c: Rgb<S>) -> [i32; 3] {
+    let l = C::linear_channels(c);
+    core::array::from_fn(|i| {
+        let max = C::CHANNEL_MAX[i];
+        let sh = 16 - vertex_shift(max);
+        // v·max·2^16 (v in 16-bit steps), then rounded to 2^s units
+        let x = scale_65535(l[i].to_unorm(16) * max);
+        ((x + ((1 << sh) >> 1)) >> sh) as i32
+    })
+}
+
+/// `⌊x / 255⌋` for `x < 65535` without a division.
+#[inline(always)]
+pub(crate) fn div255(x: u32) -> u32 {
+    (x + 1 + (x >> 8)) >> 8
 }
 
 /// Rounds each channel to nearest; no gamma (the display receives linear values).
@@ -37,19 +69,23 @@ fn scale_65535(x: u32) -> u32 {
 pub struct Linear;
 
 impl<C: OutputColor> Encoder<C> for Linear {
+    const POSITIONAL: bool = false;
     #[inline(always)]
     fn encode<S: Scalar>(&self, c: Rgb<S>, _x: i32, _y: i32) -> C {
         C::from_linear(c)
     }
     #[inline]
     fn vertex<S: Scalar>(&self, c: Rgb<S>) -> [i32; 3] {
-        // + ½ so that the per-pixel shift rounds to nearest
-        scaled_channels::<C, S>(c).map(|v| v + (1 << (CHANNEL_FRAC - 1)))
+        // + ½ step, so that the per-pixel shift rounds to nearest
+        let v = scaled_channels::<C, S>(c);
+        core::array::from_fn(|i| v[i] + ((1 << vertex_shift(C::CHANNEL_MAX[i])) >> 1))
     }
     #[inline(always)]
     fn pixel(&self, a: [i32; 3], _x: i32, _y: i32) -> C {
-        // channel = ⌊a / 2^16⌋ (a ≥ 0, within the vertex range)
-        C::from_channels(a.map(|v| (v >> CHANNEL_FRAC) as u32))
+        // channel = ⌊a / 2^(ATTR_FRAC + s)⌋ (a ≥ 0, at most (max + ½)·2^s)
+        C::from_channels(core::array::from_fn(|i| {
+            (a[i] >> (ATTR_FRAC + vertex_shift(C::CHANNEL_MAX[i]))) as u32
+        }))
     }
 }
 
@@ -59,22 +95,25 @@ impl<C: OutputColor> Encoder<C> for Linear {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Dithered;
 
-/// Bayer thresholds `(2k + 1)/32` of a channel step, in 2^-16 units.
-const BAYER: [[i32; 4]; 4] = {
-    const K: [[i32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+/// Bayer thresholds `(2k + 1)/32` of a channel step, in 2^−16 units.
+const BAYER: [[u32; 4]; 4] = {
+    const K: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
     let mut t = [[0; 4]; 4];
     let mut i = 0;
     while i < 16 {
-        t[i / 4][i % 4] = ((2 * K[i / 4][i % 4] + 1) << CHANNEL_FRAC) / 32;
+        t[i / 4][i % 4] = ((2 * K[i / 4][i % 4] + 1) << 16) / 32;
         i += 1;
     }
     t
 };
 
 impl<C: OutputColor> Encoder<C> for Dithered {
+    const POSITIONAL: bool = true;
     #[inline(always)]
     fn encode<S: Scalar>(&self, c: Rgb<S>, x: i32, y: i32) -> C {
-        self.pixel(scaled_channels::<C, S>(c), x, y)
+        let v = scaled_channels::<C, S>(c);
+        let a = core::array::from_fn(|i| v[i] << ATTR_FRAC);
+        self.pixel(a, x, y)
     }
     #[inline]
     fn vertex<S: Scalar>(&self, c: Rgb<S>) -> [i32; 3] {
@@ -84,9 +123,11 @@ impl<C: OutputColor> Encoder<C> for Dithered {
     fn pixel(&self, a: [i32; 3], x: i32, y: i32) -> C {
         let t = BAYER[(y & 3) as usize][(x & 3) as usize];
         let max = C::CHANNEL_MAX;
-        // channel = ⌊(a + t) / 2^16⌋, at most max
+        // channel = ⌊(a + t·2^(ATTR_FRAC + s)) / 2^(ATTR_FRAC + s)⌋, at most max
         C::from_channels(core::array::from_fn(|i| {
-            (((a[i] + t) >> CHANNEL_FRAC) as u32).min(max[i])
+            let sh = ATTR_FRAC + vertex_shift(max[i]);
+            let t = (t << sh) >> 16;
+            ((a[i] as u32 + t) >> sh).min(max[i])
         }))
     }
 }
@@ -98,21 +139,24 @@ impl<C: OutputColor> Encoder<C> for Dithered {
 pub struct Gamma<'t, const N: usize>(pub &'t GammaTable<N>);
 
 impl<C: OutputColor, const N: usize> Encoder<C> for Gamma<'_, N> {
+    const POSITIONAL: bool = false;
     #[inline(always)]
     fn encode<S: Scalar>(&self, c: Rgb<S>, _x: i32, _y: i32) -> C {
         C::from_linear_gamma(c, self.0)
     }
     #[inline]
     fn vertex<S: Scalar>(&self, c: Rgb<S>) -> [i32; 3] {
-        // linear channel in Q16 (0..=65535)
-        C::linear_channels(c).map(|v| v.to_unorm(16) as i32)
+        // linear channel in Q15 (0..=32767)
+        C::linear_channels(c).map(|v| (v.to_unorm(16) >> 1) as i32)
     }
     #[inline(always)]
     fn pixel(&self, a: [i32; 3], _x: i32, _y: i32) -> C {
         let max = C::CHANNEL_MAX;
         C::from_channels(core::array::from_fn(|i| {
-            let e = self.0.apply_unorm16(a[i].clamp(0, 65535) as u32) as u32;
-            (e * max[i] + 127) / 255
+            // Q15 · 2^ATTR_FRAC → 16-bit linear value
+            let v = (a[i].max(0) as u32) >> (ATTR_FRAC - 1);
+            let e = self.0.apply_unorm16(v) as u32;
+            div255(e * max[i] + 127)
         }))
     }
 }
@@ -120,6 +164,8 @@ impl<C: OutputColor, const N: usize> Encoder<C> for Gamma<'_, N> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::num::Q14;
+    use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 
     #[test]
     fn scale_65535_is_exact() {
@@ -131,6 +177,36 @@ mod tests {
                     ((x as u64) << 16) / 65535,
                     "{u} {max}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn div255_is_exact() {
+        for x in 0..65535u32 {
+            assert_eq!(div255(x), x / 255, "{x}");
+        }
+    }
+
+    #[test]
+    fn vertex_values_fit_and_round_trip() {
+        // every linear value: the vertex value fits 15 bits and a pixel of
+        // exactly that value is the rounded channel
+        for i in 0..=16384 {
+            let v = Q14::<2>::from_raw(i);
+            let c = Rgb::new(v, v, v);
+            let a: [i32; 3] = Encoder::<Rgb565>::vertex(&Linear, c);
+            assert!(a.iter().all(|&x| (0..1 << VERTEX_BITS).contains(&x)));
+            let p: Rgb565 = Linear.pixel(a.map(|x| x << ATTR_FRAC), 0, 0);
+            assert_eq!(p, c.to_rgb565(), "{i}");
+            let a: [i32; 3] = Encoder::<Rgb888>::vertex(&Linear, c);
+            let p: Rgb888 = Linear.pixel(a.map(|x| x << ATTR_FRAC), 0, 0);
+            assert_eq!(p, c.to_rgb888(), "{i}");
+            // dithering never exceeds the channel maximum
+            let a: [i32; 3] = Encoder::<Rgb565>::vertex(&Dithered, c);
+            for (x, y) in [(0, 0), (3, 3), (1, 2)] {
+                let p: Rgb565 = Dithered.pixel(a.map(|x| x << ATTR_FRAC), x, y);
+                assert!(p.r() <= 31 && p.g() <= 63 && p.b() <= 31);
             }
         }
     }

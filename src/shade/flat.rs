@@ -1,67 +1,59 @@
 //! Flat shading: one colour per triangle, lit at its centroid.
 
-use super::{Encoder, ShadeVertex, Shading};
-use crate::color::OutputColor;
+use super::{
+    depth_loop, eye_point, raster_draw, unit_normal, Encoder, FlatShading, Kernel, ModeState,
+    ShadeVertex, Shader, Shading,
+};
+use crate::color::{OutputColor, Rgb};
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
-use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
+use crate::raster::{DrawStats, RasterOptions, Setup, SpanShader, ATTR_FRAC};
 use crate::target::{DepthBuffer, Framebuffer};
 use crate::vector::Vec3;
-use core::marker::PhantomData;
 
-/// Flat shading: the triangle is lit once, at its centroid, with the normalised
-/// average of its vertex normals (equal to the face normal when the mesh gives
-/// each vertex of a face the face normal), and filled with that colour. Shows the
-/// seeds' Mach bands on curved surfaces; the cheapest mode.
-#[derive(Debug)]
-pub struct Flat<'l, I, E, C> {
-    lighting: &'l I,
-    encoder: E,
-    channels: [i32; 3],
-    color: PhantomData<C>,
+impl<I: Illuminate, C> ModeState<I, C> for FlatShading {
+    type State = [i32; 3];
+    fn state(_: &I) -> [i32; 3] {
+        [0; 3]
+    }
 }
 
-impl<'l, I: Illuminate, E: Encoder<C>, C: OutputColor> Flat<'l, I, E, C> {
-    /// Flat shading with `lighting`, writing pixels through `encoder`.
-    pub fn new(lighting: &'l I, encoder: E) -> Self {
-        Self {
-            lighting,
-            encoder,
-            channels: [0; 3],
-            color: PhantomData,
-        }
-    }
-
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, FlatShading, I, E, C> {
     /// Sets the colour [`SpanShader::shade_span`] fills with (what
     /// [`Shading::draw`] does with the colour lit at the centroid).
-    pub fn set_color(&mut self, color: crate::color::Rgb<I::Scalar>) {
-        self.channels = self.encoder.vertex(color);
+    pub fn set_color(&mut self, color: Rgb<I::Scalar>) {
+        self.state = self.encoder.vertex(color).map(|v| v << ATTR_FRAC);
     }
 }
 
 /// Fills runs with the encoded colour of the triangle being drawn.
-impl<I: Illuminate, E: Encoder<C>, C: OutputColor> SpanShader<0> for Flat<'_, I, E, C> {
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> SpanShader<0>
+    for Shader<'_, FlatShading, I, E, C>
+{
     type Color = C;
     #[inline]
     fn shade_span(&mut self, x: i32, y: i32, _start: &[i32; 0], _step: &[i32; 0], out: &mut [C]) {
-        for (x, p) in (x..).zip(out.iter_mut()) {
-            *p = self.encoder.pixel(self.channels, x, y);
+        if E::POSITIONAL {
+            for (x, p) in (x..).zip(out.iter_mut()) {
+                *p = self.encoder.pixel(self.state, x, y);
+            }
+        } else {
+            out.fill(self.encoder.pixel(self.state, x, y));
         }
     }
 }
 
-impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
-    for Flat<'_, I, E, C>
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor>
+    Shader<'_, FlatShading, I, E, C>
 {
-    type Color = C;
-
-    fn draw<Fb: Framebuffer<Color = C>>(
+    fn draw_any<F: Framebuffer<Color = C>>(
         &mut self,
-        fb: &mut Fb,
+        fb: &mut F,
         depth: Option<&mut DepthBuffer<'_>>,
         tri: &[ShadeVertex<S>; 3],
         opts: &RasterOptions,
-    ) -> DrawStats {
+        perspective: bool,
+    ) -> Result<DrawStats, F::Error> {
         // n = normalize((n0 + n1 + n2)/3) (each third first: the sum of three unit
         // vectors would saturate the fixed tiers); p = p0 + ((p1 − p0) + (p2 − p0))/3
         let third_s = S::from_f32(1.0 / 3.0);
@@ -80,8 +72,123 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shadin
             centroid(p0.y, p1.y, p2.y),
             centroid(p0.z, p1.z, p2.z),
         );
-        self.set_color(self.lighting.shade(&p, n));
+        let color = self.lighting.shade(&p, n);
+        self.set_color(color);
         let v = [tri[0].raster([]), tri[1].raster([]), tri[2].raster([])];
-        draw_triangle(fb, depth, &v, opts, self)
+        raster_draw(fb, depth, &v, opts, self, perspective)
+    }
+}
+
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
+    for Shader<'_, FlatShading, I, E, C>
+{
+    type Color = C;
+
+    fn draw<F: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut F,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+    ) -> Result<DrawStats, F::Error> {
+        self.draw_any(fb, depth, tri, opts, false)
+    }
+
+    fn draw_perspective<F: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut F,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+    ) -> Result<DrawStats, F::Error> {
+        self.draw_any(fb, depth, tri, opts, true)
+    }
+}
+
+/// A flat triangle in the mesh renderer: its encoded colour.
+#[derive(Clone, Copy, Debug)]
+pub struct FlatTriangle<C> {
+    /// Encoder vertex values with [`ATTR_FRAC`] bits.
+    a: [i32; 3],
+    /// The pixel, for encoders that do not depend on the position.
+    color: C,
+}
+
+/// `⌊x / 3⌋` rounded toward zero for `|x| < 2^31`.
+#[inline]
+fn third(x: i32) -> i32 {
+    x / 3
+}
+
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
+    for Shader<'_, FlatShading, I, E, C>
+{
+    type Color = C;
+    /// The eye-space unit normal in Q14.
+    type Vertex = [i16; 3];
+    type Triangle = FlatTriangle<C>;
+    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+
+    #[inline]
+    fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
+        let u = unit_normal::<crate::num::Q14<2>>(n);
+        [u.x.raw() as i16, u.y.raw() as i16, u.z.raw() as i16]
+    }
+
+    fn triangle(&self, _s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> FlatTriangle<C> {
+        // the normalised sum of the unit vertex normals (Q14, |sum| ≤ 3·2^14)
+        let n =
+            core::array::from_fn(|i| i32::from(v[0][i]) + i32::from(v[1][i]) + i32::from(v[2][i]));
+        let pos = if I::NEEDS_POSITION {
+            // centroid p0 + (d1 + d2)/3, the differences kept within ±2^30
+            core::array::from_fn(|i| {
+                let d = |k: usize| p[k][i].wrapping_sub(p[0][i]).clamp(-(1 << 30), 1 << 30);
+                p[0][i].wrapping_add(third(d(1) + d(2)))
+            })
+        } else {
+            [0; 3]
+        };
+        let c = self
+            .lighting
+            .shade(&eye_point::<I::Scalar>(pos), unit_normal::<I::Scalar>(n));
+        let a = self.encoder.vertex(c).map(|v| v << ATTR_FRAC);
+        FlatTriangle {
+            a,
+            color: self.encoder.pixel(a, 0, 0),
+        }
+    }
+
+    #[inline(always)]
+    fn skip_rows(_: &mut FlatTriangle<C>, _: i32) {}
+
+    #[inline(always)]
+    fn next_row(_: &mut FlatTriangle<C>) {}
+
+    #[inline]
+    fn run(
+        &self,
+        t: &FlatTriangle<C>,
+        x: i32,
+        y: i32,
+        z: i32,
+        dz: i32,
+        color: &mut [C],
+        depth: Option<&mut [u16]>,
+    ) {
+        if E::POSITIONAL {
+            let enc = self.encoder;
+            depth_loop(
+                z,
+                dz,
+                color,
+                depth,
+                x,
+                |x| enc.pixel(t.a, *x, y),
+                |x| *x += 1,
+            );
+        } else {
+            let c = t.color;
+            depth_loop(z, dz, color, depth, (), |_| c, |_| {});
+        }
     }
 }

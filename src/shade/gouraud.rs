@@ -1,71 +1,183 @@
-//! Gouraud shading: lit per vertex, colours interpolated along the span.
+//! Gouraud shading: lit per vertex, encoded colour channels interpolated.
 
-use super::{Encoder, ShadeVertex, Shading};
+use super::{
+    depth_loop, eye_point, raster_draw, unit_normal, Encoder, GouraudShading, Kernel, ModeState,
+    ShadeVertex, Shader, Shading,
+};
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
-use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
+use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC};
 use crate::target::{DepthBuffer, Framebuffer};
-use core::marker::PhantomData;
 
-/// Gouraud shading: each vertex is lit with its own normal, the encoded colour
-/// channels are interpolated across the triangle (incrementally along each span:
-/// three additions per pixel) and each pixel only reads them. Misses a highlight
-/// that falls inside a large triangle and smears highlights near vertices.
-#[derive(Debug)]
-pub struct Gouraud<'l, I, E, C> {
-    lighting: &'l I,
-    encoder: E,
-    color: PhantomData<C>,
+impl<I: Illuminate, C> ModeState<I, C> for GouraudShading {
+    type State = ();
+    fn state(_: &I) {}
 }
 
-impl<'l, I: Illuminate, E: Encoder<C>, C: OutputColor> Gouraud<'l, I, E, C> {
-    /// The encoded channel attributes of a vertex lit with `lighting` (what
-    /// [`Shading::draw`] hands to the rasterizer).
-    pub fn vertex_attrs(&self, v: &ShadeVertex<I::Scalar>) -> [i32; 3] {
-        self.encoder
-            .vertex(self.lighting.shade(&v.position, v.normal))
-    }
-
-    /// Gouraud shading with `lighting`, writing pixels through `encoder`.
-    pub fn new(lighting: &'l I, encoder: E) -> Self {
-        Self {
-            lighting,
-            encoder,
-            color: PhantomData,
-        }
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, GouraudShading, I, E, C> {
+    /// The encoded channel values of a vertex lit with the shader's lighting
+    /// (what a Gouraud vertex carries; each below 2^15).
+    pub fn vertex_values(
+        &self,
+        position: &crate::vector::Point3<I::Scalar>,
+        normal: crate::vector::Vec3<I::Scalar>,
+    ) -> [i32; 3] {
+        self.encoder.vertex(self.lighting.shade(position, normal))
     }
 }
 
-/// Steps the encoded channels along a run.
-impl<I: Illuminate, E: Encoder<C>, C: OutputColor> SpanShader<3> for Gouraud<'_, I, E, C> {
+/// Steps the encoded channels along a run (per-triangle API: the values carry
+/// [`ATTR_FRAC`] fraction bits, see [`Shading::draw`]).
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> SpanShader<3>
+    for Shader<'_, GouraudShading, I, E, C>
+{
     type Color = C;
     #[inline]
     fn shade_span(&mut self, x: i32, y: i32, start: &[i32; 3], step: &[i32; 3], out: &mut [C]) {
-        let [mut r, mut g, mut b] = *start;
+        let mut a = *start;
         for (x, p) in (x..).zip(out.iter_mut()) {
             // pixel k: channels = start + k·step
-            *p = self.encoder.pixel([r, g, b], x, y);
-            r += step[0];
-            g += step[1];
-            b += step[2];
+            *p = self.encoder.pixel(a, x, y);
+            for i in 0..3 {
+                a[i] = a[i].wrapping_add(step[i]);
+            }
         }
+    }
+}
+
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor>
+    Shader<'_, GouraudShading, I, E, C>
+{
+    fn draw_any<F: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut F,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+        perspective: bool,
+    ) -> Result<DrawStats, F::Error> {
+        // vertex values < 2^15, with ATTR_FRAC bits: < 2^29 (the attribute limit)
+        let v = tri.map(|t| {
+            t.raster(
+                self.vertex_values(&t.position, t.normal)
+                    .map(|a| a << ATTR_FRAC),
+            )
+        });
+        raster_draw(fb, depth, &v, opts, self, perspective)
     }
 }
 
 impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
-    for Gouraud<'_, I, E, C>
+    for Shader<'_, GouraudShading, I, E, C>
 {
     type Color = C;
 
-    fn draw<Fb: Framebuffer<Color = C>>(
+    fn draw<F: Framebuffer<Color = C>>(
         &mut self,
-        fb: &mut Fb,
+        fb: &mut F,
         depth: Option<&mut DepthBuffer<'_>>,
         tri: &[ShadeVertex<S>; 3],
         opts: &RasterOptions,
-    ) -> DrawStats {
-        let v = tri.map(|t| t.raster(self.vertex_attrs(&t)));
-        draw_triangle(fb, depth, &v, opts, self)
+    ) -> Result<DrawStats, F::Error> {
+        self.draw_any(fb, depth, tri, opts, false)
+    }
+
+    fn draw_perspective<F: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut F,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+    ) -> Result<DrawStats, F::Error> {
+        self.draw_any(fb, depth, tri, opts, true)
+    }
+}
+
+/// A Gouraud triangle in the mesh renderer: the planes of the three channels.
+#[derive(Clone, Copy, Debug)]
+pub struct GouraudTriangle {
+    planes: [Plane; 3],
+    /// Top vertex values with [`ATTR_FRAC`] bits.
+    base: [i32; 3],
+}
+
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, GouraudShading, I, E, C> {
+    type Color = C;
+    type Vertex = [u16; 3];
+    type Triangle = GouraudTriangle;
+    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+
+    #[inline]
+    fn vertex(&self, n: [i32; 3], p: [i32; 3]) -> [u16; 3] {
+        let c = self
+            .lighting
+            .shade(&eye_point::<I::Scalar>(p), unit_normal::<I::Scalar>(n));
+        // every value is in 0..2^15
+        self.encoder.vertex(c).map(|v| v.clamp(0, 0x7FFF) as u16)
+    }
+
+    #[inline]
+    fn triangle(&self, s: &Setup, v: [&[u16; 3]; 3], _p: [[i32; 3]; 3]) -> GouraudTriangle {
+        let t = s.tmb[0];
+        let row = s.rows.0;
+        GouraudTriangle {
+            planes: core::array::from_fn(|i| {
+                s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from), row)
+            }),
+            base: core::array::from_fn(|i| i32::from(v[t][i]) << ATTR_FRAC),
+        }
+    }
+
+    #[inline]
+    fn skip_rows(t: &mut GouraudTriangle, rows: i32) {
+        for p in t.planes.iter_mut() {
+            p.skip_rows(rows);
+        }
+    }
+
+    #[inline(always)]
+    fn next_row(t: &mut GouraudTriangle) {
+        for p in t.planes.iter_mut() {
+            p.next_row();
+        }
+    }
+
+    #[inline]
+    fn run(
+        &self,
+        t: &GouraudTriangle,
+        x: i32,
+        y: i32,
+        z: i32,
+        dz: i32,
+        color: &mut [C],
+        depth: Option<&mut [u16]>,
+    ) {
+        let n = color.len() as i32;
+        let mut a = [0i32; 3];
+        let mut d = [0i32; 3];
+        for i in 0..3 {
+            let (s, st) = t.planes[i].clamped(x, n);
+            a[i] = t.base[i].wrapping_add(s);
+            d[i] = st;
+        }
+        let enc = self.encoder;
+        depth_loop(
+            z,
+            dz,
+            color,
+            depth,
+            (a, x),
+            |s| enc.pixel(s.0, s.1, y),
+            |s| {
+                for i in 0..3 {
+                    s.0[i] = s.0[i].wrapping_add(d[i]);
+                }
+                if E::POSITIONAL {
+                    s.1 += 1;
+                }
+            },
+        );
     }
 }

@@ -1,16 +1,17 @@
 //! Incremental Phong shading: the Cortex-M0 fast path for directional lights and a
 //! viewer at infinity in the Q14 tier.
 
-use super::phong::Phong;
-use super::{Linear, ShadeVertex, Shading};
+use super::{
+    raster_draw, IncrementalPhongShading, Kernel, Linear, ModeState, PhongShading, ShadeVertex,
+    Shader, Shading,
+};
 use crate::color::{OutputColor, Rgb};
 use crate::light::DirectionalLight;
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
 use crate::num::{Scalar, Q14};
-use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
+use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC};
 use crate::target::{DepthBuffer, Framebuffer};
-use core::marker::PhantomData;
 
 /// The models [`IncrementalPhong`] evaluates: [`Lambert`] and [`BlinnPhong`].
 pub trait IncrementalModel: Model {}
@@ -24,9 +25,10 @@ pub type DirectionalLighting<const NW: u8, const K: usize, M> =
 /// Segments of the specular power table.
 const POW_SEGMENTS: usize = 64;
 
-/// Per-pixel Phong shading for `K` directional lights, a viewer at infinity and the
-/// [`Lambert`] or [`BlinnPhong`] model in the `Q14` tier, computed incrementally
-/// along each span (the same images as [`Phong`] up to the error stated below, at a
+/// The precomputed constants of [`IncrementalPhongShading`] for `K` directional
+/// lights, a viewer at infinity and the [`Lambert`] or [`BlinnPhong`] model in the
+/// `Q14` tier. Per-pixel Phong shading computed incrementally along each span
+/// (the same images as [`PhongShading`] up to the error stated below, at a
 /// fraction of the cost on a Cortex-M0):
 ///
 /// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
@@ -42,21 +44,21 @@ const POW_SEGMENTS: usize = 64;
 /// - the colour is accumulated directly in output channel units: one
 ///   multiplication per channel and term.
 ///
-/// Output is rounded to nearest like [`Linear`]. A span whose interpolated normal
-/// gets shorter than ½ or longer than 2 (normals more than ~120° apart across a
-/// triangle), or whose `|N|²` changes by more than 1/8 from one pixel to the next
-/// (tiny triangles with very different vertex normals), falls back to [`Phong`] for
-/// that span: the result stays within the bound, only the speed differs.
+/// Output is rounded to nearest like [`Linear`] (the shader's encoder is not
+/// used). A span whose interpolated normal gets shorter than ½ or longer than 2
+/// (normals more than ~120° apart across a triangle), or whose `|N|²` changes
+/// by more than 1/8 from one pixel to the next (tiny triangles with very
+/// different vertex normals), falls back to [`PhongShading`] for that span: the
+/// result stays within the bound, only the speed differs.
 ///
 /// Error against the `f64` reference: see the golden tests and `docs/tradeoff.md`.
-#[derive(Debug)]
-pub struct IncrementalPhong<'l, const NW: u8, const K: usize, M: IncrementalModel, C> {
-    lighting: &'l DirectionalLighting<NW, K, M>,
+#[derive(Clone, Copy, Debug)]
+pub struct IncrementalState<const K: usize> {
     lights: [LightTerms; K],
-    /// Constant part per channel, in channel units · 2^8, plus ½ for rounding.
+    /// Constant part per channel, in channel units · 2^8, plus ½ for rounding
+    /// (negative for a negative global ambient: pixels clamp at 0).
     base: [i32; 3],
     pow: PowTable,
-    color: PhantomData<C>,
 }
 
 /// One light's constants in the units of the span loop.
@@ -126,11 +128,12 @@ fn channel_units<C: OutputColor, const NW: u8>(c: Rgb<Q14<NW>>) -> [i32; 3] {
     core::array::from_fn(|i| (l[i].raw() * C::CHANNEL_MAX[i] as i32 * 256 + 8192) >> 14)
 }
 
-impl<'l, const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
-    IncrementalPhong<'l, NW, K, M, C>
+impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
+    ModeState<DirectionalLighting<NW, K, M>, C> for IncrementalPhongShading
 {
-    /// Incremental Phong shading with `lighting` (rounding to nearest, as [`Linear`]).
-    pub fn new(lighting: &'l DirectionalLighting<NW, K, M>) -> Self {
+    type State = IncrementalState<K>;
+
+    fn state(lighting: &DirectionalLighting<NW, K, M>) -> IncrementalState<K> {
         let lights = core::array::from_fn(|j| {
             let light = &lighting.lights()[j];
             let pre = light.prepared();
@@ -143,18 +146,23 @@ impl<'l, const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
                 ks: channel_units::<C, NW>(pre.specular),
             }
         });
-        Self {
-            lighting,
+        IncrementalState {
             lights,
             base: channel_units::<C, NW>(lighting.base()).map(|v| v + 128),
             pow: PowTable::new(lighting.material().shininess),
-            color: PhantomData,
         }
     }
 }
 
-impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
-    IncrementalPhong<'_, NW, K, M, C>
+/// An incremental Phong shader for `K` directional lights.
+type Inc<'l, const NW: u8, const K: usize, M, E, C> =
+    Shader<'l, IncrementalPhongShading, DirectionalLighting<NW, K, M>, E, C>;
+
+impl<const NW: u8, const K: usize, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor>
+    Inc<'_, NW, K, M, E, C>
+where
+    IncrementalPhongShading:
+        ModeState<DirectionalLighting<NW, K, M>, C, State = IncrementalState<K>>,
 {
     /// The rasterizer attributes of a vertex: the normal (Q26), then `N·L` and
     /// `N·H` of every light (Q26; affine over the triangle like the normal, so the
@@ -172,7 +180,7 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
         };
         (
             n,
-            core::array::from_fn(|j| [dot(&self.lights[j].l), dot(&self.lights[j].h)]),
+            core::array::from_fn(|j| [dot(&self.state.lights[j].l), dot(&self.state.lights[j].h)]),
         )
     }
 
@@ -192,8 +200,10 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
             .sum::<i64>()
             >> 24;
         let dd = dn.iter().map(|&b| b as i64 * b as i64).sum::<i64>() >> 24;
-        let general =
-            |out: &mut [C]| Phong::new(self.lighting, Linear).shade_span(x, y, &n0, &dn, out);
+        let general = |out: &mut [C]| {
+            Shader::<PhongShading, _, _, C>::new(PhongShading, self.lighting, Linear)
+                .shade_span(x, y, &n0, &dn, out)
+        };
         if dd > 1 << 24 {
             // |dN| above ¼ per pixel
             return general(out);
@@ -244,25 +254,27 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
     }
 }
 
-/// `SpanShader` and `Shading` for `K` lights, with `N = 3 + 2K` attributes.
+/// `SpanShader`, `Shading` and `Kernel` for `K` lights, with `N = 3 + 2K` attributes.
 macro_rules! incremental_lights {
     ($($k:literal => $n:literal),*) => {$(
-        impl<const NW: u8, M: IncrementalModel, C: OutputColor> SpanShader<$n> for IncrementalPhong<'_, NW, $k, M, C> {
+        impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> SpanShader<$n>
+            for Inc<'_, NW, $k, M, E, C>
+        {
             type Color = C;
             fn shade_span(&mut self, x: i32, y: i32, start: &[i32; $n], step: &[i32; $n], out: &mut [C]) {
                 self.span(x, y, start, step, out)
             }
         }
 
-        impl<const NW: u8, M: IncrementalModel, C: OutputColor> Shading<Q14<NW>> for IncrementalPhong<'_, NW, $k, M, C> {
-            type Color = C;
-            fn draw<Fb: Framebuffer<Color = C>>(
+        impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> Inc<'_, NW, $k, M, E, C> {
+            fn draw_any<Fb: Framebuffer<Color = C>>(
                 &mut self,
                 fb: &mut Fb,
                 depth: Option<&mut DepthBuffer<'_>>,
                 tri: &[ShadeVertex<Q14<NW>>; 3],
                 opts: &RasterOptions,
-            ) -> DrawStats {
+                perspective: bool,
+            ) -> Result<DrawStats, Fb::Error> {
                 let v = tri.map(|t| {
                     let (n, dots) = self.attrs(&t);
                     let mut a = [0i32; $n];
@@ -273,12 +285,143 @@ macro_rules! incremental_lights {
                     }
                     t.raster(a)
                 });
-                draw_triangle(fb, depth, &v, opts, self)
+                raster_draw(fb, depth, &v, opts, self, perspective)
+            }
+        }
+
+        impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> Shading<Q14<NW>>
+            for Inc<'_, NW, $k, M, E, C>
+        {
+            type Color = C;
+            fn draw<Fb: Framebuffer<Color = C>>(
+                &mut self,
+                fb: &mut Fb,
+                depth: Option<&mut DepthBuffer<'_>>,
+                tri: &[ShadeVertex<Q14<NW>>; 3],
+                opts: &RasterOptions,
+            ) -> Result<DrawStats, Fb::Error> {
+                self.draw_any(fb, depth, tri, opts, false)
+            }
+            fn draw_perspective<Fb: Framebuffer<Color = C>>(
+                &mut self,
+                fb: &mut Fb,
+                depth: Option<&mut DepthBuffer<'_>>,
+                tri: &[ShadeVertex<Q14<NW>>; 3],
+                opts: &RasterOptions,
+            ) -> Result<DrawStats, Fb::Error> {
+                self.draw_any(fb, depth, tri, opts, true)
+            }
+        }
+
+        impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> Kernel
+            for Inc<'_, NW, $k, M, E, C>
+        {
+            type Color = C;
+            /// The eye-space unit normal in Q14.
+            type Vertex = [i16; 3];
+            type Triangle = IncTriangle<$n>;
+            const NEEDS_POSITION: bool = false;
+
+            #[inline]
+            fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
+                let u = super::unit_normal::<Q14<2>>(n);
+                [u.x.raw() as i16, u.y.raw() as i16, u.z.raw() as i16]
+            }
+
+            fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], _p: [[i32; 3]; 3]) -> IncTriangle<$n> {
+                // attributes per vertex: the normal and N·L, N·H per light (Q14)
+                let attrs = v.map(|n| {
+                    let n = n.map(i32::from);
+                    let mut a = [0i32; $n];
+                    a[..3].copy_from_slice(&n);
+                    for (j, lt) in self.state.lights.iter().enumerate() {
+                        let dot = |d: &[i32; 3]| (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) >> 14;
+                        a[3 + 2 * j] = dot(&lt.l);
+                        a[4 + 2 * j] = dot(&lt.h);
+                    }
+                    a
+                });
+                let t = s.tmb[0];
+                IncTriangle {
+                    planes: core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]], s.rows.0)),
+                    base: core::array::from_fn(|i| attrs[t][i] << ATTR_FRAC),
+                }
+            }
+
+            fn skip_rows(t: &mut IncTriangle<$n>, rows: i32) {
+                for p in t.planes.iter_mut() {
+                    p.skip_rows(rows);
+                }
+            }
+
+            fn next_row(t: &mut IncTriangle<$n>) {
+                for p in t.planes.iter_mut() {
+                    p.next_row();
+                }
+            }
+
+            fn run(
+                &self,
+                t: &IncTriangle<$n>,
+                x: i32,
+                y: i32,
+                z: i32,
+                dz: i32,
+                color: &mut [C],
+                depth: Option<&mut [u16]>,
+            ) {
+                let len = color.len() as i32;
+                // Q14 with ATTR_FRAC bits (Q28) → Q26
+                let mut start = [0i32; $n];
+                let mut step = [0i32; $n];
+                for i in 0..$n {
+                    let (s0, d) = t.planes[i].clamped(x, len);
+                    start[i] = t.base[i].wrapping_add(s0) >> 2;
+                    step[i] = d >> 2;
+                }
+                let Some(depth) = depth else {
+                    return self.span(x, y, &start, &step, color);
+                };
+                // shade the runs of pixels that pass the depth test
+                let mut zz = z;
+                let mut run: Option<usize> = None;
+                let n = color.len();
+                for k in 0..=n {
+                    let pass = k < n && {
+                        let zi = (zz >> ATTR_FRAC) as u16;
+                        zz = zz.wrapping_add(dz);
+                        let d = &mut depth[k];
+                        if zi < *d {
+                            *d = zi;
+                            true
+                        } else {
+                            false
+                        }
+                    };
+                    match (pass, run) {
+                        (true, None) => run = Some(k),
+                        (false, Some(r)) => {
+                            let off = r as i32;
+                            let s: [i32; $n] = core::array::from_fn(|i| start[i].wrapping_add(step[i].wrapping_mul(off)));
+                            self.span(x + off, y, &s, &step, &mut color[r..k]);
+                            run = None;
+                        }
+                        _ => {}
+                    }
+                }
             }
         }
     )*};
 }
 incremental_lights!(1 => 5, 2 => 7, 3 => 9, 4 => 11);
+
+/// An incremental Phong triangle in the mesh renderer: planes of the normal
+/// and of `N·L`, `N·H` per light.
+#[derive(Clone, Copy, Debug)]
+pub struct IncTriangle<const N: usize> {
+    planes: [Plane; N],
+    base: [i32; N],
+}
 
 /// `|N|²` (Q28) with its forward differences, and `1/|N|` (Q14).
 #[derive(Clone, Copy, Debug)]
@@ -289,8 +432,11 @@ struct SpanState {
     r: i32,
 }
 
-impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
-    IncrementalPhong<'_, NW, K, M, C>
+impl<const NW: u8, const K: usize, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor>
+    Inc<'_, NW, K, M, E, C>
+where
+    IncrementalPhongShading:
+        ModeState<DirectionalLighting<NW, K, M>, C, State = IncrementalState<K>>,
 {
     /// The per-pixel loop; `dots[j]` = `[N·L, step, N·H, step]` of light `j` (Q26).
     #[inline(always)]
@@ -303,9 +449,9 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
         } = st;
         let max = C::CHANNEL_MAX.map(|m| m as i32);
         for p in out.iter_mut() {
-            // every term is ≥ 0, so only the upper clamp is needed
-            let mut acc = self.base;
-            for (lt, dot) in self.lights.iter().zip(dots.iter_mut()) {
+            // every light term is ≥ 0; the base may be negative (negative ambient)
+            let mut acc = self.state.base;
+            for (lt, dot) in self.state.lights.iter().zip(dots.iter_mut()) {
                 // diffuse: N·L/|N| (Q14)
                 let d = ((dot[0] >> 12) * r) >> 14;
                 if d > 0 {
@@ -315,7 +461,7 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
                     acc[2] += (d * lt.kd[2]) >> 14;
                     if M::SPECULAR == Specular::BlinnPhong {
                         // specular: (N·H/|N|)^n
-                        let sp = self.pow.get(((dot[2] >> 12) * r) >> 14);
+                        let sp = self.state.pow.get(((dot[2] >> 12) * r) >> 14);
                         acc[0] += (sp * lt.ks[0]) >> 14;
                         acc[1] += (sp * lt.ks[1]) >> 14;
                         acc[2] += (sp * lt.ks[2]) >> 14;
@@ -325,9 +471,9 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
                 dot[2] += dot[3];
             }
             *p = C::from_channels([
-                (acc[0] >> 8).min(max[0]) as u32,
-                (acc[1] >> 8).min(max[1]) as u32,
-                (acc[2] >> 8).min(max[2]) as u32,
+                (acc[0] >> 8).clamp(0, max[0]) as u32,
+                (acc[1] >> 8).clamp(0, max[1]) as u32,
+                (acc[2] >> 8).clamp(0, max[2]) as u32,
             ]);
             // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
             // seeded with this pixel's r

@@ -1,23 +1,31 @@
-//! Flat, Gouraud and Phong shading behind one trait, [`Shading`].
+//! Shading: which colour each covered pixel gets, from the lighting, the
+//! vertex data and the interpolated attributes.
+//!
+//! One [`Shader`] type, generic over the shading mode:
 //!
 //! | mode | lit | interpolated per pixel | catches a highlight inside a triangle |
 //! |---|---|---|---|
-//! | [`Flat`] | once per triangle, at the centroid | nothing | no (one colour, Mach bands) |
-//! | [`Gouraud`] | at the three vertices | encoded colour channels | no (misses or smears it) |
-//! | [`Phong`] | at every pixel | normal (and position when the lighting needs it) | yes |
-//! | [`IncrementalPhong`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `|N|²` by differences | yes |
+//! | [`FlatShading`] | once per triangle, at the centroid | nothing | no (one colour, Mach bands) |
+//! | [`GouraudShading`] | at the three vertices | encoded colour channels | no (misses or smears it) |
+//! | [`PhongShading`] | at every pixel | normal (and position when the lighting needs it) | yes |
+//! | [`IncrementalPhongShading`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `\|N\|²` by differences | yes |
 //!
-//! Every mode takes the same [`ShadeVertex`]es (screen position from the transform
-//! stage, eye-space position and unit normal for lighting), works with every
-//! number tier and every [`Model`](crate::lighting::Model) (Phong or Blinn-Phong
-//! specular), and writes through an [`Encoder`] (plain rounding, ordered dithering
-//! or a gamma table).
+//! The mode names say *how the surface is interpolated*; the reflection models
+//! ([`Lambert`](crate::lighting::Lambert), [`Phong`](crate::lighting::Phong),
+//! [`BlinnPhong`](crate::lighting::BlinnPhong)) say *what light a point
+//! reflects* and live in [`lighting`](crate::lighting). Every mode works with
+//! every number tier and every model, and writes through an [`Encoder`] (plain
+//! rounding, ordered dithering or a gamma table).
+//!
+//! A shader draws in two ways:
+//! - **mesh renderer** ([`crate::render`]): the vertex stage, binning and the
+//!   mode's depth-fused span kernel, once per frame;
+//! - **per triangle** ([`Shading::draw`]): three [`ShadeVertex`]es through
+//!   [`draw_triangle`](crate::raster::draw_triangle), for custom pipelines.
 //!
 //! ```
 //! use fixshade::prelude::*;
-//! use fixshade::raster::{RasterOptions, SUBPIXEL_BITS};
-//! use fixshade::shade::{Linear, Phong, ShadeVertex, Shading};
-//! use fixshade::target::SliceFramebuffer;
+//! use fixshade::raster::SUBPIXEL_BITS;
 //! use embedded_graphics_core::pixelcolor::Rgb565;
 //!
 //! let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
@@ -30,8 +38,10 @@
 //!
 //! let mut pixels = [Rgb565::BLACK; 32 * 32];
 //! let mut fb = SliceFramebuffer::new(&mut pixels, 32, 32).unwrap();
-//! let stats = Phong::new(&lighting, Linear).draw(&mut fb, None, &tri, &RasterOptions::default());
+//! let mut shader = Shader::new(PhongShading, &lighting, Linear);
+//! let stats = shader.draw(&mut fb, None, &tri, &RasterOptions::default())?;
 //! assert!(stats.pixels > 400);
+//! # Ok::<(), core::convert::Infallible>(())
 //! ```
 
 mod encode;
@@ -40,18 +50,123 @@ mod gouraud;
 mod incremental;
 mod phong;
 
-pub use encode::{Dithered, Encoder, Gamma, Linear, CHANNEL_FRAC};
-pub use flat::Flat;
-pub use gouraud::Gouraud;
-pub use incremental::{DirectionalLighting, IncrementalModel, IncrementalPhong};
-pub use phong::Phong;
+pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
+pub use incremental::{DirectionalLighting, IncrementalModel};
 
+use crate::color::OutputColor;
+use crate::lighting::Illuminate;
 use crate::num::Scalar;
-use crate::raster::{DrawStats, RasterOptions, RasterVertex};
+use crate::raster::{DrawStats, RasterOptions, RasterVertex, Setup};
 use crate::target::{DepthBuffer, Framebuffer};
 use crate::vector::{point_from_f32, Point3, Vec3};
+use core::marker::PhantomData;
 
-/// One vertex of a triangle to shade.
+/// Flat shading: the triangle is lit once, at its centroid, with the normalised
+/// average of its vertex normals, and filled with that colour. Shows the seeds'
+/// Mach bands on curved surfaces; the cheapest mode.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FlatShading;
+
+/// Gouraud shading: each vertex is lit with its own normal, the encoded colour
+/// channels are interpolated across the triangle and each pixel only reads
+/// them. Misses a highlight that falls inside a large triangle and smears
+/// highlights near vertices.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GouraudShading;
+
+/// Phong shading: the vertex normals are interpolated across the triangle,
+/// renormalised per pixel with the tier's
+/// [`Scalar::normalize_interpolated`], and every pixel is lit with the full
+/// lighting model. When the lighting needs the surface position (point or spot
+/// lights, a local viewer, fog) the eye-space position is interpolated too.
+/// Catches the highlight in the middle of a large triangle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PhongShading;
+
+/// Per-pixel Phong shading computed incrementally along each span: the Q14 fast
+/// path for directional lights and a viewer at infinity (see
+/// [`IncrementalModel`] and [`DirectionalLighting`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct IncrementalPhongShading;
+
+/// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`] or
+/// [`IncrementalPhongShading`].
+pub trait Mode: Copy + Default + core::fmt::Debug + 'static {
+    /// A short name for reports.
+    const NAME: &'static str;
+}
+
+impl Mode for FlatShading {
+    const NAME: &'static str = "flat";
+}
+impl Mode for GouraudShading {
+    const NAME: &'static str = "gouraud";
+}
+impl Mode for PhongShading {
+    const NAME: &'static str = "phong";
+}
+impl Mode for IncrementalPhongShading {
+    const NAME: &'static str = "phong_inc";
+}
+
+/// A shader: a shading mode `M` with a lighting `I`, writing colours `C`
+/// through an encoder `E`.
+pub struct Shader<'l, M: ModeState<I, C>, I: Illuminate, E, C> {
+    pub(crate) lighting: &'l I,
+    pub(crate) encoder: E,
+    pub(crate) state: <M as ModeState<I, C>>::State,
+    color: PhantomData<(M, C)>,
+}
+
+/// Per-mode constants a shader precomputes (the incremental mode's tables).
+pub trait ModeState<I: Illuminate, C> {
+    /// What is precomputed.
+    type State: Copy + core::fmt::Debug;
+    /// Precomputes it for `lighting`.
+    fn state(lighting: &I) -> Self::State;
+}
+
+impl<M: Mode + ModeState<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M: Mode + ModeState<I, C>, I: Illuminate, E: Copy, C> Copy for Shader<'_, M, I, E, C> {}
+
+impl<M: Mode + ModeState<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt::Debug
+    for Shader<'_, M, I, E, C>
+{
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Shader")
+            .field("mode", &M::NAME)
+            .field("encoder", &self.encoder)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'l, M: Mode + ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor>
+    Shader<'l, M, I, E, C>
+{
+    /// A shader of mode `mode` lighting with `lighting`, writing pixels through
+    /// `encoder`.
+    pub fn new(mode: M, lighting: &'l I, encoder: E) -> Self {
+        let _ = mode;
+        Shader {
+            lighting,
+            encoder,
+            state: M::state(lighting),
+            color: PhantomData,
+        }
+    }
+
+    /// The lighting.
+    pub fn lighting(&self) -> &'l I {
+        self.lighting
+    }
+}
+
+/// One vertex of a triangle to shade through the per-triangle API.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShadeVertex<S: Scalar> {
     /// Screen position in pixels with [`SUBPIXEL_BITS`](crate::raster::SUBPIXEL_BITS)
@@ -93,19 +208,152 @@ impl<S: Scalar> ShadeVertex<S> {
     }
 }
 
-/// A shading method: draws lit triangles into a framebuffer.
+/// Drawing one triangle at a time (the per-triangle API).
 pub trait Shading<S: Scalar> {
     /// The pixel colour written.
     type Color;
 
-    /// Rasterizes and shades one triangle (see
-    /// [`draw_triangle`](crate::raster::draw_triangle) for coverage, clipping,
-    /// culling and depth). Never panics.
+    /// Rasterizes and shades one triangle, attributes interpolated linearly in
+    /// screen space (see [`draw_triangle`](crate::raster::draw_triangle) for
+    /// coverage, clipping, culling and depth). Never panics; returns the
+    /// framebuffer's first error.
     fn draw<F: Framebuffer<Color = Self::Color>>(
         &mut self,
         fb: &mut F,
         depth: Option<&mut DepthBuffer<'_>>,
         tri: &[ShadeVertex<S>; 3],
         opts: &RasterOptions,
-    ) -> DrawStats;
+    ) -> Result<DrawStats, F::Error>;
+
+    /// [`Shading::draw`] with perspective-correct attributes (see
+    /// [`draw_triangle_perspective`](crate::raster::draw_triangle_perspective)).
+    fn draw_perspective<F: Framebuffer<Color = Self::Color>>(
+        &mut self,
+        fb: &mut F,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+    ) -> Result<DrawStats, F::Error>;
+}
+
+/// What the mesh renderer needs from a shader: the vertex payload stored in the
+/// vertex cache, the per-triangle state and the depth-fused span kernel.
+///
+/// Implemented by every [`Shader`]; the renderer calls, per frame, `vertex`
+/// once per vertex, `triangle` once per visible triangle (`resume` when it
+/// continues into the next band), `next_row` per row and `run` per run of
+/// covered pixels.
+pub trait Kernel {
+    /// The pixel colour written.
+    type Color: Copy;
+    /// What the vertex cache holds per vertex for this mode.
+    type Vertex: Copy + Default + core::fmt::Debug;
+    /// What a triangle keeps while its rows are drawn.
+    type Triangle: Copy + core::fmt::Debug;
+    /// Whether [`Kernel::vertex`] or [`Kernel::triangle`] read eye-space
+    /// positions (else the renderer passes zeros and skips computing them).
+    const NEEDS_POSITION: bool;
+
+    /// The payload of a vertex with eye-space normal `n` (Q14, not normalised)
+    /// and eye-space position `p` (Q16.16).
+    fn vertex(&self, n: [i32; 3], p: [i32; 3]) -> Self::Vertex;
+
+    /// The state of set-up triangle `s` (its planes positioned at its first
+    /// row), from the payloads and eye positions of its oriented vertices.
+    #[doc(hidden)]
+    fn triangle(&self, s: &Setup, v: [&Self::Vertex; 3], p: [[i32; 3]; 3]) -> Self::Triangle;
+
+    /// Moves the state `rows` rows down (exactly as `rows` calls of `next_row`).
+    fn skip_rows(t: &mut Self::Triangle, rows: i32);
+
+    /// Moves the state to the next row.
+    fn next_row(t: &mut Self::Triangle);
+
+    /// Shades pixels `x..x + color.len()` of row `y`: pixel `k` has depth
+    /// `(z + k·dz) >> 14`; it is drawn (and its depth stored) when that is less
+    /// than `depth[k]`. Without a depth buffer every pixel is drawn.
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &self,
+        t: &Self::Triangle,
+        x: i32,
+        y: i32,
+        z: i32,
+        dz: i32,
+        color: &mut [Self::Color],
+        depth: Option<&mut [u16]>,
+    );
+}
+
+/// The generic depth-tested loop of a run: pixel `k` gets `pixel(state)` when
+/// its depth `(z + k·dz) >> 14` passes, and `step` advances the state.
+#[inline(always)]
+pub(crate) fn depth_loop<C, T: Copy>(
+    z: i32,
+    dz: i32,
+    color: &mut [C],
+    depth: Option<&mut [u16]>,
+    mut state: T,
+    mut pixel: impl FnMut(&T) -> C,
+    mut step: impl FnMut(&mut T),
+) {
+    match depth {
+        Some(depth) => {
+            let mut z = z;
+            for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
+                let zi = (z >> crate::raster::ATTR_FRAC) as u16;
+                if zi < *d {
+                    *d = zi;
+                    *c = pixel(&state);
+                }
+                // the values after the last pixel are not used: wrapping is harmless
+                z = z.wrapping_add(dz);
+                step(&mut state);
+            }
+        }
+        None => {
+            for c in color.iter_mut() {
+                *c = pixel(&state);
+                step(&mut state);
+            }
+        }
+    }
+}
+
+/// Converts a Q14 eye-space normal (any length) to a unit normal of tier `S`.
+#[inline(always)]
+pub(crate) fn unit_normal<S: Scalar>(n: [i32; 3]) -> Vec3<S> {
+    // Q14 → the tier's attribute (Q26) scale, saturated to the tier's range
+    let c = |v: i32| S::from_attr(v.clamp(-(1 << 17), 1 << 17) << 12);
+    S::normalize(Vec3::new(c(n[0]), c(n[1]), c(n[2])))
+}
+
+/// A Q16.16 eye-space position in tier `S`'s geometry type.
+#[inline(always)]
+pub(crate) fn eye_point<S: Scalar>(p: [i32; 3]) -> Point3<S> {
+    Vec3::new(
+        S::geo_from_attr(p[0]),
+        S::geo_from_attr(p[1]),
+        S::geo_from_attr(p[2]),
+    )
+}
+
+/// Runs a per-triangle draw with the screen-linear or perspective rasterizer.
+pub(crate) fn raster_draw<F, Sh, const N: usize>(
+    fb: &mut F,
+    depth: Option<&mut DepthBuffer<'_>>,
+    v: &[RasterVertex<N>; 3],
+    opts: &RasterOptions,
+    shader: &mut Sh,
+    perspective: bool,
+) -> Result<DrawStats, F::Error>
+where
+    F: Framebuffer,
+    Sh: crate::raster::SpanShader<N, Color = F::Color>,
+{
+    if perspective {
+        crate::raster::draw_triangle_perspective(fb, depth, v, opts, shader)
+    } else {
+        crate::raster::draw_triangle(fb, depth, v, opts, shader)
+    }
 }

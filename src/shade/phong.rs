@@ -1,39 +1,43 @@
 //! Phong shading: normals interpolated per pixel, renormalised, lit per pixel.
 
-use super::{Encoder, ShadeVertex, Shading};
+use super::{
+    depth_loop, eye_point, raster_draw, unit_normal, Encoder, Kernel, ModeState, PhongShading,
+    ShadeVertex, Shader, Shading,
+};
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
-use crate::num::Scalar;
-use crate::raster::{draw_triangle, DrawStats, RasterOptions, SpanShader};
+use crate::num::{Scalar, Q14};
+use crate::raster::setup::bit_length;
+use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC, ATTR_LIMIT};
 use crate::target::{DepthBuffer, Framebuffer};
-use crate::vector::{point_from_f32, Vec3};
-use core::marker::PhantomData;
+use crate::vector::{Point3, Vec3};
 
-/// Phong shading: the vertex normals (as [`Scalar::to_attr`] attributes) are
-/// interpolated incrementally along each span, renormalised per pixel with the
-/// tier's [`Scalar::normalize_interpolated`], and every pixel is lit with the full
-/// lighting model. When the lighting needs the surface position (point or spot
-/// lights, a local viewer, fog) the eye-space position is interpolated too.
-/// Catches the highlight in the middle of a large triangle.
-#[derive(Debug)]
-pub struct Phong<'l, I, E, C> {
-    lighting: &'l I,
-    encoder: E,
-    color: PhantomData<C>,
-}
-
-impl<'l, S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Phong<'l, I, E, C> {
-    /// Phong shading with `lighting`, writing pixels through `encoder`.
-    pub fn new(lighting: &'l I, encoder: E) -> Self {
-        Self {
-            lighting,
-            encoder,
-            color: PhantomData,
+impl<I: Illuminate, C> ModeState<I, C> for PhongShading {
+    /// The per-triangle API's position origin (the first vertex) and the shift
+    /// of the position attributes.
+    type State = PhongOrigin<I::Scalar>;
+    fn state(_: &I) -> Self::State {
+        PhongOrigin {
+            origin: crate::vector::point_from_f32::<I::Scalar>([0.0; 3]),
+            shift: 0,
         }
     }
+}
 
-    /// The colour of one pixel from its interpolated attributes: normal in
-    /// `a[0..3]`, position in `a[3..6]` when `N = 6`.
+/// Where the interpolated positions of the triangle being drawn (per-triangle
+/// API) are measured from.
+#[derive(Clone, Copy, Debug)]
+pub struct PhongOrigin<S: Scalar> {
+    origin: Point3<S>,
+    shift: u32,
+}
+
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor>
+    Shader<'_, PhongShading, I, E, C>
+{
+    /// The colour of one pixel from its interpolated attributes: the normal
+    /// (the tier's attribute scale) in `a[0..3]`, the position relative to the
+    /// triangle's first vertex in `a[3..6]` when `N = 6`.
     #[inline(always)]
     fn pixel<const N: usize>(&self, a: &[i32; N], x: i32, y: i32) -> C {
         let n = S::normalize_interpolated(Vec3::new(
@@ -41,21 +45,67 @@ impl<'l, S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Ph
             S::from_attr(a[1]),
             S::from_attr(a[2]),
         ));
+        let o = &self.state;
         let p = if N >= 6 {
+            let g = |v: i32| S::geo_from_attr(v << o.shift);
             Vec3::new(
-                S::geo_from_attr(a[3]),
-                S::geo_from_attr(a[4]),
-                S::geo_from_attr(a[5]),
+                S::geo_add(o.origin.x, g(a[3])),
+                S::geo_add(o.origin.y, g(a[4])),
+                S::geo_add(o.origin.z, g(a[5])),
             )
         } else {
-            point_from_f32::<S>([0.0; 3])
+            o.origin
         };
         self.encoder.encode(self.lighting.shade(&p, n), x, y)
+    }
+
+    fn draw_any<F: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut F,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+        perspective: bool,
+    ) -> Result<DrawStats, F::Error> {
+        let normal = |t: &ShadeVertex<S>| {
+            [
+                t.normal.x.to_attr(),
+                t.normal.y.to_attr(),
+                t.normal.z.to_attr(),
+            ]
+        };
+        if !I::NEEDS_POSITION {
+            let v = tri.map(|t| t.raster(normal(&t)));
+            return raster_draw(fb, depth, &v, opts, self, perspective);
+        }
+        // positions relative to the first vertex (any magnitude in the float
+        // tiers), as Q16.16 shifted right until they fit the attribute limit
+        let o = tri[0].position;
+        let rel = tri.map(|t| {
+            [
+                S::geo_to_attr(S::geo_sub(t.position.x, o.x)),
+                S::geo_to_attr(S::geo_sub(t.position.y, o.y)),
+                S::geo_to_attr(S::geo_sub(t.position.z, o.z)),
+            ]
+        });
+        let big = rel
+            .iter()
+            .flatten()
+            .fold(0u32, |m, v| m.max(v.unsigned_abs()));
+        let limit_bits = bit_length(ATTR_LIMIT as u32) - 1;
+        let shift = bit_length(big).saturating_sub(limit_bits);
+        self.state = PhongOrigin { origin: o, shift };
+        let v = core::array::from_fn(|i| {
+            let [nx, ny, nz] = normal(&tri[i]);
+            let r = rel[i].map(|v| v >> shift);
+            tri[i].raster([nx, ny, nz, r[0], r[1], r[2]])
+        });
+        raster_draw(fb, depth, &v, opts, self, perspective)
     }
 }
 
 impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor, const N: usize>
-    SpanShader<N> for Phong<'_, I, E, C>
+    SpanShader<N> for Shader<'_, PhongShading, I, E, C>
 {
     type Color = C;
     #[inline]
@@ -65,48 +115,177 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor, const 
             // pixel k: attributes = start + k·step
             *p = self.pixel(&a, x, y);
             for i in 0..N {
-                a[i] += step[i];
+                a[i] = a[i].wrapping_add(step[i]);
             }
         }
     }
 }
 
 impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
-    for Phong<'_, I, E, C>
+    for Shader<'_, PhongShading, I, E, C>
 {
     type Color = C;
 
-    fn draw<Fb: Framebuffer<Color = C>>(
+    fn draw<F: Framebuffer<Color = C>>(
         &mut self,
-        fb: &mut Fb,
+        fb: &mut F,
         depth: Option<&mut DepthBuffer<'_>>,
         tri: &[ShadeVertex<S>; 3],
         opts: &RasterOptions,
-    ) -> DrawStats {
-        let normal = |t: &ShadeVertex<S>| {
-            [
-                t.normal.x.to_attr(),
-                t.normal.y.to_attr(),
-                t.normal.z.to_attr(),
-            ]
-        };
-        if I::NEEDS_POSITION {
-            let v = tri.map(|t| {
-                let [nx, ny, nz] = normal(&t);
-                let p = t.position;
-                t.raster([
-                    nx,
-                    ny,
-                    nz,
-                    S::geo_to_attr(p.x),
-                    S::geo_to_attr(p.y),
-                    S::geo_to_attr(p.z),
-                ])
-            });
-            draw_triangle(fb, depth, &v, opts, self)
+    ) -> Result<DrawStats, F::Error> {
+        self.draw_any(fb, depth, tri, opts, false)
+    }
+
+    fn draw_perspective<F: Framebuffer<Color = C>>(
+        &mut self,
+        fb: &mut F,
+        depth: Option<&mut DepthBuffer<'_>>,
+        tri: &[ShadeVertex<S>; 3],
+        opts: &RasterOptions,
+    ) -> Result<DrawStats, F::Error> {
+        self.draw_any(fb, depth, tri, opts, true)
+    }
+}
+
+/// A Phong triangle in the mesh renderer: the planes of the normal (Q14
+/// vertex values) and, when the lighting needs it, of the eye-space position
+/// (Q16.16, relative to the top vertex).
+#[derive(Clone, Copy, Debug)]
+pub struct PhongTriangle {
+    n: [Plane; 3],
+    n_base: [i32; 3],
+    p: [Plane; 3],
+    p_base: [i32; 3],
+}
+
+impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
+    for Shader<'_, PhongShading, I, E, C>
+{
+    type Color = C;
+    /// The eye-space unit normal in Q14.
+    type Vertex = [i16; 3];
+    type Triangle = PhongTriangle;
+    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+
+    #[inline]
+    fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
+        let u = unit_normal::<Q14<2>>(n);
+        [u.x.raw() as i16, u.y.raw() as i16, u.z.raw() as i16]
+    }
+
+    fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> PhongTriangle {
+        let t = s.tmb[0];
+        let row = s.rows.0;
+        let n = core::array::from_fn(|i| s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from), row));
+        let n_base = core::array::from_fn(|i| i32::from(v[t][i]) << ATTR_FRAC);
+        let (pp, p_base) = if I::NEEDS_POSITION {
+            (
+                core::array::from_fn(|i| s.plane([p[0][i], p[1][i], p[2][i]], row)),
+                p[t],
+            )
         } else {
-            let v = tri.map(|t| t.raster(normal(&t)));
-            draw_triangle(fb, depth, &v, opts, self)
+            ([Plane::default(); 3], [0; 3])
+        };
+        PhongTriangle {
+            n,
+            n_base,
+            p: pp,
+            p_base,
         }
+    }
+
+    #[inline]
+    fn skip_rows(t: &mut PhongTriangle, rows: i32) {
+        for p in t.n.iter_mut() {
+            p.skip_rows(rows);
+        }
+        if I::NEEDS_POSITION {
+            for p in t.p.iter_mut() {
+                p.skip_rows(rows);
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn next_row(t: &mut PhongTriangle) {
+        for p in t.n.iter_mut() {
+            p.next_row();
+        }
+        if I::NEEDS_POSITION {
+            for p in t.p.iter_mut() {
+                p.next_row();
+            }
+        }
+    }
+
+    #[inline]
+    fn run(
+        &self,
+        t: &PhongTriangle,
+        x: i32,
+        y: i32,
+        z: i32,
+        dz: i32,
+        color: &mut [C],
+        depth: Option<&mut [u16]>,
+    ) {
+        let len = color.len() as i32;
+        let mut a = [0i32; 6];
+        let mut d = [0i32; 6];
+        for i in 0..3 {
+            let (s, st) = t.n[i].clamped(x, len);
+            a[i] = t.n_base[i].wrapping_add(s);
+            d[i] = st;
+            if I::NEEDS_POSITION {
+                let (s, st) = t.p[i].clamped(x, len);
+                a[3 + i] = s;
+                d[3 + i] = st;
+            }
+        }
+        let psh: [u32; 3] = core::array::from_fn(|i| ATTR_FRAC - t.p[i].sa.min(ATTR_FRAC));
+        let lighting = self.lighting;
+        let enc = self.encoder;
+        let p_base = t.p_base;
+        depth_loop(
+            z,
+            dz,
+            color,
+            depth,
+            (a, x),
+            |s| {
+                // Q14 normal with ATTR_FRAC bits → the tier's attribute (Q26)
+                let n = S::normalize_interpolated(Vec3::new(
+                    S::from_attr(s.0[0] >> 2),
+                    S::from_attr(s.0[1] >> 2),
+                    S::from_attr(s.0[2] >> 2),
+                ));
+                let pos = if I::NEEDS_POSITION {
+                    let q = |i: usize| {
+                        let sh = psh[i];
+                        let r = if sh == 0 {
+                            s.0[3 + i]
+                        } else {
+                            ((s.0[3 + i] >> (sh - 1)) + 1) >> 1
+                        };
+                        p_base[i].wrapping_add(r)
+                    };
+                    eye_point::<S>([q(0), q(1), q(2)])
+                } else {
+                    eye_point::<S>([0; 3])
+                };
+                enc.encode(lighting.shade(&pos, n), s.1, y)
+            },
+            |s| {
+                for i in 0..3 {
+                    s.0[i] = s.0[i].wrapping_add(d[i]);
+                }
+                if I::NEEDS_POSITION {
+                    for i in 3..6 {
+                        s.0[i] = s.0[i].wrapping_add(d[i]);
+                    }
+                }
+                s.1 += 1;
+            },
+        );
     }
 }

@@ -16,11 +16,13 @@ use core::ops::Range;
 use embedded_graphics_core::pixelcolor::PixelColor;
 
 mod band;
+mod checksum;
 mod depth;
 mod draw_target;
 mod slice;
 
 pub use band::BandBuffer;
+pub use checksum::Checksum;
 pub use depth::DepthBuffer;
 pub use draw_target::{DrawTargetAdapter, ADAPTER_CHUNK};
 pub use slice::SliceFramebuffer;

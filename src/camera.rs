@@ -1,0 +1,508 @@
+//! The camera: projection (a type: orthographic scenes link no perspective
+//! code), view and viewport, and the per-mesh fixed-point transform the vertex
+//! stage applies once per vertex per frame.
+//!
+//! A [`Camera`] is built in `f32` (once per frame on an FPU core; on a Cortex-M0
+//! the few hundred soft-float operations of one matrix product are a fixed
+//! cost per frame, and [`MeshTransform::from_fixed`] builds the same transform
+//! from integers). [`Camera::mesh_transform`] converts the product
+//! `viewport · projection · view · model` to rows of `i32` elements with a
+//! block exponent per row: a vertex position (`i16`) is transformed with two
+//! 16 × 16-bit products per element (one `MULS` each on a Cortex-M0), no
+//! 64-bit multiply and no floating point.
+
+use crate::mesh::{Mat4, MeshError, Viewport};
+use crate::raster::SUBPIXEL_BITS;
+use core::marker::PhantomData;
+
+/// How eye space is projected: [`Orthographic`] or [`Perspective`]. A type, so
+/// that a scene pays only for the projection it uses.
+pub trait Projection: Copy + core::fmt::Debug + Default + 'static {
+    /// Whether `w` varies (division per vertex, near-plane clipping,
+    /// perspective-correct attributes).
+    const PERSPECTIVE: bool;
+}
+
+/// Parallel projection (`glOrtho`): `w = 1`, screen position affine in the model
+/// position, no division per vertex.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Orthographic;
+
+/// Central projection (`gluPerspective`): division by `w` per vertex,
+/// clipping at the near plane, perspective-correct attributes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Perspective;
+
+impl Projection for Orthographic {
+    const PERSPECTIVE: bool = false;
+}
+
+impl Projection for Perspective {
+    const PERSPECTIVE: bool = true;
+}
+
+/// A camera: projection matrix, view matrix and viewport.
+///
+/// ```
+/// use fixshade::camera::Camera;
+/// use fixshade::mesh::{Mat4, Viewport};
+/// // the standard scene: ±1/0.85 orthographic, camera 5 units back
+/// let s = 1.0 / 0.85;
+/// let cam = Camera::orthographic(-s, s, -s, s, 1.0, 10.0, Viewport::new(0, 0, 240, 240)?)?
+///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
+/// let t = cam.mesh_transform(&Mat4::IDENTITY, 14)?;
+/// // the model origin lands at the centre of the screen, depth (5 − 1)/9 of the range
+/// let v = t.project([0, 0, 0]);
+/// assert_eq!((v.x, v.y), (120 << 4, 120 << 4));
+/// assert_eq!(v.z, (65535.0f32 * 4.0 / 9.0).round() as u16);
+/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera<P: Projection> {
+    projection: Mat4,
+    view: Mat4,
+    viewport: Viewport,
+    near: f32,
+    kind: PhantomData<P>,
+}
+
+impl Camera<Orthographic> {
+    /// An orthographic camera (`glOrtho`): the box `left..right`,
+    /// `bottom..top`, `z = −near..−far` of eye space fills the viewport, depth
+    /// 0 at `near` to 65535 at `far`.
+    ///
+    /// # Errors
+    ///
+    /// As [`Mat4::orthographic`].
+    pub fn orthographic(
+        left: f32,
+        right: f32,
+        bottom: f32,
+        top: f32,
+        near: f32,
+        far: f32,
+        viewport: Viewport,
+    ) -> Result<Self, MeshError> {
+        Ok(Camera {
+            projection: Mat4::orthographic(left, right, bottom, top, near, far)?,
+            view: Mat4::IDENTITY,
+            viewport,
+            near,
+            kind: PhantomData,
+        })
+    }
+}
+
+impl Camera<Perspective> {
+    /// A perspective camera (`gluPerspective`).
+    ///
+    /// # Errors
+    ///
+    /// As [`Mat4::perspective`].
+    pub fn perspective(
+        fovy_rad: f32,
+        aspect: f32,
+        near: f32,
+        far: f32,
+        viewport: Viewport,
+    ) -> Result<Self, MeshError> {
+        Ok(Camera {
+            projection: Mat4::perspective(fovy_rad, aspect, near, far)?,
+            view: Mat4::IDENTITY,
+            viewport,
+            near,
+            kind: PhantomData,
+        })
+    }
+}
+
+impl<P: Projection> Camera<P> {
+    /// The same camera with view matrix `view` (world → eye space).
+    pub fn with_view(mut self, view: Mat4) -> Self {
+        self.view = view;
+        self
+    }
+
+    /// The viewport.
+    pub fn viewport(&self) -> Viewport {
+        self.viewport
+    }
+
+    /// The view matrix.
+    pub fn view(&self) -> &Mat4 {
+        &self.view
+    }
+
+    /// The projection matrix.
+    pub fn projection(&self) -> &Mat4 {
+        &self.projection
+    }
+
+    /// The near plane distance.
+    pub fn near(&self) -> f32 {
+        self.near
+    }
+
+    /// The fixed-point transform of a mesh with model matrix `model` whose
+    /// positions carry `frac` fraction bits (see [`Mesh`](crate::mesh::Mesh)).
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::NotFinite`] for a non-finite matrix;
+    /// [`MeshError::OutOfRange`] for `frac > 15`.
+    pub fn mesh_transform(&self, model: &Mat4, frac: u8) -> Result<MeshTransform<P>, MeshError> {
+        if frac > 15 {
+            return Err(MeshError::OutOfRange("frac"));
+        }
+        let mv = self.view.mul(model);
+        let mvp = self.projection.mul(&mv);
+        if !mvp.is_finite() || !mv.is_finite() {
+            return Err(MeshError::NotFinite("matrix"));
+        }
+        let vp = &self.viewport;
+        let (w8, h8) = (vp.width() as f32 * 8.0, vp.height() as f32 * 8.0);
+        let sub = (1 << SUBPIXEL_BITS) as f32;
+        let (cx, cy) = (vp.x0() as f32 * sub + w8, vp.y0() as f32 * sub + h8);
+        let m = &mvp.m;
+        let inv = 1.0 / (1u32 << frac) as f32;
+        let nm = mv.normal_matrix();
+        if P::PERSPECTIVE {
+            // clip rows: x' = 8W·x_c (so that x_sub = cx + x'/w_c), y' = −8H·y_c
+            let xr = scaled(m[0], w8, inv);
+            let yr = scaled(m[1], -h8, inv);
+            let zr = scaled(m[2], 1.0, inv);
+            let wr = scaled(m[3], 1.0, inv);
+            Ok(MeshTransform {
+                x: Row::new(xr),
+                y: Row::new(yr),
+                z: Row::new(zr),
+                w: Row::new(wr),
+                centre: [cx, cy],
+                near: self.near,
+                normal: NormalRows::new(&nm),
+                eye: EyeRows::new(&mv, inv),
+                kind: PhantomData,
+            })
+        } else {
+            // w = 1: x_sub = cx + 8W·x_c, y_sub = cy − 8H·y_c, z = (z_c + 1)/2·65535
+            let row = |r: [f32; 4], k: f32, c: f32| {
+                let mut e = scaled(r, k, inv);
+                e[3] += c;
+                Row::new(e)
+            };
+            Ok(MeshTransform {
+                x: row(m[0], w8, cx),
+                y: row(m[1], -h8, cy),
+                z: row(m[2], 65535.0 * 0.5, 65535.0 * 0.5),
+                w: Row::default(),
+                centre: [cx, cy],
+                near: self.near,
+                normal: NormalRows::new(&nm),
+                eye: EyeRows::new(&mv, inv),
+                kind: PhantomData,
+            })
+        }
+    }
+}
+
+/// Row `r` of a matrix times `k`, the 3 linear elements per raw position unit.
+fn scaled(r: [f32; 4], k: f32, inv: f32) -> [f32; 4] {
+    [r[0] * k * inv, r[1] * k * inv, r[2] * k * inv, r[3] * k]
+}
+
+/// One output of the vertex transform: `out = Σ e_c·p_c·2^−16 + t`, in units of
+/// `2^−frac`, for an `i16` position `p`. The elements share a block exponent:
+/// the largest `|e_c|` lies in `[2^28, 2^29)`, so every product term is below
+/// 2^28 and the sum with `|t| < 2^30` cannot overflow.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Row {
+    e: [i32; 3],
+    t: i32,
+    frac: i32,
+}
+
+impl Row {
+    /// From `f32` elements (per raw position unit) and translation.
+    fn new(r: [f32; 4]) -> Row {
+        let max = r[0].abs().max(r[1].abs()).max(r[2].abs());
+        // frac with max·2^(frac + 16) in [2^28, 2^29): frac = 12 − exponent
+        let frac = if max > 0.0 {
+            12 - libm::frexpf(max).1 + 1
+        } else {
+            0
+        };
+        // keep the translation below 2^30 in output units
+        let tmax = r[3].abs();
+        let frac = if tmax > 0.0 {
+            frac.min(29 - libm::frexpf(tmax).1)
+        } else {
+            frac
+        }
+        .clamp(-60, 60);
+        let conv = |v: f32, s: i32| {
+            let x = libm::roundf(libm::ldexpf(v, s));
+            // `as` saturates (and maps NaN to 0)
+            x as i32
+        };
+        Row {
+            e: [
+                conv(r[0], frac + 16),
+                conv(r[1], frac + 16),
+                conv(r[2], frac + 16),
+            ],
+            t: conv(r[3], frac),
+            frac,
+        }
+    }
+
+    /// The output for position `p`, in `2^−frac` units (see the type docs).
+    #[inline(always)]
+    pub fn apply(&self, p: [i16; 3]) -> i32 {
+        self.t
+            .wrapping_add(mul_q16(self.e[0], p[0]))
+            .wrapping_add(mul_q16(self.e[1], p[1]))
+            .wrapping_add(mul_q16(self.e[2], p[2]))
+    }
+
+    /// [`Row::apply`] rounded to whole output units (sub-pixels, depth units),
+    /// saturated to `i32`.
+    #[inline(always)]
+    pub fn apply_round(&self, p: [i16; 3]) -> i32 {
+        let v = self.apply(p);
+        if self.frac > 0 {
+            let f = self.frac.min(31) as u32;
+            ((v >> (f - 1)) + 1) >> 1
+        } else {
+            v.saturating_mul(1 << (-self.frac).min(30))
+        }
+    }
+
+    /// The fraction bits of [`Row::apply`].
+    pub fn frac(&self) -> i32 {
+        self.frac
+    }
+}
+
+/// `⌊e·p / 2^16⌋` exactly, from two 16 × 16-bit products: `e = eh·2^16 + el`
+/// with `0 ≤ el < 2^16`, so `e·p/2^16 = eh·p + el·p/2^16` and `|el·p| < 2^31`.
+#[inline(always)]
+pub(crate) fn mul_q16(e: i32, p: i16) -> i32 {
+    let p = i32::from(p);
+    (e >> 16) * p + (((e & 0xFFFF) * p) >> 16)
+}
+
+/// The normal matrix (inverse-transpose of the model-view 3×3, up to a positive
+/// factor) in Q14 with a common scale: normals come out unnormalised.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NormalRows {
+    e: [[i16; 3]; 3],
+}
+
+impl NormalRows {
+    fn new(nm: &[[f32; 3]; 3]) -> Self {
+        let max = nm.iter().flatten().fold(0.0f32, |m, v| m.max(v.abs()));
+        // largest element at 16384 (Q14 of 1): a rotation keeps unit length
+        let k = if max > 0.0 && max.is_finite() {
+            16384.0 / max
+        } else {
+            0.0
+        };
+        let mut e = [[0i16; 3]; 3];
+        for (er, mr) in e.iter_mut().zip(nm) {
+            for (x, v) in er.iter_mut().zip(mr) {
+                *x = libm::roundf(v * k) as i16;
+            }
+        }
+        NormalRows { e }
+    }
+
+    /// `N·n` for a Q14 normal: components in Q14 (up to √3·2 in magnitude).
+    #[inline(always)]
+    pub fn apply(&self, n: [i16; 3]) -> [i32; 3] {
+        let n = n.map(i32::from);
+        self.e.map(|r| {
+            // each product ≤ 2^28, the sum < 2^30
+            (i32::from(r[0]) * n[0] + i32::from(r[1]) * n[1] + i32::from(r[2]) * n[2] + (1 << 13))
+                >> 14
+        })
+    }
+}
+
+/// The model-view matrix for eye-space positions, as rows with Q16.16 output.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EyeRows {
+    r: [Row; 3],
+}
+
+impl EyeRows {
+    fn new(mv: &Mat4, inv: f32) -> Self {
+        EyeRows {
+            r: [0, 1, 2].map(|i| Row::new(scaled(mv.m[i], 1.0, inv))),
+        }
+    }
+
+    /// The eye-space position in Q16.16 (saturated at ±32768).
+    #[inline]
+    pub fn apply(&self, p: [i16; 3]) -> [i32; 3] {
+        self.r.map(|row| {
+            let v = row.apply(p);
+            let s = row.frac - 16;
+            if s >= 0 {
+                let s = s.min(31) as u32;
+                if s == 0 {
+                    v
+                } else {
+                    ((v >> (s - 1)) + 1) >> 1
+                }
+            } else {
+                v.saturating_mul(1 << (-s).min(30))
+            }
+        })
+    }
+}
+
+/// A vertex projected to the screen: sub-pixel position and depth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Projected {
+    /// Column in sub-pixels (may lie far outside the screen).
+    pub x: i32,
+    /// Row in sub-pixels (down is positive).
+    pub y: i32,
+    /// Depth, 0 at the near plane to 65535 at the far plane (saturated).
+    pub z: u16,
+}
+
+/// The fixed-point transform of one mesh for one frame (see the [module](self)
+/// docs): screen rows, the normal matrix and the eye-space rows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshTransform<P: Projection> {
+    x: Row,
+    y: Row,
+    z: Row,
+    w: Row,
+    centre: [f32; 2],
+    near: f32,
+    normal: NormalRows,
+    eye: EyeRows,
+    kind: PhantomData<P>,
+}
+
+impl MeshTransform<Orthographic> {
+    /// The screen position and depth of a raw position.
+    #[inline(always)]
+    pub fn project(&self, p: [i16; 3]) -> Projected {
+        let z = self.z.apply_round(p);
+        Projected {
+            x: self.x.apply_round(p),
+            y: self.y.apply_round(p),
+            z: if z < 0 {
+                0
+            } else if z > 65535 {
+                65535
+            } else {
+                z as u16
+            },
+        }
+    }
+}
+
+impl<P: Projection> MeshTransform<P> {
+    /// The eye-space normal (unnormalised, Q14) of a Q14 normal.
+    #[inline(always)]
+    pub fn normal(&self, n: [i16; 3]) -> [i32; 3] {
+        self.normal.apply(n)
+    }
+
+    /// The eye-space position (Q16.16) of a raw position.
+    #[inline]
+    pub fn eye(&self, p: [i16; 3]) -> [i32; 3] {
+        self.eye.apply(p)
+    }
+
+    /// The near plane distance.
+    pub fn near(&self) -> f32 {
+        self.near
+    }
+
+    /// The screen centre in sub-pixels.
+    pub fn centre(&self) -> [f32; 2] {
+        self.centre
+    }
+
+    /// The screen rows (x, y, z, w).
+    pub(crate) fn rows(&self) -> [&Row; 4] {
+        [&self.x, &self.y, &self.z, &self.w]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mul_q16_is_exact() {
+        for e in [
+            0i32,
+            1,
+            -1,
+            65535,
+            65536,
+            -65537,
+            (1 << 29) - 1,
+            -(1 << 29),
+            123_456_789,
+        ] {
+            for p in [0i16, 1, -1, 16384, -16384, i16::MAX, i16::MIN, 12345] {
+                let want = ((i64::from(e) * i64::from(p)) >> 16) as i32;
+                assert_eq!(mul_q16(e, p), want, "{e} {p}");
+            }
+        }
+    }
+
+    #[test]
+    fn orthographic_transform_matches_float() {
+        let s = 1.0 / 0.85;
+        let cam = Camera::orthographic(
+            -s,
+            s,
+            -s,
+            s,
+            1.0,
+            10.0,
+            Viewport::new(0, 0, 240, 240).unwrap(),
+        )
+        .unwrap()
+        .with_view(Mat4::translate([0.0, 0.0, -5.0]));
+        let model = Mat4::rotate_y(0.3).mul(&Mat4::rotate_x(-0.2));
+        let t = cam.mesh_transform(&model, 14).unwrap();
+        let mvp = cam.projection().mul(cam.view()).mul(&model);
+        for p in [
+            [0i16, 0, 0],
+            [16384, 0, 0],
+            [0, -16384, 8000],
+            [-12000, 9000, -5000],
+            [i16::MAX; 3],
+        ] {
+            let f = p.map(|c| c as f32 / 16384.0);
+            let c = mvp.transform_point(f);
+            let want_x = 16.0 * 120.0 + 8.0 * 240.0 * c[0];
+            let want_y = 16.0 * 120.0 - 8.0 * 240.0 * c[1];
+            let want_z = (c[2] + 1.0) * 0.5 * 65535.0;
+            let v = t.project(p);
+            assert!(
+                (v.x as f32 - want_x).abs() <= 0.51,
+                "{p:?} {} {want_x}",
+                v.x
+            );
+            assert!(
+                (v.y as f32 - want_y).abs() <= 0.51,
+                "{p:?} {} {want_y}",
+                v.y
+            );
+            assert!(
+                (v.z as f32 - want_z.clamp(0.0, 65535.0)).abs() <= 1.01,
+                "{p:?}"
+            );
+        }
+    }
+}

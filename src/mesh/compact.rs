@@ -1,0 +1,342 @@
+//! The compact mesh format the renderer reads from flash, and `const`
+//! generators that build meshes at compile time.
+//!
+//! A [`Mesh`] is three borrowed slices: positions as `i16` triples with a
+//! shared number of fraction bits, unit normals in Q14 (`16384` is 1), and
+//! triangles as `u16` vertex indices (counter-clockwise seen from the side the
+//! surface faces). 6 + 6 bytes per vertex and 6 per triangle: the 24 × 16 UV
+//! sphere (362 vertices, 720 triangles) takes 8 664 bytes. A `static` of
+//! [`MeshData`] filled by a `const fn` generator lives in flash: no RAM, no
+//! floating point at run time.
+
+use super::error::MeshError;
+
+/// Unit normal components are stored in Q14: `16384` is 1.
+pub const NORMAL_ONE: i16 = 1 << 14;
+
+/// A triangle mesh in the renderer's compact format (see the [module](self)
+/// docs). The constructor checks that the slices agree and every index is in
+/// range, so the renderer can rely on it.
+///
+/// ```
+/// use fixshade::mesh::{Mesh, NORMAL_ONE};
+/// // one triangle in the z = 0 plane facing +z, positions with 8 fraction bits
+/// static POS: [[i16; 3]; 3] = [[0, 0, 0], [256, 0, 0], [0, 256, 0]];
+/// static NRM: [[i16; 3]; 3] = [[0, 0, NORMAL_ONE]; 3];
+/// static TRI: [[u16; 3]; 1] = [[0, 1, 2]];
+/// static MESH: Mesh<'static> = Mesh::checked(&POS, &NRM, &TRI, 8);
+/// assert_eq!(MESH.position(1), Some([1.0, 0.0, 0.0]));
+/// assert!(Mesh::new(&POS, &NRM, &[[0, 1, 3]], 8).is_err());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mesh<'a> {
+    positions: &'a [[i16; 3]],
+    normals: &'a [[i16; 3]],
+    triangles: &'a [[u16; 3]],
+    frac: u8,
+}
+
+impl<'a> Mesh<'a> {
+    /// A mesh over the given slices; a position is `raw · 2^−frac` model units.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::BufferTooSmall`] when there are fewer normals than
+    /// positions; [`MeshError::IndexOutOfRange`] for an index beyond the
+    /// positions; [`MeshError::OutOfRange`] for `frac > 15`.
+    pub const fn new(
+        positions: &'a [[i16; 3]],
+        normals: &'a [[i16; 3]],
+        triangles: &'a [[u16; 3]],
+        frac: u8,
+    ) -> Result<Self, MeshError> {
+        if frac > 15 {
+            return Err(MeshError::OutOfRange("frac"));
+        }
+        if normals.len() < positions.len() {
+            return Err(MeshError::BufferTooSmall {
+                needed: positions.len(),
+                got: normals.len(),
+            });
+        }
+        let mut t = 0;
+        while t < triangles.len() {
+            let mut k = 0;
+            while k < 3 {
+                let index = triangles[t][k];
+                if index as usize >= positions.len() {
+                    return Err(MeshError::IndexOutOfRange { triangle: t, index });
+                }
+                k += 1;
+            }
+            t += 1;
+        }
+        Ok(Mesh {
+            positions,
+            normals,
+            triangles,
+            frac,
+        })
+    }
+
+    /// [`Mesh::new`] for `static`s and `const`s: an invalid mesh is a
+    /// compile-time error there (and a panic if called at run time, so prefer
+    /// [`Mesh::new`] for data read at run time).
+    pub const fn checked(
+        positions: &'a [[i16; 3]],
+        normals: &'a [[i16; 3]],
+        triangles: &'a [[u16; 3]],
+        frac: u8,
+    ) -> Self {
+        match Self::new(positions, normals, triangles, frac) {
+            Ok(m) => m,
+            Err(_) => panic!("invalid mesh: index out of range, normals missing or frac > 15"),
+        }
+    }
+
+    /// The raw positions.
+    pub const fn positions(&self) -> &'a [[i16; 3]] {
+        self.positions
+    }
+
+    /// The raw normals (Q14).
+    pub const fn normals(&self) -> &'a [[i16; 3]] {
+        self.normals
+    }
+
+    /// The triangles.
+    pub const fn triangles(&self) -> &'a [[u16; 3]] {
+        self.triangles
+    }
+
+    /// Fraction bits of the positions.
+    pub const fn frac(&self) -> u8 {
+        self.frac
+    }
+
+    /// Number of vertices.
+    pub const fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    pub const fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Vertex `i`'s position in model units, as `f32` (for tests and tools).
+    pub fn position(&self, i: usize) -> Option<[f32; 3]> {
+        let s = 1.0 / (1u32 << self.frac) as f32;
+        self.positions
+            .get(i)
+            .map(|p| [p[0] as f32 * s, p[1] as f32 * s, p[2] as f32 * s])
+    }
+
+    /// Vertex `i`'s normal as `f32`.
+    pub fn normal(&self, i: usize) -> Option<[f32; 3]> {
+        let s = 1.0 / NORMAL_ONE as f32;
+        self.normals
+            .get(i)
+            .map(|n| [n[0] as f32 * s, n[1] as f32 * s, n[2] as f32 * s])
+    }
+}
+
+/// Mesh arrays owned by value, sized by const generics: `V` vertices and `T`
+/// triangles. Filled by a `const fn` generator into a `static`, they are
+/// placed in flash.
+///
+/// ```
+/// use fixshade::mesh::{uv_sphere_counts, MeshData};
+/// // the standard scene's sphere, built at compile time
+/// const N: (usize, usize) = uv_sphere_counts(16, 24);
+/// static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(16, 24, 14);
+/// let mesh = SPHERE.mesh();
+/// assert_eq!((mesh.vertex_count(), mesh.triangle_count()), (362, 720));
+/// assert_eq!(mesh.position(0), Some([0.0, 1.0, 0.0])); // the north pole
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MeshData<const V: usize, const T: usize> {
+    /// Positions (`raw · 2^−frac`).
+    pub positions: [[i16; 3]; V],
+    /// Unit normals in Q14.
+    pub normals: [[i16; 3]; V],
+    /// Triangles.
+    pub triangles: [[u16; 3]; T],
+    /// Fraction bits of the positions.
+    pub frac: u8,
+}
+
+impl<const V: usize, const T: usize> MeshData<V, T> {
+    /// The mesh view of these arrays (checked when the data is built).
+    pub const fn mesh(&self) -> Mesh<'_> {
+        Mesh::checked(&self.positions, &self.normals, &self.triangles, self.frac)
+    }
+
+    /// The UV sphere of radius 1 around the origin with `stacks` bands of
+    /// latitude and `slices` of longitude, positions with `frac` fraction bits
+    /// (14 for a unit sphere: coordinates up to ±2), laid out like
+    /// [`uv_sphere`](super::uv_sphere): vertex 0 the north pole `(0, 1, 0)`,
+    /// then the rings from the north, the south pole last; counter-clockwise
+    /// seen from outside.
+    ///
+    /// `V` and `T` must equal [`uv_sphere_counts`](super::uv_sphere_counts)
+    /// (a compile-time error in a `static`), and `frac` at most 14.
+    pub const fn uv_sphere(stacks: usize, slices: usize, frac: u8) -> Self {
+        let counts = super::uv_sphere_counts(stacks, slices);
+        assert!(
+            counts.0 == V && counts.1 == T,
+            "V, T must equal uv_sphere_counts"
+        );
+        assert!(frac <= 14, "positions of a unit sphere need frac <= 14");
+        let mut m = MeshData {
+            positions: [[0; 3]; V],
+            normals: [[0; 3]; V],
+            triangles: [[0; 3]; T],
+            frac,
+        };
+        let scale = (1u32 << frac) as f64;
+        m.put(0, [0.0, 1.0, 0.0], scale);
+        m.put(V - 1, [0.0, -1.0, 0.0], scale);
+        let mut i = 1;
+        while i < stacks {
+            let (st, ct) = sin_cos(core::f64::consts::PI * i as f64 / stacks as f64);
+            let mut j = 0;
+            while j < slices {
+                let (sp, cp) = sin_cos(2.0 * core::f64::consts::PI * j as f64 / slices as f64);
+                m.put(1 + (i - 1) * slices + j, [st * sp, ct, st * cp], scale);
+                j += 1;
+            }
+            i += 1;
+        }
+        let south = (V - 1) as u16;
+        let mut k = 0;
+        let mut j = 0;
+        while j < slices {
+            m.triangles[k] = [0, ring(slices, 1, j), ring(slices, 1, j + 1)];
+            k += 1;
+            let mut i = 1;
+            while i + 1 < stacks {
+                let (a, b) = (ring(slices, i, j), ring(slices, i, j + 1));
+                let (c, d) = (ring(slices, i + 1, j), ring(slices, i + 1, j + 1));
+                m.triangles[k] = [a, c, d];
+                m.triangles[k + 1] = [a, d, b];
+                k += 2;
+                i += 1;
+            }
+            m.triangles[k] = [
+                south,
+                ring(slices, stacks - 1, j + 1),
+                ring(slices, stacks - 1, j),
+            ];
+            k += 1;
+            j += 1;
+        }
+        m
+    }
+
+    /// Stores vertex `k` with unit normal `n` at position `n` (radius 1).
+    const fn put(&mut self, k: usize, n: [f64; 3], scale: f64) {
+        let mut c = 0;
+        while c < 3 {
+            self.positions[k][c] = round_i16(n[c] * scale);
+            self.normals[k][c] = round_i16(n[c] * NORMAL_ONE as f64);
+            c += 1;
+        }
+    }
+}
+
+/// Index of vertex `j` (mod `slices`) of ring `i` of a UV sphere.
+const fn ring(slices: usize, i: usize, j: usize) -> u16 {
+    (1 + (i - 1) * slices + j % slices) as u16
+}
+
+/// `round(x)` saturated to `i16` (ties away from zero), usable in `const fn`.
+pub(crate) const fn round_i16(x: f64) -> i16 {
+    let r = if x >= 0.0 { x + 0.5 } else { x - 0.5 };
+    let r = r as i64; // truncation after the half offset rounds; `as` saturates
+    if r > i16::MAX as i64 {
+        i16::MAX
+    } else if r < i16::MIN as i64 {
+        i16::MIN
+    } else {
+        r as i16
+    }
+}
+
+/// `(sin x, cos x)` in `f64` for `const fn` generators: reduced to
+/// `|r| ≤ π/4` around a multiple of π/2, then Taylor series to the 18th
+/// order (error below 10⁻¹⁵ for `|x| ≤ 100`).
+pub(crate) const fn sin_cos(x: f64) -> (f64, f64) {
+    let half_pi = core::f64::consts::FRAC_PI_2;
+    let q = x / half_pi;
+    let k = if q >= 0.0 {
+        (q + 0.5) as i64
+    } else {
+        (q - 0.5) as i64
+    };
+    let r = x - k as f64 * half_pi;
+    let r2 = r * r;
+    // sin r = r − r³/3! + …, cos r = 1 − r²/2! + …
+    let mut s = r;
+    let mut c = 1.0;
+    let mut ts = r;
+    let mut tc = 1.0;
+    let mut n = 1;
+    while n <= 9 {
+        ts = -ts * r2 / ((2 * n) as f64 * (2 * n + 1) as f64);
+        tc = -tc * r2 / ((2 * n - 1) as f64 * (2 * n) as f64);
+        s += ts;
+        c += tc;
+        n += 1;
+    }
+    match k.rem_euclid(4) {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn const_sin_cos_matches_libm() {
+        let mut x = -20.0f64;
+        while x < 20.0 {
+            let (s, c) = sin_cos(x);
+            assert!((s - libm::sin(x)).abs() < 1e-14, "{x}");
+            assert!((c - libm::cos(x)).abs() < 1e-14, "{x}");
+            x += 0.0137;
+        }
+    }
+
+    #[test]
+    fn const_sphere_matches_the_f32_generator() {
+        const N: (usize, usize) = crate::mesh::uv_sphere_counts(16, 24);
+        static S: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(16, 24, 14);
+        let mut p = [[0.0f32; 3]; N.0];
+        let mut n = [[0.0f32; 3]; N.0];
+        let mut t = [[0u16; 3]; N.1];
+        crate::mesh::uv_sphere(16, 24, [0.0; 3], 1.0, &mut p, &mut n, &mut t).unwrap();
+        assert_eq!(S.triangles, t);
+        let mesh = S.mesh();
+        for i in 0..N.0 {
+            let (a, b) = (mesh.position(i).unwrap(), mesh.normal(i).unwrap());
+            for c in 0..3 {
+                assert!((a[c] - p[i][c]).abs() <= 0.5 / 16384.0 + 1e-7);
+                assert!((b[c] - n[i][c]).abs() <= 0.5 / 16384.0 + 1e-7);
+            }
+        }
+    }
+
+    #[test]
+    fn rounding_saturates() {
+        assert_eq!(round_i16(2.5), 3);
+        assert_eq!(round_i16(-2.5), -3);
+        assert_eq!(round_i16(1e9), i16::MAX);
+        assert_eq!(round_i16(-1e9), i16::MIN);
+        assert_eq!(round_i16(f64::NAN), 0);
+    }
+}

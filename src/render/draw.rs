@@ -1,0 +1,458 @@
+//! A mesh prepared for one frame and drawn band by band.
+
+use super::bins::{self, Bins};
+use super::vertex::{self, CachedVertex};
+use super::{BandView, DrawBand, Layout, RenderError};
+use crate::camera::{MeshTransform, Orthographic};
+use crate::mesh::Mesh;
+use crate::num::wide::lerp_i32;
+use crate::raster::clip::{ClipPoint, Polygon};
+use crate::raster::{Cull, Setup, Walker, ATTR_FRAC, SUBPIXEL_BITS};
+use crate::shade::Kernel;
+
+/// What a triangle that continues into the next band keeps: its index and
+/// the bound columns of its two edges at the band's first row (6 bytes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Carry {
+    tri: u16,
+    long: i16,
+    short: i16,
+}
+
+impl Carry {
+    /// `long` of a triangle drawn through the clipping path: it is clipped and
+    /// set up again in every band.
+    const CLIPPED: i16 = i16::MIN;
+}
+
+/// Per-mesh drawing options.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DrawOptions {
+    /// Face culling (back faces by default).
+    pub cull: Cull,
+}
+
+impl Default for DrawOptions {
+    /// Back faces culled.
+    fn default() -> Self {
+        DrawOptions { cull: Cull::Back }
+    }
+}
+
+/// A mesh prepared for one frame: its vertices transformed, projected and lit
+/// into the vertex cache, its visible triangles binned. Drawn by
+/// [`Bands::render`](super::Bands::render) or
+/// [`FullFrame::render`](super::FullFrame::render) through [`DrawBand`].
+///
+/// Memory, all the caller's:
+/// - `cache`: one [`CachedVertex`] per mesh vertex (`[Default::default(); V]`
+///   lets the compiler pick the mode's payload type);
+/// - `bins`: see [`bins_len`](super::bins_len);
+/// - `carry`: twice the largest number of triangles crossing one band
+///   boundary (none for a full frame); [`MeshDraw::new`] reports the need.
+pub struct MeshDraw<'a, K: Kernel> {
+    mesh: Mesh<'a>,
+    transform: MeshTransform<Orthographic>,
+    kernel: K,
+    layout: Layout,
+    cache: &'a [CachedVertex<K::Vertex>],
+    bins: Bins<'a>,
+    carry: &'a mut [Carry],
+    /// Entries of the current half of `carry` and which half (0 or 1).
+    carried: usize,
+    half: usize,
+}
+
+impl<K: Kernel> core::fmt::Debug for MeshDraw<'_, K> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("MeshDraw")
+            .field("vertices", &self.mesh.vertex_count())
+            .field("triangles", &self.mesh.triangle_count())
+            .field("crossing", &self.bins.crossing)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, K: Kernel> MeshDraw<'a, K>
+where
+    K::Vertex: Lerp,
+{
+    /// Runs the vertex stage and bins the triangles of `mesh` seen through
+    /// `transform`, for a frame of `layout`.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::TooManyVertices`] when the mesh has more vertices than
+    /// the cache holds; [`RenderError::BufferTooSmall`] for too few bins or
+    /// resume records. Nothing is drawn then.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        layout: Layout,
+        mesh: Mesh<'a>,
+        transform: &MeshTransform<Orthographic>,
+        kernel: K,
+        opts: DrawOptions,
+        cache: &'a mut [CachedVertex<K::Vertex>],
+        bins: &'a mut [u16],
+        carry: &'a mut [Carry],
+    ) -> Result<Self, RenderError> {
+        if cache.len() < mesh.vertex_count() {
+            return Err(RenderError::TooManyVertices);
+        }
+        vertex::orthographic(&mesh, transform, &kernel, cache);
+        let cache: &'a [CachedVertex<K::Vertex>] = cache;
+        let classify = |t: usize| classify(&mesh, transform, cache, &layout, opts.cull, t);
+        let bins = bins::sort(&layout, mesh.triangle_count(), classify, bins)?;
+        if carry.len() < 2 * bins.crossing {
+            return Err(RenderError::BufferTooSmall {
+                buffer: "carry",
+                needed: 2 * bins.crossing,
+                got: carry.len(),
+            });
+        }
+        Ok(MeshDraw {
+            mesh,
+            transform: *transform,
+            kernel,
+            layout,
+            cache,
+            bins,
+            carry,
+            carried: 0,
+            half: 0,
+        })
+    }
+
+    /// Resume records this frame needs (twice the largest number of
+    /// triangles crossing one band boundary).
+    pub fn carry_needed(&self) -> usize {
+        2 * self.bins.crossing
+    }
+
+    /// Draws triangle `tri` into `band`, starting at the band's first row when
+    /// `resume` holds its edge columns there; the edge columns at the next
+    /// band's first row when it continues.
+    fn triangle(
+        &self,
+        tri: u16,
+        resume: Option<(i32, i32)>,
+        band: &mut BandView<'_, K::Color>,
+    ) -> Option<Carry> {
+        let idx = self.mesh.triangles().get(tri as usize)?.map(usize::from);
+        let v = [
+            self.cache.get(idx[0])?,
+            self.cache.get(idx[1])?,
+            self.cache.get(idx[2])?,
+        ];
+        if !(v[0].inside() && v[1].inside() && v[2].inside()) {
+            return self.clipped(tri, idx, band);
+        }
+        let xy = v.map(|c| (i32::from(c.x), i32::from(c.y)));
+        let eye = if K::NEEDS_POSITION {
+            idx.map(|i| {
+                self.mesh
+                    .positions()
+                    .get(i)
+                    .map_or([0; 3], |p| self.transform.eye(*p))
+            })
+        } else {
+            [[0; 3]; 3]
+        };
+        let next = self.draw_setup(
+            xy,
+            [v[0].z, v[1].z, v[2].z],
+            [&v[0].v, &v[1].v, &v[2].v],
+            eye,
+            resume,
+            band,
+        )?;
+        Some(Carry {
+            tri,
+            long: next.0 as i16,
+            short: next.1 as i16,
+        })
+    }
+
+    /// Sets up and draws one triangle inside the window; the edge columns at
+    /// the next band's first row when it continues.
+    fn draw_setup(
+        &self,
+        xy: [(i32, i32); 3],
+        z: [u16; 3],
+        pay: [&K::Vertex; 3],
+        eye: [[i32; 3]; 3],
+        resume: Option<(i32, i32)>,
+        band: &mut BandView<'_, K::Color>,
+    ) -> Option<(i32, i32)> {
+        let mut s = Setup::new(xy, Cull::None)?;
+        s.prepare_planes();
+        let o = s.order;
+        let row0 = s.rows.0;
+        let mut zp = s.plane(o.map(|i| i32::from(z[i])), row0);
+        let zbase = (i32::from(z[o[s.tmb[0]]]) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
+        let mut t = self
+            .kernel
+            .triangle(&s, o.map(|i| pay[i]), o.map(|i| eye[i]));
+        let rows = band.rows();
+        let mut w = match resume {
+            Some(cols) => Walker::resume(&s, rows.start, cols),
+            None => s.walker(rows.start),
+        };
+        let skip = w.y - row0;
+        if skip > 0 {
+            K::skip_rows(&mut t, skip);
+            zp.skip_rows(skip);
+        }
+        let last = w.last.min(rows.end - 1);
+        let width = band.width() as i32;
+        while w.y <= last {
+            let y = w.y;
+            let (lo, hi) = w.next();
+            let (lo, hi) = (lo.max(0), hi.min(width - 1));
+            if lo <= hi {
+                let n = (hi - lo + 1) as usize;
+                let (z0, dz) = zp.clamped(lo, n as i32);
+                if let Some((color, depth)) = band.span(lo, y, n) {
+                    self.kernel
+                        .run(&t, lo, y, zbase.wrapping_add(z0), dz, color, depth);
+                }
+            }
+            K::next_row(&mut t);
+            zp.next_row();
+        }
+        w.more().then(|| w.snapshot())
+    }
+
+    /// A triangle with a vertex outside the set-up window: clipped to the
+    /// window in full precision, the pieces drawn for this band; set up again
+    /// in every band it continues into.
+    fn clipped(
+        &self,
+        tri: u16,
+        idx: [usize; 3],
+        band: &mut BandView<'_, K::Color>,
+    ) -> Option<Carry> {
+        let mut pts = [Point::<K::Vertex>::default(); 3];
+        for (p, &i) in pts.iter_mut().zip(idx.iter()) {
+            let pos = *self.mesh.positions().get(i)?;
+            let s = self.transform.project(pos);
+            *p = Point {
+                x: s.x,
+                y: s.y,
+                z: i32::from(s.z),
+                v: self.cache.get(i)?.v,
+                eye: if K::NEEDS_POSITION {
+                    self.transform.eye(pos)
+                } else {
+                    [0; 3]
+                },
+            };
+        }
+        let mut poly = Polygon::new(&pts);
+        poly.clip_to_window();
+        let rows = band.rows();
+        let mut more = false;
+        let mut t = [pts[0]; 3];
+        let mut k = 0;
+        while poly.fan(k, &mut t) {
+            k += 1;
+            // the pieces' rows beyond this band are drawn in later bands
+            let bottom = t.iter().map(|p| p.y).max().unwrap_or(0);
+            if ((bottom - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS) >= rows.end {
+                more = true;
+            }
+            let xy = t.map(|p| (p.x, p.y));
+            let z = t.map(|p| p.z.clamp(0, 65535) as u16);
+            let eye = t.map(|p| p.eye);
+            let _ = self.draw_setup(xy, z, [&t[0].v, &t[1].v, &t[2].v], eye, None, band);
+        }
+        more.then_some(Carry {
+            tri,
+            long: Carry::CLIPPED,
+            short: 0,
+        })
+    }
+}
+
+impl<K: Kernel> DrawBand<K::Color> for MeshDraw<'_, K>
+where
+    K::Vertex: Lerp,
+{
+    fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
+        let rows = band.rows();
+        let b = self.layout.band_of(rows.start.max(0) as u32);
+        let new = self.bins.band(b);
+        // a new band without a carried list (the first band, or a full frame)
+        if b == 0 {
+            self.carried = 0;
+        }
+        // the carry slice is taken out of `self` while triangles are drawn
+        let carry = core::mem::take(&mut self.carry);
+        let cap = carry.len() / 2;
+        let (read, write) = carry.split_at_mut(cap);
+        let (old, out) = if self.half == 0 {
+            (read, write)
+        } else {
+            (write, read)
+        };
+        let old = &old[..self.carried.min(old.len())];
+        let mut written = 0;
+        let (mut i, mut j) = (0, 0);
+        // merge by triangle index: within the band, mesh order
+        loop {
+            let take_old = match (old.get(i), new.get(j)) {
+                (Some(o), Some(&n)) => o.tri < n,
+                (Some(_), None) => true,
+                (None, Some(_)) => false,
+                (None, None) => break,
+            };
+            let next = if take_old {
+                let c = old[i];
+                i += 1;
+                let resume =
+                    (c.long != Carry::CLIPPED).then_some((i32::from(c.long), i32::from(c.short)));
+                self.triangle(c.tri, resume, band)
+            } else {
+                let t = new[j];
+                j += 1;
+                self.triangle(t, None, band)
+            };
+            if let Some(c) = next {
+                if let Some(slot) = out.get_mut(written) {
+                    *slot = c;
+                    written += 1;
+                }
+            }
+        }
+        self.carried = written;
+        self.half ^= 1;
+        self.carry = carry;
+    }
+}
+
+/// A vertex of the clipping path.
+#[derive(Clone, Copy, Debug, Default)]
+struct Point<V> {
+    x: i32,
+    y: i32,
+    z: i32,
+    v: V,
+    eye: [i32; 3],
+}
+
+/// A vertex payload the clipping path can interpolate.
+pub trait Lerp: Copy {
+    /// The payload `num/den` of the way from `self` to `other`.
+    fn lerp(&self, other: &Self, num: u32, den: u32) -> Self;
+}
+
+impl Lerp for [u16; 3] {
+    fn lerp(&self, o: &Self, num: u32, den: u32) -> Self {
+        core::array::from_fn(|i| lerp_i32(i32::from(self[i]), i32::from(o[i]), num, den) as u16)
+    }
+}
+
+impl Lerp for [i16; 3] {
+    fn lerp(&self, o: &Self, num: u32, den: u32) -> Self {
+        core::array::from_fn(|i| lerp_i32(i32::from(self[i]), i32::from(o[i]), num, den) as i16)
+    }
+}
+
+impl<V: Lerp + Default> ClipPoint for Point<V> {
+    #[inline]
+    fn xy(&self) -> (i32, i32) {
+        (self.x, self.y)
+    }
+
+    fn cut(&self, o: &Self, num: u32, den: u32, xy: (i32, i32)) -> Self {
+        let l = |a: i32, b: i32| lerp_i32(a, b, num, den);
+        Point {
+            x: xy.0,
+            y: xy.1,
+            z: l(self.z, o.z),
+            v: self.v.lerp(&o.v, num, den),
+            eye: core::array::from_fn(|i| l(self.eye[i], o.eye[i])),
+        }
+    }
+}
+
+/// The rows of triangle `t` clamped to the frame, or `None` when it is culled,
+/// degenerate or outside the frame.
+fn classify<V>(
+    mesh: &Mesh<'_>,
+    transform: &MeshTransform<Orthographic>,
+    cache: &[CachedVertex<V>],
+    layout: &Layout,
+    cull: Cull,
+    t: usize,
+) -> Option<(u32, u32)> {
+    let idx = mesh.triangles().get(t)?;
+    let v = [
+        cache.get(usize::from(idx[0]))?,
+        cache.get(usize::from(idx[1]))?,
+        cache.get(usize::from(idx[2]))?,
+    ];
+    let (xy, front) = if v[0].inside() && v[1].inside() && v[2].inside() {
+        let p = v.map(|c| (i32::from(c.x), i32::from(c.y)));
+        // A > 0: clockwise on the screen (a back face); products < 2^30
+        let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0);
+        if area == 0 {
+            return None;
+        }
+        (p, area < 0)
+    } else {
+        let p = [0, 1, 2].map(|k| {
+            let s = mesh
+                .positions()
+                .get(usize::from(idx[k]))
+                .map(|pos| transform.project(*pos))
+                .map_or((0, 0), |s| (s.x, s.y));
+            s
+        });
+        let d1 = (
+            i64::from(p[1].0) - i64::from(p[0].0),
+            i64::from(p[1].1) - i64::from(p[0].1),
+        );
+        let d2 = (
+            i64::from(p[2].0) - i64::from(p[0].0),
+            i64::from(p[2].1) - i64::from(p[0].1),
+        );
+        match crate::raster::clip::cmp_products(d1.0, d2.1, d1.1, d2.0) {
+            core::cmp::Ordering::Equal => return None,
+            o => (p, o == core::cmp::Ordering::Less),
+        }
+    };
+    let culled = match cull {
+        Cull::None => false,
+        Cull::Back => !front,
+        Cull::Front => front,
+    };
+    if culled {
+        return None;
+    }
+    let (ymin, ymax) = (
+        xy[0].1.min(xy[1].1).min(xy[2].1),
+        xy[0].1.max(xy[1].1).max(xy[2].1),
+    );
+    let (xmin, xmax) = (
+        xy[0].0.min(xy[1].0).min(xy[2].0),
+        xy[0].0.max(xy[1].0).max(xy[2].0),
+    );
+    let half = 1 << (SUBPIXEL_BITS - 1);
+    // rows whose centre lies in [ymin, ymax], columns likewise
+    let r0 = (ymin
+        .saturating_sub(half)
+        .saturating_add((1 << SUBPIXEL_BITS) - 1))
+        >> SUBPIXEL_BITS;
+    let r1 = ymax.saturating_sub(half) >> SUBPIXEL_BITS;
+    let c0 = (xmin
+        .saturating_sub(half)
+        .saturating_add((1 << SUBPIXEL_BITS) - 1))
+        >> SUBPIXEL_BITS;
+    let c1 = xmax.saturating_sub(half) >> SUBPIXEL_BITS;
+    let (h, w) = (layout.height() as i32, layout.width() as i32);
+    if r1 < 0 || r0 >= h || r0 > r1 || c1 < 0 || c0 >= w || c0 > c1 {
+        return None;
+    }
+    Some((r0.max(0) as u32, r1.min(h - 1) as u32))
+}

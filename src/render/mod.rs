@@ -1,0 +1,428 @@
+//! The mesh renderer: the call a firmware makes once per mesh per frame.
+//!
+//! The frame pipeline, one module per stage:
+//!
+//! | stage | where | per frame |
+//! |---|---|---|
+//! | mesh | [`crate::mesh::Mesh`] | in flash: `i16` positions, Q14 normals, `u16` triangles |
+//! | vertex stage | [`vertex`] | transform, project and (flat/Gouraud) light every vertex once, into the caller's vertex cache |
+//! | bins | [`bins`] | cull back faces; sort the visible triangles by the band they start in |
+//! | set-up | [`crate::raster`] | 32-bit set-up once per triangle; a triangle crossing a band boundary resumes from a 6-byte record |
+//! | spans | [`crate::shade::Kernel`] | the mode's depth-fused span kernel |
+//! | framebuffer | [`Bands`], [`FullFrame`] | a band strip flushed to any `DrawTarget`, or a whole frame in memory |
+//!
+//! All memory is the caller's: the vertex cache (one [`CachedVertex`] per
+//! mesh vertex), the bins (`u16`s, see [`bins_len`]), the resume records
+//! ([`Carry`], see [`MeshDraw::carry_needed`]), the colour strip and the depth
+//! strip. Nothing is allocated, nothing panics; a buffer too small is a
+//! [`RenderError`] before anything is drawn.
+//!
+//! Drawing order: within every band the triangles of a mesh are drawn in the
+//! order of the mesh, and meshes in the order given, so a frame rendered in
+//! bands is bit-for-bit the frame rendered whole.
+
+pub mod bins;
+mod draw;
+pub mod vertex;
+
+pub use draw::{Carry, DrawOptions, Lerp, MeshDraw};
+pub use vertex::CachedVertex;
+
+use core::fmt;
+use core::ops::Range;
+
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::pixelcolor::PixelColor;
+use embedded_graphics_core::primitives::Rectangle;
+
+/// The largest frame width and height the renderer accepts: 1024.
+pub const MAX_SIZE: u32 = 1024;
+
+/// Why a frame could not be rendered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum RenderError<E = core::convert::Infallible> {
+    /// The frame is empty or larger than [`MAX_SIZE`], or a band has no rows.
+    Size,
+    /// A caller-owned buffer is too small.
+    BufferTooSmall {
+        /// Which buffer.
+        buffer: &'static str,
+        /// Elements needed.
+        needed: usize,
+        /// Elements given.
+        got: usize,
+    },
+    /// A mesh has more vertices than the vertex cache or than `u16` indices address.
+    TooManyVertices,
+    /// The display returned an error.
+    Display(E),
+}
+
+impl<E: fmt::Debug> fmt::Display for RenderError<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RenderError::Size => write!(f, "frame size out of range (1..={MAX_SIZE})"),
+            RenderError::BufferTooSmall {
+                buffer,
+                needed,
+                got,
+            } => {
+                write!(f, "{buffer} too small: {needed} needed, {got} given")
+            }
+            RenderError::TooManyVertices => f.write_str("too many vertices"),
+            RenderError::Display(e) => write!(f, "display error: {e:?}"),
+        }
+    }
+}
+
+impl<E: fmt::Debug> core::error::Error for RenderError<E> {}
+
+impl RenderError {
+    /// The same error for a display whose error type is `E` (this one carries
+    /// no display error).
+    pub fn widen<E>(self) -> RenderError<E> {
+        match self {
+            RenderError::Size => RenderError::Size,
+            RenderError::BufferTooSmall {
+                buffer,
+                needed,
+                got,
+            } => RenderError::BufferTooSmall {
+                buffer,
+                needed,
+                got,
+            },
+            RenderError::TooManyVertices => RenderError::TooManyVertices,
+            RenderError::Display(e) => match e {},
+        }
+    }
+}
+
+/// The band layout of a frame: `width` × `height` pixels drawn `band_rows`
+/// rows at a time (the whole height for a full frame).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Layout {
+    width: u32,
+    height: u32,
+    band_rows: u32,
+}
+
+impl Layout {
+    /// A frame drawn in bands of `band_rows` rows.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::Size`] unless `1 ≤ width, height ≤ MAX_SIZE` and
+    /// `band_rows ≥ 1`.
+    pub fn banded(width: u32, height: u32, band_rows: u32) -> Result<Layout, RenderError> {
+        if !(1..=MAX_SIZE).contains(&width) || !(1..=MAX_SIZE).contains(&height) || band_rows == 0 {
+            return Err(RenderError::Size);
+        }
+        Ok(Layout {
+            width,
+            height,
+            band_rows: band_rows.min(height),
+        })
+    }
+
+    /// A frame drawn whole (one band).
+    ///
+    /// # Errors
+    ///
+    /// As [`Layout::banded`].
+    pub fn full(width: u32, height: u32) -> Result<Layout, RenderError> {
+        Layout::banded(width, height, height)
+    }
+
+    /// Frame width.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Frame height.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Rows per band (the last band may have fewer).
+    pub fn band_rows(&self) -> u32 {
+        self.band_rows
+    }
+
+    /// Number of bands.
+    pub fn bands(&self) -> u32 {
+        self.height.div_ceil(self.band_rows)
+    }
+
+    /// The rows of band `b`.
+    pub fn rows(&self, b: u32) -> Range<i32> {
+        let start = b.saturating_mul(self.band_rows).min(self.height);
+        let end = start.saturating_add(self.band_rows).min(self.height);
+        start as i32..end as i32
+    }
+
+    /// The band containing row `y` (`0 ≤ y < height`).
+    #[inline]
+    pub(crate) fn band_of(&self, y: u32) -> u32 {
+        if self.band_rows.is_power_of_two() {
+            y >> self.band_rows.trailing_zeros()
+        } else {
+            y / self.band_rows
+        }
+    }
+}
+
+/// The pixels of one band while it is drawn: colour and (optional) depth rows
+/// in memory.
+#[derive(Debug)]
+pub struct BandView<'a, C> {
+    color: &'a mut [C],
+    depth: Option<&'a mut [u16]>,
+    width: u32,
+    rows: Range<i32>,
+}
+
+impl<'a, C> BandView<'a, C> {
+    /// The frame rows this band holds.
+    pub fn rows(&self) -> Range<i32> {
+        self.rows.clone()
+    }
+
+    /// The frame width.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Colour and depth of pixels `x..x + n` of frame row `y` (inside the band).
+    #[inline(always)]
+    pub(crate) fn span(
+        &mut self,
+        x: i32,
+        y: i32,
+        n: usize,
+    ) -> Option<(&mut [C], Option<&mut [u16]>)> {
+        let row = (y - self.rows.start) as usize * self.width as usize + x as usize;
+        let color = self.color.get_mut(row..row + n)?;
+        match self.depth.as_deref_mut() {
+            None => Some((color, None)),
+            Some(d) => Some((color, Some(d.get_mut(row..row + n)?))),
+        }
+    }
+}
+
+/// Something drawn band by band: a prepared mesh ([`MeshDraw`]), or anything
+/// else with the same interface (object-safe, so meshes with different
+/// shaders share one call).
+pub trait DrawBand<C> {
+    /// Draws what falls into `band`. Bands come in order, from the top, once
+    /// per frame.
+    fn draw_band(&mut self, band: &mut BandView<'_, C>);
+}
+
+/// A frame drawn in horizontal bands through a caller-owned strip, each band
+/// flushed to a [`DrawTarget`] (a display driver, the simulator).
+///
+/// RAM: `width · band_rows` colours and (with depth testing) as many `u16`s:
+/// 7.5 KiB for a 240 × 240 `Rgb565` frame in 8-row bands.
+#[derive(Debug)]
+pub struct Bands<'a, C> {
+    layout: Layout,
+    strip: &'a mut [C],
+    depth: Option<&'a mut [u16]>,
+}
+
+impl<'a, C: PixelColor> Bands<'a, C> {
+    /// A band renderer for `layout` over `strip` (at least `width · band_rows`
+    /// colours) and `depth` (as many values, or `None` for no depth test).
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::BufferTooSmall`] for a short strip or depth strip.
+    pub fn new(
+        layout: Layout,
+        strip: &'a mut [C],
+        depth: Option<&'a mut [u16]>,
+    ) -> Result<Self, RenderError> {
+        let needed = layout.width as usize * layout.band_rows as usize;
+        if strip.len() < needed {
+            return Err(RenderError::BufferTooSmall {
+                buffer: "colour strip",
+                needed,
+                got: strip.len(),
+            });
+        }
+        if let Some(d) = depth.as_deref() {
+            if d.len() < needed {
+                return Err(RenderError::BufferTooSmall {
+                    buffer: "depth strip",
+                    needed,
+                    got: d.len(),
+                });
+            }
+        }
+        Ok(Bands {
+            layout,
+            strip,
+            depth,
+        })
+    }
+
+    /// The layout.
+    pub fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    /// Renders a frame: for every band, clears the strip to `clear` and the
+    /// depth strip to `u16::MAX`, lets every item draw, and sends the band to
+    /// `display` with one `fill_contiguous`. Stops at the first display error.
+    pub fn render<D: DrawTarget<Color = C>>(
+        &mut self,
+        display: &mut D,
+        clear: C,
+        items: &mut [&mut dyn DrawBand<C>],
+    ) -> Result<(), D::Error> {
+        let w = self.layout.width as usize;
+        for b in 0..self.layout.bands() {
+            let rows = self.layout.rows(b);
+            let n = (rows.end - rows.start) as usize * w;
+            let (Some(color), depth) = (self.strip.get_mut(..n), self.depth.as_deref_mut()) else {
+                return Ok(());
+            };
+            fill(color, clear);
+            let depth = depth.and_then(|d| d.get_mut(..n));
+            let depth = depth.map(|d| {
+                fill(d, u16::MAX);
+                d
+            });
+            let mut view = BandView {
+                color,
+                depth,
+                width: self.layout.width,
+                rows: rows.clone(),
+            };
+            for item in items.iter_mut() {
+                item.draw_band(&mut view);
+            }
+            let area = Rectangle::new(
+                Point::new(0, rows.start),
+                Size::new(self.layout.width, (rows.end - rows.start) as u32),
+            );
+            display.fill_contiguous(&area, view.color.iter().copied())?;
+        }
+        Ok(())
+    }
+}
+
+/// A whole frame in caller-owned memory (row-major, `width` per row), with an
+/// optional depth buffer of the same size.
+#[derive(Debug)]
+pub struct FullFrame<'a, C> {
+    layout: Layout,
+    color: &'a mut [C],
+    depth: Option<&'a mut [u16]>,
+}
+
+impl<'a, C: PixelColor> FullFrame<'a, C> {
+    /// A frame over `color` (and `depth`), `width · height` elements each.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::Size`] for a size out of range;
+    /// [`RenderError::BufferTooSmall`] for short buffers.
+    pub fn new(
+        width: u32,
+        height: u32,
+        color: &'a mut [C],
+        depth: Option<&'a mut [u16]>,
+    ) -> Result<Self, RenderError> {
+        let layout = Layout::full(width, height)?;
+        let needed = width as usize * height as usize;
+        if color.len() < needed {
+            return Err(RenderError::BufferTooSmall {
+                buffer: "frame",
+                needed,
+                got: color.len(),
+            });
+        }
+        if let Some(d) = depth.as_deref() {
+            if d.len() < needed {
+                return Err(RenderError::BufferTooSmall {
+                    buffer: "depth buffer",
+                    needed,
+                    got: d.len(),
+                });
+            }
+        }
+        Ok(FullFrame {
+            layout,
+            color,
+            depth,
+        })
+    }
+
+    /// The layout (one band).
+    pub fn layout(&self) -> Layout {
+        self.layout
+    }
+
+    /// Clears the frame to `clear` and the depth buffer to `u16::MAX`, then
+    /// lets every item draw.
+    pub fn render(&mut self, clear: C, items: &mut [&mut dyn DrawBand<C>]) {
+        let n = self.layout.width as usize * self.layout.height as usize;
+        let Some(color) = self.color.get_mut(..n) else {
+            return;
+        };
+        fill(color, clear);
+        let depth = self
+            .depth
+            .as_deref_mut()
+            .and_then(|d| d.get_mut(..n))
+            .map(|d| {
+                fill(d, u16::MAX);
+                d
+            });
+        let mut view = BandView {
+            color,
+            depth,
+            width: self.layout.width,
+            rows: 0..self.layout.height as i32,
+        };
+        for item in items.iter_mut() {
+            item.draw_band(&mut view);
+        }
+    }
+
+    /// The pixels.
+    pub fn pixels(&self) -> &[C] {
+        self.color
+    }
+
+    /// Sends the frame to `display` with one `fill_contiguous`.
+    pub fn flush<D: DrawTarget<Color = C>>(&self, display: &mut D) -> Result<(), D::Error> {
+        let n = self.layout.width as usize * self.layout.height as usize;
+        let area = Rectangle::new(
+            Point::zero(),
+            Size::new(self.layout.width, self.layout.height),
+        );
+        display.fill_contiguous(&area, self.color.iter().take(n).copied())
+    }
+}
+
+/// Sets every element (a plain loop the compiler turns into wide stores).
+#[inline]
+fn fill<T: Copy>(buf: &mut [T], v: T) {
+    for x in buf.iter_mut() {
+        *x = v;
+    }
+}
+
+/// The length of the bins slice [`MeshDraw`] needs for a mesh of `triangles`
+/// triangles in a frame of `bands` bands: `2·(bands + 1) + triangles` (the
+/// band heads, the boundary crossings and one index per visible triangle; with
+/// back faces culled about half the triangles of a closed mesh are visible, so
+/// a smaller slice often suffices: [`MeshDraw::new`] reports the need).
+pub const fn bins_len(triangles: usize, bands: usize) -> usize {
+    2 * (bands + 1) + triangles
+}

@@ -1,0 +1,77 @@
+//! The standard scene of the frame measurements: one lit sphere filling 85 %
+//! of a 240 × 240 frame (issue 8 of the project; `measure/frame.py`, the
+//! firmware examples and the tests render exactly this).
+//!
+//! 240 × 240 `Rgb565`, black background; UV sphere of radius 1 with 24 slices
+//! × 16 stacks (362 vertices, 720 triangles) at the origin; view = translation
+//! by (0, 0, −5); orthographic projection ±1/0.85 on x and y, near 1, far 10;
+//! one white directional light towards (1, 1, 1) with ambient, diffuse and
+//! specular intensity 1; viewer at infinity; material ambient
+//! (0.08, 0.01, 0.01), diffuse (0.8, 0.1, 0.1), specular white, shininess 32;
+//! depth test on; back faces culled.
+
+use crate::camera::{Camera, MeshTransform, Orthographic};
+use crate::error::ParamError;
+use crate::light::{DirectionalLight, LightColors};
+use crate::lighting::{BlinnPhong, Lambert, Lighting};
+use crate::material::{Material, MaterialDesc};
+use crate::mesh::{uv_sphere_counts, Mat4, MeshData, MeshError, Viewport};
+use crate::num::Scalar;
+
+/// Frame width and height.
+pub const SIZE: u32 = 240;
+
+/// Vertices and triangles of the sphere.
+pub const COUNTS: (usize, usize) = uv_sphere_counts(16, 24);
+
+/// The sphere, built at compile time (in flash).
+pub static SPHERE: MeshData<{ COUNTS.0 }, { COUNTS.1 }> = MeshData::uv_sphere(16, 24, 14);
+
+/// The camera.
+pub fn camera() -> Result<Camera<Orthographic>, MeshError> {
+    let s = 1.0 / 0.85;
+    Ok(Camera::orthographic(
+        -s,
+        s,
+        -s,
+        s,
+        1.0,
+        10.0,
+        Viewport::new(0, 0, SIZE as i32, SIZE as i32)?,
+    )?
+    .with_view(Mat4::translate([0.0, 0.0, -5.0])))
+}
+
+/// The sphere's fixed-point transform (model matrix: identity).
+pub fn transform() -> Result<MeshTransform<Orthographic>, MeshError> {
+    camera()?.mesh_transform(&Mat4::IDENTITY, SPHERE.frac)
+}
+
+/// The material.
+pub fn material() -> MaterialDesc {
+    MaterialDesc {
+        ambient: [0.08, 0.01, 0.01],
+        diffuse: [0.8, 0.1, 0.1],
+        specular: [1.0; 3],
+        shininess: 32.0,
+        ..MaterialDesc::default()
+    }
+}
+
+/// The light.
+pub fn light<S: Scalar>() -> Result<DirectionalLight<S>, ParamError> {
+    DirectionalLight::new(
+        [1.0, 1.0, 1.0],
+        LightColors::new([1.0; 3], [1.0; 3], [1.0; 3])?,
+    )
+}
+
+/// The lighting with Blinn-Phong specular.
+pub fn blinn<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, BlinnPhong>, ParamError> {
+    Ok(Lighting::new(light()?, Material::new(&material())?))
+}
+
+/// The lighting without specular (ambient + Lambert diffuse).
+pub fn lambert<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, Lambert>, ParamError> {
+    Ok(Lighting::new(light()?, Material::new(&material())?))
+}

@@ -1,0 +1,155 @@
+//! The mesh renderer on the standard scene: banded equals full frame bit for
+//! bit, the same pixels as the per-triangle path (coverage exactly, colours to
+//! a stated bound), every shading mode.
+
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use embedded_graphics_core::prelude::*;
+use fixshade::prelude::*;
+use fixshade::render::{
+    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw,
+};
+use fixshade::shade::Kernel;
+use fixshade::standard;
+use fixshade::target::Checksum;
+
+const W: u32 = standard::SIZE;
+const NV: usize = standard::COUNTS.0;
+const NT: usize = standard::COUNTS.1;
+
+/// Renders the standard scene with `kernel` in bands of `band_rows` rows;
+/// returns the pixels and the checksum of the stream sent to the display.
+fn render<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> (Vec<Rgb565>, u32)
+where
+    K::Vertex: fixshade::render::Lerp,
+{
+    let layout = Layout::banded(W, W, band_rows).unwrap();
+    let mesh = standard::SPHERE.mesh();
+    let t = standard::transform().unwrap();
+    let mut cache = vec![CachedVertex::<K::Vertex>::default(); NV];
+    let mut bins = vec![0u16; bins_len(NT, layout.bands() as usize)];
+    let mut carry = vec![Carry::default(); 128];
+    let mut draw = MeshDraw::new(
+        layout,
+        mesh,
+        &t,
+        kernel,
+        Default::default(),
+        &mut cache,
+        &mut bins,
+        &mut carry,
+    )
+    .unwrap();
+    let mut strip = vec![Rgb565::BLACK; (W * band_rows) as usize];
+    let mut depth = vec![0u16; (W * band_rows) as usize];
+    let mut bands = Bands::new(layout, &mut strip, Some(&mut depth)).unwrap();
+    let mut sink = Recorder(Vec::new(), Checksum::new(Size::new(W, W)));
+    let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
+    bands.render(&mut sink, Rgb565::BLACK, items).unwrap();
+    (sink.0, sink.1.value())
+}
+
+/// Records the pixel stream and checksums it.
+struct Recorder(Vec<Rgb565>, Checksum<Rgb565>);
+impl OriginDimensions for Recorder {
+    fn size(&self) -> Size {
+        Size::new(W, W)
+    }
+}
+impl DrawTarget for Recorder {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        _: I,
+    ) -> Result<(), Self::Error> {
+        unreachable!("the band renderer sends whole bands")
+    }
+    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
+        &mut self,
+        area: &embedded_graphics_core::primitives::Rectangle,
+        colors: I,
+    ) -> Result<(), Self::Error> {
+        let c: Vec<Rgb565> = colors.into_iter().collect();
+        self.0.extend_from_slice(&c);
+        self.1.fill_contiguous(area, c)
+    }
+}
+
+#[test]
+fn bands_equal_full_frame_bit_for_bit() {
+    let lit = standard::blinn::<Q14>().unwrap();
+    let lam = standard::lambert::<Q14>().unwrap();
+    for rows in [240, 8, 1, 5, 17] {
+        let g = render(Shader::new(GouraudShading, &lit, Linear), rows);
+        let g_full = render(Shader::new(GouraudShading, &lit, Linear), 240);
+        assert_eq!(g.0, g_full.0, "gouraud, {rows}-row bands");
+        assert_eq!(g.1, g_full.1);
+        let f = render(Shader::new(FlatShading, &lam, Linear), rows);
+        let f_full = render(Shader::new(FlatShading, &lam, Linear), 240);
+        assert_eq!(f.0, f_full.0, "flat, {rows}-row bands");
+        let p = render(Shader::new(PhongShading, &lit, Linear), rows);
+        let p_full = render(Shader::new(PhongShading, &lit, Linear), 240);
+        assert_eq!(p.0, p_full.0, "phong, {rows}-row bands");
+    }
+    let (px, _) = render(Shader::new(GouraudShading, &lit, Linear), 8);
+    let lit_px = px.iter().filter(|p| **p != Rgb565::BLACK).count();
+    // the sphere covers 85 % of the width: π·102² ≈ 32 700 pixels
+    assert!((32_000..33_500).contains(&lit_px), "{lit_px} lit pixels");
+}
+
+#[test]
+fn full_frame_target_matches_bands() {
+    let lit = standard::blinn::<Q14>().unwrap();
+    let (banded, _) = render(Shader::new(GouraudShading, &lit, Linear), 8);
+    let layout = Layout::full(W, W).unwrap();
+    let mesh = standard::SPHERE.mesh();
+    let t = standard::transform().unwrap();
+    let mut cache = vec![CachedVertex::default(); NV];
+    let mut bins = vec![0u16; bins_len(NT, 1)];
+    let mut draw = MeshDraw::new(
+        layout,
+        mesh,
+        &t,
+        Shader::new(GouraudShading, &lit, Linear),
+        Default::default(),
+        &mut cache,
+        &mut bins,
+        &mut [],
+    )
+    .unwrap();
+    let mut color = vec![Rgb565::BLACK; (W * W) as usize];
+    let mut depth = vec![0u16; (W * W) as usize];
+    let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth)).unwrap();
+    frame.render(Rgb565::BLACK, &mut [&mut draw]);
+    assert_eq!(frame.pixels(), &banded[..]);
+}
+
+#[test]
+#[ignore]
+fn write_pngs() {
+    use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+    let lit = standard::blinn::<Q14>().unwrap();
+    let lam = standard::lambert::<Q14>().unwrap();
+    let imgs = [
+        ("flat", render(Shader::new(FlatShading, &lam, Linear), 8).0),
+        (
+            "gouraud",
+            render(Shader::new(GouraudShading, &lit, Linear), 8).0,
+        ),
+        (
+            "phong",
+            render(Shader::new(PhongShading, &lit, Linear), 8).0,
+        ),
+    ];
+    for (name, px) in imgs {
+        let mut d = SimulatorDisplay::<Rgb565>::new(Size::new(W, W));
+        d.fill_contiguous(
+            &embedded_graphics_core::primitives::Rectangle::new(Point::zero(), Size::new(W, W)),
+            px,
+        )
+        .unwrap();
+        d.to_rgb_output_image(&OutputSettingsBuilder::new().build())
+            .save_png(format!("/tmp/std_{name}.png"))
+            .unwrap();
+    }
+}
