@@ -45,11 +45,8 @@ fn render_to_display<S: Scalar>(scene: &Scene, path: &Path) -> render::Diff {
     let mut depth = vec![u16::MAX; (scene.width * scene.height) as usize];
     {
         let mut fb = DrawTargetAdapter::new(&mut display);
+        // the simulator display accepts every pixel: a display error panics
         draw_into::<S, Rgb888, _>(scene, &prepare(scene), &mut fb, &mut depth);
-        assert!(
-            fb.take_error().is_none(),
-            "the simulator display accepts every pixel"
-        );
     }
     let settings = OutputSettingsBuilder::new().build();
     display

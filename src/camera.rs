@@ -4,8 +4,7 @@
 //!
 //! A [`Camera`] is built in `f32` (once per frame on an FPU core; on a Cortex-M0
 //! the few hundred soft-float operations of one matrix product are a fixed
-//! cost per frame, and [`MeshTransform::from_fixed`] builds the same transform
-//! from integers). [`Camera::mesh_transform`] converts the product
+//! cost per frame). [`Camera::mesh_transform`] converts the product
 //! `viewport · projection · view · model` to rows of `i32` elements with a
 //! block exponent per row: a vertex position (`i16`) is transformed with two
 //! 16 × 16-bit products per element (one `MULS` each on a Cortex-M0), no
@@ -427,11 +426,6 @@ impl<P: Projection> MeshTransform<P> {
     /// The screen centre in sub-pixels.
     pub fn centre(&self) -> [f32; 2] {
         self.centre
-    }
-
-    /// The screen rows (x, y, z, w).
-    pub(crate) fn rows(&self) -> [&Row; 4] {
-        [&self.x, &self.y, &self.z, &self.w]
     }
 }
 

@@ -1,23 +1,61 @@
 //! **fixshade** lights and shades 3D triangles on microcontroller displays:
-//! `#![no_std]`, no allocation, fixed-point arithmetic, pixels written through any
-//! embedded-graphics `DrawTarget`.
+//! `#![no_std]`, no allocation, 32-bit fixed-point arithmetic, pixels written
+//! through any embedded-graphics `DrawTarget`.
 //!
-//! # The pipeline
+//! # The frame pipeline
 //!
 //! Data flows one way; each stage lives in one module:
 //!
 //! | stage | module | what it does |
 //! |---|---|---|
-//! | numbers | [`num`] | the tiers a pipeline computes in: [`Q14`](num::Q14) (16-bit products, the Cortex-M0 fast path), [`Q30`](num::Q30) (64-bit products, ≤ 1 LSB), `f32` and [`F32Fast`](num::F32Fast) (FPU targets) |
-//! | scene | [`light`], [`material`], [`gl`] | validated lights (directional, point, spot), materials, OpenGL 1.x parameter sets |
-//! | lighting | [`lighting`] | the lighting equation, once, generic over the tier and over which terms exist |
-//! | geometry | [`mesh`] | vertex normals, sphere generators, fixed-point transforms and projection, near-plane clipping |
-//! | shading | [`shade`] | [`Flat`](shade::Flat), [`Gouraud`](shade::Gouraud) and [`Phong`](shade::Phong) behind the [`Shading`](shade::Shading) trait; encoders for rounding, dithering and gamma ([`color`]) |
-//! | rasterizer | [`raster`] | sub-pixel triangle setup, top-left fill rule, watertight edges, depth runs, perspective-correct attributes |
-//! | framebuffer | [`target`] | a span-oriented [`Framebuffer`](target::Framebuffer) trait: slice framebuffer, band buffer for RAM-poor MCUs, adapter for any `DrawTarget` |
+//! | mesh | [`mesh`] | meshes in flash (`i16` positions, Q14 normals, `u16` triangles), built at compile time by `const fn` generators |
+//! | camera | [`camera`] | projection (a type: [`Orthographic`](camera::Orthographic) or [`Perspective`](camera::Perspective)), view, viewport; the per-mesh fixed-point transform |
+//! | vertex stage | [`render::vertex`] | every vertex transformed, projected and (flat/Gouraud) lit once per frame |
+//! | bins | [`render::bins`] | back faces culled, triangles sorted by the band they start in |
+//! | set-up | [`raster`] | 32-bit triangle set-up, exact edge walking, top-left fill rule, clipping to the guard window |
+//! | spans | [`shade`] | [`FlatShading`](shade::FlatShading), [`GouraudShading`](shade::GouraudShading), [`PhongShading`](shade::PhongShading) and [`IncrementalPhongShading`](shade::IncrementalPhongShading) kernels, depth test fused; rounding, dithering and gamma encoders |
+//! | framebuffer | [`render`], [`target`] | a band strip flushed to any `DrawTarget`, a whole frame in memory, or the per-triangle [`Framebuffer`](target::Framebuffer) |
 //!
-//! The `f64` reference model ([`reference`], feature `reference`) evaluates the
-//! same equations plainly; the tests compare every tier with it.
+//! What a pixel reflects — the lighting equation, written once, generic over
+//! the number tier and over which terms exist — lives in [`lighting`], with
+//! [`light`], [`material`] and [`gl`] (OpenGL 1.x parameter sets). The number
+//! tiers are in [`num`]: [`Q14`](num::Q14) (16-bit products, the Cortex-M0
+//! fast path), [`Q30`](num::Q30) (64-bit products, ≤ 1 LSB), `f32` and
+//! [`F32Fast`](num::F32Fast) (FPU targets). The `f64` reference model
+//! ([`reference`], feature `reference`) evaluates the same equations plainly;
+//! the tests compare every tier with it.
+//!
+//! # Example: a lit sphere in 8-row bands
+//!
+//! ```
+//! use fixshade::prelude::*;
+//!
+//! // a mesh in flash, built at compile time
+//! const N: (usize, usize) = uv_sphere_counts(16, 24);
+//! static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(16, 24, 14);
+//!
+//! // camera, light and material
+//! let camera = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, Viewport::new(0, 0, 240, 240)?)?
+//!     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
+//! let light = DirectionalLight::<Q14>::white([1.0, 1.0, 1.0])?;
+//! let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.6, 32.0);
+//! let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&red)?);
+//!
+//! // memory the caller owns: an 8-row strip, its depth, the mesh's buffers
+//! let layout = Layout::banded(240, 240, 8)?;
+//! let mut strip = [Rgb565::BLACK; 240 * 8];
+//! let mut depth = [0u16; 240 * 8];
+//! let mut buffers: MeshBuffers<_, { N.0 }, { bins_len(N.1, 30) }, 64> = MeshBuffers::new();
+//!
+//! // once per frame: transform, light and bin the mesh, then draw band by band
+//! let transform = camera.mesh_transform(&Mat4::rotate_y(0.3), SPHERE.frac)?;
+//! let shader = Shader::new(PhongShading, &lighting, Linear);
+//! let mut sphere = MeshDraw::new(layout, SPHERE.mesh(), &transform, shader, buffers.memory())?;
+//! let mut display = Checksum::new(Size::new(240, 240)); // any DrawTarget: a display driver, the simulator
+//! Bands::new(layout, &mut strip, Some(&mut depth))?.render(&mut display, Rgb565::BLACK, &mut [&mut sphere])?;
+//! assert_eq!(display.pixels(), 240 * 240);
+//! # Ok::<(), Box<dyn core::error::Error>>(())
+//! ```
 //!
 //! # Paying only for what a scene uses
 //!
@@ -25,42 +63,18 @@
 //! attenuation and no cone), the material terms are a type
 //! ([`Lambert`](lighting::Lambert), [`Phong`](lighting::Phong),
 //! [`BlinnPhong`](lighting::BlinnPhong), [`Terms`](lighting::Terms)), and so are
-//! the viewer and the fog: a scene with one directional diffuse light compiles to
-//! code without specular, attenuation or spot evaluation.
+//! the viewer, the fog, the projection and the shading mode: a scene with one
+//! directional diffuse light and an orthographic camera compiles to code
+//! without specular, attenuation, spot evaluation or perspective division.
 //!
 //! # Numbers at the extremes
 //!
 //! Constructors taking `f32` validate their input and return a
-//! [`ParamError`](error::ParamError). Evaluation never panics and never wraps:
-//! every tier saturates (see [`num`]), powers clamp their base to [0, 1], no
-//! specular term appears where `N·L ≤ 0`, and output colours clamp to [0, 1].
-//!
-//! # Example
-//!
-//! ```
-//! use fixshade::prelude::*;
-//! use fixshade::raster::{RasterOptions, SUBPIXEL_BITS};
-//! use fixshade::shade::{Linear, Phong, ShadeVertex, Shading};
-//! use fixshade::target::SliceFramebuffer;
-//! use embedded_graphics_core::pixelcolor::Rgb565;
-//!
-//! // one white light from the upper left, a red plastic material
-//! let light = DirectionalLight::<Q14>::white([-0.4, 0.5, 0.77])?;
-//! let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.6, 32.0);
-//! let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&red)?);
-//!
-//! // a triangle in screen space (1/16 pixel) with eye-space positions and normals
-//! let v = |x: i32, y: i32, n: [f32; 3]| {
-//!     ShadeVertex::<Q14>::new([x << SUBPIXEL_BITS, y << SUBPIXEL_BITS], 0, 1, [0.0; 3], n)
-//! };
-//! let tri = [v(4, 4, [-0.6, 0.6, 0.5]), v(4, 60, [-0.6, -0.6, 0.5]), v(60, 32, [0.7, 0.0, 0.7])];
-//!
-//! let mut pixels = [Rgb565::BLACK; 64 * 64];
-//! let mut fb = SliceFramebuffer::new(&mut pixels, 64, 64)?;
-//! Phong::new(&lighting, Linear).draw(&mut fb, None, &tri, &RasterOptions::default());
-//! assert_ne!(fb.get(20, 32), Some(Rgb565::BLACK));
-//! # Ok::<(), Box<dyn core::error::Error>>(())
-//! ```
+//! [`ParamError`](error::ParamError) (a [`MeshError`](mesh::MeshError) or
+//! [`RenderError`](render::RenderError) for geometry and buffers). Evaluation
+//! never panics and never wraps: every tier saturates (see [`num`]), powers
+//! clamp their base to [0, 1], no specular term appears where `N·L ≤ 0`, and
+//! output colours clamp to [0, 1].
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
@@ -99,6 +113,7 @@ pub mod vector;
 
 /// The types most programs need, for `use fixshade::prelude::*`.
 pub mod prelude {
+    pub use crate::camera::{Camera, MeshTransform, Orthographic, Perspective};
     pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
     pub use crate::error::ParamError;
     pub use crate::light::{
@@ -109,15 +124,28 @@ pub mod prelude {
         Terms,
     };
     pub use crate::material::{AmbientSource, Material, MaterialDesc};
+    pub use crate::mesh::{uv_sphere_counts, Mat4, Mesh, MeshData, Viewport};
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
     pub use crate::raster::{Cull, RasterOptions};
+    pub use crate::render::{bins_len, Bands, FullFrame, Layout, MeshBuffers, MeshDraw};
     pub use crate::shade::{
         Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Linear,
         PhongShading, ShadeVertex, Shader, Shading,
     };
     pub use crate::target::{
-        BandBuffer, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer,
+        BandBuffer, Checksum, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer,
     };
     pub use crate::vector::Vec3;
-    pub use embedded_graphics_core::pixelcolor::RgbColor as _;
+    pub use embedded_graphics_core::geometry::Size;
+    pub use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888, RgbColor};
 }
+
+/// Re-exported so that users need no direct dependency of matching versions:
+/// `heapless` (light sets of a run-time length) and
+/// `embedded_graphics_core` (colours, `DrawTarget`).
+pub use embedded_graphics_core;
+pub use heapless;
+
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;

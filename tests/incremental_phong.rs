@@ -10,7 +10,7 @@ use common::render::{
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use fixshade::prelude::*;
 use fixshade::raster::SpanShader;
-use fixshade::shade::IncrementalPhong;
+use fixshade::shade::{IncrementalPhongShading, Linear, Shader};
 use proptest::prelude::*;
 
 /// The bound the README states for `IncrementalPhong` against the reference:
@@ -100,7 +100,8 @@ proptest! {
         let (start, end) = (attrs(a), attrs(b));
         let step: [i32; 5] = core::array::from_fn(|i| ((end[i] as i64 - start[i] as i64) / len as i64) as i32);
         let mut fast = vec![Rgb888::BLACK; len];
-        IncrementalPhong::<2, 1, BlinnPhong, Rgb888>::new(&lighting).shade_span(0, 0, &start, &step, &mut fast);
+        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear)
+            .shade_span(0, 0, &start, &step, &mut fast);
         let lights = [LightDesc { kind: LightKind::Directional { towards_light: l }, ambient: [0.0; 3], diffuse: [1.0; 3], specular: [1.0; 3] }];
         let r = Reference {
             lights: &lights,

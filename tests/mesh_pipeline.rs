@@ -33,7 +33,6 @@ fn draw(
     let mut fb = SliceFramebuffer::new(&mut pixels, W as u32, H as u32).unwrap();
     let opts = RasterOptions {
         cull,
-        perspective: true,
         ..RasterOptions::default()
     };
     let (mut writes, mut clipped) = (0, 0);
@@ -42,7 +41,9 @@ fn draw(
         let screen = p.map(|p| st.project(p));
         if let [Some(a), Some(b), Some(c)] = screen {
             let v = [a, b, c].map(|s| s.to_raster([]));
-            writes += draw_triangle(&mut fb, None, &v, &opts, &mut White).pixels;
+            writes += draw_triangle(&mut fb, None, &v, &opts, &mut White)
+                .unwrap()
+                .pixels;
             continue;
         }
         clipped += 1;
@@ -58,7 +59,9 @@ fn draw(
                 panic!("a clipped vertex was rejected: {tri:?}");
             };
             let v = [a, b, c].map(|s| s.to_raster([]));
-            writes += draw_triangle(&mut fb, None, &v, &opts, &mut White).pixels;
+            writes += draw_triangle(&mut fb, None, &v, &opts, &mut White)
+                .unwrap()
+                .pixels;
         }
     }
     let covered = pixels.iter().filter(|&&p| p == Gray8::WHITE).count();

@@ -3,7 +3,10 @@
 
 use fixshade::mesh::*;
 use fixshade::num::{Geo16, Q14};
-use fixshade::raster::{GUARD_BAND, SUBPIXEL_BITS};
+use fixshade::raster::SUBPIXEL_BITS;
+
+/// `ScreenTransform` saturates screen coordinates to ±2^15 pixels.
+const GUARD_BAND: i32 = 1 << 15;
 use fixshade::vector::Vec3;
 use proptest::prelude::*;
 

@@ -6,7 +6,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
 use fixshade::prelude::*;
 use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw,
+    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
 };
 use fixshade::shade::Kernel;
 use fixshade::standard;
@@ -28,17 +28,12 @@ where
     let mut cache = vec![CachedVertex::<K::Vertex>::default(); NV];
     let mut bins = vec![0u16; bins_len(NT, layout.bands() as usize)];
     let mut carry = vec![Carry::default(); 128];
-    let mut draw = MeshDraw::new(
-        layout,
-        mesh,
-        &t,
-        kernel,
-        Default::default(),
-        &mut cache,
-        &mut bins,
-        &mut carry,
-    )
-    .unwrap();
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut carry,
+    };
+    let mut draw = MeshDraw::new(layout, mesh, &t, kernel, memory).unwrap();
     let mut strip = vec![Rgb565::BLACK; (W * band_rows) as usize];
     let mut depth = vec![0u16; (W * band_rows) as usize];
     let mut bands = Bands::new(layout, &mut strip, Some(&mut depth)).unwrap();
@@ -106,17 +101,13 @@ fn full_frame_target_matches_bands() {
     let t = standard::transform().unwrap();
     let mut cache = vec![CachedVertex::default(); NV];
     let mut bins = vec![0u16; bins_len(NT, 1)];
-    let mut draw = MeshDraw::new(
-        layout,
-        mesh,
-        &t,
-        Shader::new(GouraudShading, &lit, Linear),
-        Default::default(),
-        &mut cache,
-        &mut bins,
-        &mut [],
-    )
-    .unwrap();
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut [],
+    };
+    let shader = Shader::new(GouraudShading, &lit, Linear);
+    let mut draw = MeshDraw::new(layout, mesh, &t, shader, memory).unwrap();
     let mut color = vec![Rgb565::BLACK; (W * W) as usize];
     let mut depth = vec![0u16; (W * W) as usize];
     let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth)).unwrap();

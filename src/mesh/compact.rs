@@ -14,8 +14,8 @@ use super::error::MeshError;
 /// Unit normal components are stored in Q14: `16384` is 1.
 pub const NORMAL_ONE: i16 = 1 << 14;
 
-/// A triangle mesh in the renderer's compact format (see the [module](self)
-/// docs). The constructor checks that the slices agree and every index is in
+/// A triangle mesh in the renderer's compact format: `i16` positions with
+/// `frac` fraction bits, Q14 unit normals, `u16` triangles. The constructor checks that the slices agree and every index is in
 /// range, so the renderer can rely on it.
 ///
 /// ```

@@ -499,7 +499,7 @@ impl Viewport {
     /// # Errors
     ///
     /// [`MeshError::OutOfRange`] unless `1 ≤ width, height ≤ GUARD_BAND` and
-    /// `|x0|, |y0| ≤ GUARD_BAND` ([`GUARD_BAND`] = 32768).
+    /// `|x0|, |y0| ≤ GUARD_BAND` (`GUARD_BAND` = 32768).
     pub fn new(x0: i32, y0: i32, width: i32, height: i32) -> Result<Self, MeshError> {
         let g = GUARD_BAND;
         if !(1..=g).contains(&width) {
@@ -547,10 +547,10 @@ pub const INV_W_ONE: i32 = 1 << 24;
 /// [`RasterVertex`](crate::raster::RasterVertex)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ScreenVertex {
-    /// Column with [`SUBPIXEL_BITS`] fractional bits, within ±[`GUARD_BAND`] pixels.
+    /// Column with [`SUBPIXEL_BITS`] fractional bits, within ±`GUARD_BAND` pixels.
     pub x: i32,
     /// Row (down is positive) with [`SUBPIXEL_BITS`] fractional bits, within
-    /// ±[`GUARD_BAND`] pixels.
+    /// ±`GUARD_BAND` pixels.
     pub y: i32,
     /// Depth: `round((z_c/w_c + 1)/2·65535)`, saturated; smaller is nearer.
     pub z: u16,
@@ -588,7 +588,7 @@ impl ScreenVertex {
 ///   the left edge of the viewport, `+1` the right edge),
 /// - `y = 16·(y0 + height/2) − 8·height·y_c/w_c` (y down: `+1` is the top edge),
 ///
-///   both saturated to ±[`GUARD_BAND`] pixels (geometry farther out is
+///   both saturated to ±`GUARD_BAND` pixels (geometry farther out is
 ///   distorted, as in the rasterizer);
 /// - `z = (z_c/w_c + 1)/2·65535`, saturated to `0..=65535`;
 /// - `inv_w = 2^24·near_w/w_c` (see [`ScreenVertex::inv_w`]).

@@ -62,8 +62,8 @@ pub(crate) fn mul_div_round(a: u32, b: u32, c: u32) -> u32 {
 }
 
 /// `p + round((q − p) · num / den)` for `num ≤ den`, `den > 0`: a point of the
-/// segment from `p` to `q`, exact to rounding, without overflow for any `i32`
-/// ends (the result lies between them).
+/// segment from `p` to `q`, exact to rounding (ties away from `p`), without
+/// overflow for any `i32` ends (the result lies between them).
 #[inline]
 pub(crate) fn lerp_i32(p: i32, q: i32, num: u32, den: u32) -> i32 {
     let diff = q.wrapping_sub(p) as u32; // |q − p| < 2^32 as the right sign below
@@ -112,7 +112,7 @@ mod tests {
     #[test]
     fn lerp_rounds_and_stays_between() {
         assert_eq!(lerp_i32(0, 10, 1, 4), 3); // 2.5 → 3
-        assert_eq!(lerp_i32(10, 0, 1, 4), 8); // 7.5 → 8 (ties up from p's side)
+        assert_eq!(lerp_i32(10, 0, 1, 4), 7); // 7.5 → 7 (ties away from p)
         assert_eq!(lerp_i32(i32::MIN, i32::MAX, 1, 2), 0);
         assert_eq!(lerp_i32(i32::MAX, i32::MIN, 0, 7), i32::MAX);
         assert_eq!(lerp_i32(i32::MAX, i32::MIN, 7, 7), i32::MIN);
@@ -126,7 +126,7 @@ mod tests {
             let den = state | 1;
             let num = state.wrapping_mul(7) % den;
             let want = i64::from(p)
-                + ((i128::from(q) - i128::from(p)) * i128::from(num) as i128 * 2 + i128::from(den))
+                + ((i128::from(q) - i128::from(p)) * i128::from(num) * 2 + i128::from(den))
                     .div_euclid(2 * i128::from(den)) as i64;
             let got = lerp_i32(p, q, num, den);
             // ties may round either way depending on the direction

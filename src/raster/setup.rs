@@ -107,8 +107,6 @@ pub struct Bary {
     c2y: i32,
     /// The scale exponent `k`.
     k: i32,
-    /// The largest `|C|` (for error bounds).
-    cmax: i32,
 }
 
 impl Setup {
@@ -180,7 +178,6 @@ impl Setup {
         // |C| < 2^14
         let shift = (bit_length(m) as i32 - 14).max(0);
         let c = raw.map(|v| scale(v, -shift));
-        let cmax = c.iter().fold(0, |m, &v| m.max(v.abs()));
         self.bary = Bary {
             other: [i1, i2],
             c1x: c[0],
@@ -188,7 +185,6 @@ impl Setup {
             c1y: c[2],
             c2y: c[3],
             k: 31 + sh - shift,
-            cmax,
         };
     }
 
@@ -230,8 +226,6 @@ impl Setup {
             .wrapping_add(dy.wrapping_mul(rows));
         let lo = 0.min(d1).min(d2);
         let hi = 0.max(d1).max(d2);
-        // error bound of computed values inside the triangle (see `Plane::err`)
-        let spread = d1.unsigned_abs() + d2.unsigned_abs();
         Plane {
             row: v,
             dx,
@@ -240,49 +234,7 @@ impl Setup {
             lo: lo << ATTR_FRAC,
             hi: hi << ATTR_FRAC,
             sa: sa as u32,
-            spread,
         }
-    }
-
-    /// An upper bound of `|computed − exact|` (in `2^ATTR_FRAC` units) of every
-    /// value a [`Plane`] of this triangle yields inside the triangle; `spread`
-    /// is `|Δa1| + |Δa2|` (after the plane's shift).
-    ///
-    /// Sources: each coefficient `C` is within 1.5 of its exact value (`R`
-    /// and the normalised area carry 2^−15 relative error each, and `C` is
-    /// rounded), so a pixel gradient is off by at most
-    /// `½ + 1.5·spread·2^(18 − k)`; row values accumulate ½ per row; the start
-    /// value is within 32 units. Over the bounding box (`w` × `h` pixels) that
-    /// gives the bound below (computed generously, saturating).
-    pub(crate) fn err(&self, spread: u32) -> u32 {
-        let (mut x0, mut x1) = (i32::MAX, i32::MIN);
-        for p in &self.xy {
-            x0 = x0.min(p.0);
-            x1 = x1.max(p.0);
-        }
-        let w = ((x1 - x0) >> SUBPIXEL_BITS) as u32 + 2;
-        let h = (self.rows.1 - self.rows.0).max(0) as u32 + 2;
-        // 1.5·spread·2^(18 − k) per pixel, rounded up: (3·spread) << (17 − k)
-        let s = 18 - 1 - self.bary.k;
-        let g = 3u32.saturating_mul(spread);
-        let per_px = if s >= 0 {
-            if s >= 31 || g > (u32::MAX >> s) {
-                u32::MAX
-            } else {
-                g << s
-            }
-        } else {
-            let r = (-s) as u32;
-            if r >= 32 {
-                1
-            } else {
-                (g >> r) + 1
-            }
-        };
-        per_px
-            .saturating_add(1)
-            .saturating_mul(w.saturating_add(h))
-            .saturating_add(64)
     }
 
     /// The walker over this triangle's rows, positioned at `row` (clamped to
@@ -297,7 +249,7 @@ impl Setup {
 /// and its changes per pixel and per row, in `2^ATTR_FRAC` units of
 /// `attribute >> sa`, relative to the top vertex's value. Values are computed
 /// with wrapping arithmetic: only values inside the triangle are read, and
-/// those are within the vertex range up to [`Setup::err`].
+/// those are clamped to the vertex range.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Plane {
     /// Value at the centre of pixel `(c0, current row)`.
@@ -313,8 +265,6 @@ pub struct Plane {
     pub(crate) hi: i32,
     /// The shift applied to the attribute's differences.
     pub(crate) sa: u32,
-    /// `|Δa1| + |Δa2|` after the shift.
-    pub(crate) spread: u32,
 }
 
 impl Plane {

@@ -9,10 +9,6 @@
 
 use super::{Layout, RenderError};
 
-/// The rows a visible triangle covers, or `None` for a culled, degenerate or
-/// off-frame one.
-pub(crate) type Classify<'f> = &'f dyn Fn(usize) -> Option<(u32, u32)>;
-
 /// The sorted bins of one mesh (views into the caller's slice).
 #[derive(Debug)]
 pub(crate) struct Bins<'a> {

@@ -39,17 +39,76 @@ impl Default for DrawOptions {
     }
 }
 
+/// The caller-owned memory of one [`MeshDraw`]: the vertex cache, the bins and
+/// the resume records, as slices (see [`MeshBuffers`] for arrays sized by
+/// const generics).
+#[derive(Debug)]
+pub struct MeshMemory<'a, V> {
+    /// One entry per mesh vertex.
+    pub vertices: &'a mut [CachedVertex<V>],
+    /// See [`bins_len`](super::bins_len).
+    pub bins: &'a mut [u16],
+    /// Twice the most triangles crossing one band boundary (none for a full
+    /// frame).
+    pub carry: &'a mut [Carry],
+}
+
+/// [`MeshMemory`] as arrays: `NV` vertices, `NB` bin entries, `NC` resume
+/// records. The payload type `V` is inferred from the shader.
+///
+/// ```
+/// use fixshade::render::{bins_len, MeshBuffers};
+/// // the standard sphere (362 vertices, 720 triangles) in 30 bands
+/// let buffers: MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 64> = MeshBuffers::new();
+/// assert_eq!(core::mem::size_of_val(&buffers), 362 * 12 + 782 * 2 + 64 * 6);
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct MeshBuffers<V, const NV: usize, const NB: usize, const NC: usize> {
+    vertices: [CachedVertex<V>; NV],
+    bins: [u16; NB],
+    carry: [Carry; NC],
+}
+
+impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize>
+    MeshBuffers<V, NV, NB, NC>
+{
+    /// Zeroed buffers.
+    pub fn new() -> Self {
+        MeshBuffers {
+            vertices: [CachedVertex::default(); NV],
+            bins: [0; NB],
+            carry: [Carry::default(); NC],
+        }
+    }
+
+    /// The buffers as slices.
+    pub fn memory(&mut self) -> MeshMemory<'_, V> {
+        MeshMemory {
+            vertices: &mut self.vertices,
+            bins: &mut self.bins,
+            carry: &mut self.carry,
+        }
+    }
+}
+
+impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize> Default
+    for MeshBuffers<V, NV, NB, NC>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 /// A mesh prepared for one frame: its vertices transformed, projected and lit
 /// into the vertex cache, its visible triangles binned. Drawn by
 /// [`Bands::render`](super::Bands::render) or
 /// [`FullFrame::render`](super::FullFrame::render) through [`DrawBand`].
 ///
-/// Memory, all the caller's:
-/// - `cache`: one [`CachedVertex`] per mesh vertex (`[Default::default(); V]`
-///   lets the compiler pick the mode's payload type);
-/// - `bins`: see [`bins_len`](super::bins_len);
-/// - `carry`: twice the largest number of triangles crossing one band
-///   boundary (none for a full frame); [`MeshDraw::new`] reports the need.
+/// Memory, all the caller's ([`MeshMemory`] or [`MeshBuffers`]):
+/// - one [`CachedVertex`] per mesh vertex;
+/// - the bins: see [`bins_len`](super::bins_len);
+/// - the resume records: twice the largest number of triangles crossing one
+///   band boundary (none for a full frame); [`MeshDraw::new`] reports the need.
 pub struct MeshDraw<'a, K: Kernel> {
     mesh: Mesh<'a>,
     transform: MeshTransform<Orthographic>,
@@ -78,24 +137,49 @@ where
     K::Vertex: Lerp,
 {
     /// Runs the vertex stage and bins the triangles of `mesh` seen through
-    /// `transform`, for a frame of `layout`.
+    /// `transform`, for a frame of `layout`, drawn with `shader` (back faces
+    /// culled; see [`MeshDraw::with_options`]).
     ///
     /// # Errors
     ///
     /// [`RenderError::TooManyVertices`] when the mesh has more vertices than
     /// the cache holds; [`RenderError::BufferTooSmall`] for too few bins or
     /// resume records. Nothing is drawn then.
-    #[allow(clippy::too_many_arguments)]
     pub fn new(
+        layout: Layout,
+        mesh: Mesh<'a>,
+        transform: &MeshTransform<Orthographic>,
+        shader: K,
+        memory: MeshMemory<'a, K::Vertex>,
+    ) -> Result<Self, RenderError> {
+        Self::with_options(
+            layout,
+            mesh,
+            transform,
+            shader,
+            DrawOptions::default(),
+            memory,
+        )
+    }
+
+    /// [`MeshDraw::new`] with options (culling).
+    ///
+    /// # Errors
+    ///
+    /// As [`MeshDraw::new`].
+    pub fn with_options(
         layout: Layout,
         mesh: Mesh<'a>,
         transform: &MeshTransform<Orthographic>,
         kernel: K,
         opts: DrawOptions,
-        cache: &'a mut [CachedVertex<K::Vertex>],
-        bins: &'a mut [u16],
-        carry: &'a mut [Carry],
+        memory: MeshMemory<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
+        let MeshMemory {
+            vertices: cache,
+            bins,
+            carry,
+        } = memory;
         if cache.len() < mesh.vertex_count() {
             return Err(RenderError::TooManyVertices);
         }

@@ -25,7 +25,7 @@ pub mod bins;
 mod draw;
 pub mod vertex;
 
-pub use draw::{Carry, DrawOptions, Lerp, MeshDraw};
+pub use draw::{Carry, DrawOptions, Lerp, MeshBuffers, MeshDraw, MeshMemory};
 pub use vertex::CachedVertex;
 
 use core::fmt;
@@ -291,11 +291,10 @@ impl<'a, C: PixelColor> Bands<'a, C> {
                 return Ok(());
             };
             fill(color, clear);
-            let depth = depth.and_then(|d| d.get_mut(..n));
-            let depth = depth.map(|d| {
+            let mut depth = depth.and_then(|d| d.get_mut(..n));
+            if let Some(d) = depth.as_deref_mut() {
                 fill(d, u16::MAX);
-                d
-            });
+            }
             let mut view = BandView {
                 color,
                 depth,
@@ -375,14 +374,10 @@ impl<'a, C: PixelColor> FullFrame<'a, C> {
             return;
         };
         fill(color, clear);
-        let depth = self
-            .depth
-            .as_deref_mut()
-            .and_then(|d| d.get_mut(..n))
-            .map(|d| {
-                fill(d, u16::MAX);
-                d
-            });
+        let mut depth = self.depth.as_deref_mut().and_then(|d| d.get_mut(..n));
+        if let Some(d) = depth.as_deref_mut() {
+            fill(d, u16::MAX);
+        }
         let mut view = BandView {
             color,
             depth,

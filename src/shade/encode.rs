@@ -190,18 +190,35 @@ mod tests {
 
     #[test]
     fn vertex_values_fit_and_round_trip() {
-        // every linear value: the vertex value fits 15 bits and a pixel of
-        // exactly that value is the rounded channel
+        // every Q14 linear value: the vertex value fits 15 bits, and a pixel of
+        // exactly that value is the rounded channel, except within 2^−s of a
+        // channel step from a rounding tie (the vertex value carries s fraction
+        // bits: 10 for 5-bit channels, 9 for 6-bit, 7 for 8-bit, and is within
+        // 0.77·2^−s of exact: ¼ from the 16-bit intermediate, ½ + 1/64 from
+        // rounding to s bits)
+        let near_tie = |v: f64, max: f64, s: u32| {
+            let x = v * max;
+            (x - x.floor() - 0.5).abs() <= 1.0 / f64::from(1u32 << s)
+        };
         for i in 0..=16384 {
             let v = Q14::<2>::from_raw(i);
+            let f = f64::from(i) / 16384.0;
             let c = Rgb::new(v, v, v);
             let a: [i32; 3] = Encoder::<Rgb565>::vertex(&Linear, c);
             assert!(a.iter().all(|&x| (0..1 << VERTEX_BITS).contains(&x)));
             let p: Rgb565 = Linear.pixel(a.map(|x| x << ATTR_FRAC), 0, 0);
-            assert_eq!(p, c.to_rgb565(), "{i}");
+            let want = c.to_rgb565();
+            assert!(p.r() == want.r() || near_tie(f, 31.0, 10), "{i}");
+            assert!(p.g() == want.g() || near_tie(f, 63.0, 9), "{i}");
+            assert!(
+                p.r().abs_diff(want.r()) <= 1 && p.g().abs_diff(want.g()) <= 1,
+                "{i}"
+            );
             let a: [i32; 3] = Encoder::<Rgb888>::vertex(&Linear, c);
             let p: Rgb888 = Linear.pixel(a.map(|x| x << ATTR_FRAC), 0, 0);
-            assert_eq!(p, c.to_rgb888(), "{i}");
+            let want = c.to_rgb888();
+            assert!(p.r() == want.r() || near_tie(f, 255.0, 7), "{i}");
+            assert!(p.r().abs_diff(want.r()) <= 1, "{i}");
             // dithering never exceeds the channel maximum
             let a: [i32; 3] = Encoder::<Rgb565>::vertex(&Dithered, c);
             for (x, y) in [(0, 0), (3, 3), (1, 2)] {

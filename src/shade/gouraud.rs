@@ -171,8 +171,8 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
             (a, x),
             |s| enc.pixel(s.0, s.1, y),
             |s| {
-                for i in 0..3 {
-                    s.0[i] = s.0[i].wrapping_add(d[i]);
+                for (a, d) in s.0.iter_mut().zip(d) {
+                    *a = a.wrapping_add(d);
                 }
                 if E::POSITIONAL {
                     s.1 += 1;

@@ -13,12 +13,12 @@ use crate::num::{Scalar, Q14};
 use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC};
 use crate::target::{DepthBuffer, Framebuffer};
 
-/// The models [`IncrementalPhong`] evaluates: [`Lambert`] and [`BlinnPhong`].
+/// The models [`IncrementalPhongShading`](super::IncrementalPhongShading) evaluates: [`Lambert`] and [`BlinnPhong`].
 pub trait IncrementalModel: Model {}
 impl IncrementalModel for Lambert {}
 impl IncrementalModel for BlinnPhong {}
 
-/// The lighting configurations [`IncrementalPhong`] accepts.
+/// The lighting configurations [`IncrementalPhongShading`](super::IncrementalPhongShading) accepts.
 pub type DirectionalLighting<const NW: u8, const K: usize, M> =
     Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M, InfiniteViewer<Q14<NW>>, NoFog>;
 

@@ -276,13 +276,9 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
                 enc.encode(lighting.shade(&pos, n), s.1, y)
             },
             |s| {
-                for i in 0..3 {
-                    s.0[i] = s.0[i].wrapping_add(d[i]);
-                }
-                if I::NEEDS_POSITION {
-                    for i in 3..6 {
-                        s.0[i] = s.0[i].wrapping_add(d[i]);
-                    }
+                let n = if I::NEEDS_POSITION { 6 } else { 3 };
+                for (a, d) in s.0.iter_mut().zip(d).take(n) {
+                    *a = a.wrapping_add(d);
                 }
                 s.1 += 1;
             },

@@ -16,7 +16,9 @@ use fixshade::mesh::{uv_sphere, uv_sphere_counts, Mat4, ScreenTransform, ScreenV
 use fixshade::num::Scalar;
 use fixshade::raster::{draw_triangle, Cull, RasterOptions, SpanShader};
 use fixshade::reference::{normalize, ModelDesc, Reference, ViewerDesc, V3};
-use fixshade::shade::{Flat, Gouraud, Linear, Phong, ShadeVertex, Shading};
+use fixshade::shade::{
+    FlatShading, GouraudShading, Linear, PhongShading, ShadeVertex, Shader, Shading,
+};
 use fixshade::target::{DepthBuffer, Framebuffer, SliceFramebuffer};
 
 /// Pixels per eye-space unit of the orthographic camera.
@@ -380,7 +382,11 @@ pub fn draw_prepared<S: Scalar, C: OutputColor + Default>(
 
 /// Draws prepared triangles into any framebuffer (e.g. a `DrawTargetAdapter` over
 /// a display); `depth` must be cleared and hold `width × height` values.
-pub fn draw_into<S: Scalar, C: OutputColor + Default, F: Framebuffer<Color = C>>(
+pub fn draw_into<
+    S: Scalar,
+    C: OutputColor + Default,
+    F: Framebuffer<Color = C, Error: core::fmt::Debug>,
+>(
     scene: &Scene,
     prepared: &[Vec<[Vert; 3]>],
     fb: &mut F,
@@ -401,7 +407,12 @@ pub fn draw_into<S: Scalar, C: OutputColor + Default, F: Framebuffer<Color = C>>
     shaded
 }
 
-fn draw_object<S: Scalar, M: Model, C: OutputColor + Default, F: Framebuffer<Color = C>>(
+fn draw_object<
+    S: Scalar,
+    M: Model,
+    C: OutputColor + Default,
+    F: Framebuffer<Color = C, Error: core::fmt::Debug>,
+>(
     scene: &Scene,
     obj: &Object,
     tris: &[[Vert; 3]],
@@ -428,25 +439,31 @@ fn draw_object<S: Scalar, M: Model, C: OutputColor + Default, F: Framebuffer<Col
     let mut shaded = 0u64;
     match obj.mode {
         Mode::Flat => {
-            let mut s = Flat::new(&lighting, Linear);
+            let mut s = Shader::new(FlatShading, &lighting, Linear);
             for t in tris {
-                shaded += s.draw(fb, Some(db), &t.each_ref().map(sv), &o).pixels as u64;
+                shaded += ok(s.draw(fb, Some(db), &t.each_ref().map(sv), &o)).pixels as u64;
             }
         }
         Mode::Gouraud => {
-            let mut s = Gouraud::new(&lighting, Linear);
+            let mut s = Shader::new(GouraudShading, &lighting, Linear);
             for t in tris {
-                shaded += s.draw(fb, Some(db), &t.each_ref().map(sv), &o).pixels as u64;
+                shaded += ok(s.draw(fb, Some(db), &t.each_ref().map(sv), &o)).pixels as u64;
             }
         }
         Mode::Phong => {
-            let mut s = Phong::new(&lighting, Linear);
+            let mut s = Shader::new(PhongShading, &lighting, Linear);
             for t in tris {
-                shaded += s.draw(fb, Some(db), &t.each_ref().map(sv), &o).pixels as u64;
+                shaded += ok(s.draw(fb, Some(db), &t.each_ref().map(sv), &o)).pixels as u64;
             }
         }
     }
     shaded
+}
+
+/// The value of a drawing call whose framebuffer cannot fail, or a panic
+/// naming the display error (a test failure).
+pub fn ok<T, E: core::fmt::Debug>(r: Result<T, E>) -> T {
+    r.expect("display error")
 }
 
 /// The f64 reference image: linear RGB per covered pixel, `None` for background.
@@ -481,7 +498,13 @@ pub fn render_reference(scene: &Scene) -> Vec<Option<V3>> {
                 out: &mut out,
                 width: w,
             };
-            draw_triangle(&mut fb, Some(&mut db), &raster, &opts(), &mut s);
+            ok(draw_triangle(
+                &mut fb,
+                Some(&mut db),
+                &raster,
+                &opts(),
+                &mut s,
+            ));
         }
     }
     out
@@ -720,7 +743,7 @@ pub fn config_scene(lights: LightSet, mode: Mode) -> Scene {
     }
 }
 
-/// Renders a scene with [`fixshade::shade::IncrementalPhong`] in `Q14<NW>` (every
+/// Renders a scene with [`fixshade::shade::IncrementalPhongShading`] in `Q14<NW>` (every
 /// object Phong-shaded), if the scene has only directional lights (one or two) and
 /// Lambert or Blinn-Phong materials; `None` otherwise.
 pub fn render_incremental<const NW: u8, C: OutputColor + Default>(scene: &Scene) -> Option<Vec<C>> {
@@ -798,13 +821,20 @@ pub fn draw_inc<
     db: &mut DepthBuffer<'_>,
 ) -> u64
 where
-    for<'a> fixshade::shade::IncrementalPhong<'a, NW, K, M, C>:
-        Shading<fixshade::num::Q14<NW>, Color = C>,
+    for<'a> Shader<
+        'a,
+        fixshade::shade::IncrementalPhongShading,
+        fixshade::shade::DirectionalLighting<NW, K, M>,
+        Linear,
+        C,
+    >: Shading<fixshade::num::Q14<NW>, Color = C>,
+    fixshade::shade::IncrementalPhongShading:
+        fixshade::shade::ModeState<fixshade::shade::DirectionalLighting<NW, K, M>, C>,
 {
     use fixshade::num::Q14;
     let lighting = Lighting::<Q14<NW>, _, M>::new(lights, Material::new(&obj.material).unwrap())
         .with_global_ambient(Rgb::from_f32(scene.global_ambient));
-    let mut s = fixshade::shade::IncrementalPhong::<NW, K, M, C>::new(&lighting);
+    let mut s = Shader::new(fixshade::shade::IncrementalPhongShading, &lighting, Linear);
     let o = opts();
     tris.iter()
         .map(|t| {
@@ -817,7 +847,7 @@ where
                     v.normal,
                 )
             });
-            s.draw(fb, Some(db), &sv, &o).pixels as u64
+            ok(s.draw(fb, Some(db), &sv, &o)).pixels as u64
         })
         .sum()
 }
