@@ -169,6 +169,18 @@ pub trait OutputColor: embedded_graphics_core::pixelcolor::PixelColor {
     /// The colour of channel values already within [`OutputColor::CHANNEL_MAX`].
     fn from_channels(ch: [u32; 3]) -> Self;
 
+    /// Whether this is the 5-6-5 format, built by [`OutputColor::from_rgb565_raw`]
+    /// (the fast kernels pack the channels themselves then).
+    const IS_RGB565: bool = false;
+
+    /// The colour of a raw 5-6-5 value `r << 11 | g << 5 | b` (used only when
+    /// [`OutputColor::IS_RGB565`]).
+    #[inline(always)]
+    fn from_rgb565_raw(raw: u16) -> Self {
+        let raw = u32::from(raw);
+        Self::from_channels([raw >> 11, (raw >> 5) & 63, raw & 31])
+    }
+
     /// Quantises a linear colour (no gamma): each channel rounded to nearest.
     #[inline]
     fn from_linear<S: Scalar>(c: Rgb<S>) -> Self {
@@ -218,6 +230,11 @@ impl OutputColor for Rgb565 {
     #[inline(always)]
     fn from_channels(ch: [u32; 3]) -> Self {
         Rgb565::new(ch[0] as u8, ch[1] as u8, ch[2] as u8)
+    }
+    const IS_RGB565: bool = true;
+    #[inline(always)]
+    fn from_rgb565_raw(raw: u16) -> Self {
+        Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(raw))
     }
     #[inline]
     fn from_linear<S: Scalar>(c: Rgb<S>) -> Self {

@@ -15,7 +15,7 @@ use super::setup::Setup;
 use super::SUBPIXEL_BITS;
 
 /// One non-horizontal edge of a triangle, positioned at a row.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub(crate) struct Edge {
     /// The bound column: the first inside column of a left edge, the last of a
     /// right edge.
@@ -28,6 +28,20 @@ pub(crate) struct Edge {
     q: i32,
     /// `+1` for a left edge, `−1` for a right edge.
     d: i32,
+}
+
+impl Default for Edge {
+    /// An edge that never moves (stands for a horizontal one, whose fill rule
+    /// is applied separately): stepping it cannot loop.
+    fn default() -> Self {
+        Edge {
+            x: 0,
+            e: 0,
+            pp: 1,
+            q: 0,
+            d: 1,
+        }
+    }
 }
 
 impl Edge {
@@ -86,6 +100,31 @@ impl Edge {
         self.settle();
     }
 
+    /// [`Edge::step`] for an edge known to be a left edge (`LEFT`) or a right
+    /// edge: the direction of the walk is a constant.
+    #[inline(always)]
+    fn step_side<const LEFT: bool>(&mut self) {
+        let d = if LEFT { 1 } else { -1 };
+        self.e += self.q;
+        if self.e < 0 {
+            loop {
+                self.x += d;
+                self.e += self.pp;
+                if self.e >= 0 {
+                    break;
+                }
+            }
+        } else if self.e >= self.pp {
+            loop {
+                self.x -= d;
+                self.e -= self.pp;
+                if self.e < self.pp {
+                    break;
+                }
+            }
+        }
+    }
+
     /// Whether this is a left edge (its bound is the first inside column).
     #[inline(always)]
     pub(crate) fn is_left(&self) -> bool {
@@ -101,26 +140,30 @@ impl Edge {
 /// exactly level with the middle vertex applies both short edges (or the fill
 /// rule of a horizontal one), so every row gets exactly the pixels whose
 /// centres pass all three edge functions.
+///
+/// The edges are kept as the row's left and right bound; the row where the
+/// short edge changes is the only special one (a cold path), so an ordinary
+/// row costs two edge steps and one comparison.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Walker {
-    long: Edge,
-    upper: Edge,
-    lower: Edge,
+    left: Edge,
+    right: Edge,
     /// The next row to emit.
     pub y: i32,
     /// Last row of the triangle.
     pub last: i32,
-    /// First row whose centre is below the middle vertex.
-    below: i32,
-    /// The row whose centre is level with the middle vertex, if any (else `i32::MIN`).
-    level: i32,
-    /// `lower` is positioned at row `y`.
-    lower_ready: bool,
-    /// The upper short edge is horizontal: it is a top edge (its row is included)
-    /// unless it runs to the left.
-    upper_flat_excludes: Option<bool>,
-    /// The lower short edge is horizontal (a bottom edge: `Some(true)` excludes its row).
-    lower_flat_excludes: Option<bool>,
+    /// The row where the short edge changes (the row level with the middle
+    /// vertex, or the first row below it); `i32::MAX` once changed.
+    switch: i32,
+    /// Whether `switch` is the row level with the middle vertex.
+    level: bool,
+    /// The long edge is the left one.
+    long_left: bool,
+    /// The upper/lower short edge is horizontal: `Some(true)` when its row
+    /// is excluded by the fill rule (a horizontal edge excludes its row
+    /// unless it runs to the right: a top edge).
+    upper_flat: Option<bool>,
+    lower_flat: Option<bool>,
     /// Vertex indices (top, middle, bottom) and positions.
     tmb: [usize; 3],
     xy: [(i32, i32); 3],
@@ -132,18 +175,27 @@ impl Walker {
         let mut w = Walker::unpositioned(s, row.max(s.rows.0));
         let [t, m, b] = w.tmb;
         let y = w.y;
-        w.long = w.edge_near(t, b, y);
-        if y < w.below && y != w.level {
-            w.upper = w.edge_near(t, m, y);
-        } else if y == w.level {
-            if w.upper_flat_excludes.is_none() {
-                w.upper = w.edge_near(t, m, y);
-            }
-        } else if w.lower_flat_excludes.is_none() {
-            w.lower = w.edge_near(m, b, y);
-            w.lower_ready = true;
-        }
+        let long = w.edge_near(t, b, y);
+        // before the switch row, or at it (which replaces the upper edge
+        // itself): the upper short edge; after it, the lower one
+        let short = if y <= w.switch {
+            w.edge_near(t, m, y)
+        } else {
+            w.switch = i32::MAX;
+            w.edge_near(m, b, y)
+        };
+        w.place(long, short);
         w
+    }
+
+    /// Puts the long and short edges on their sides.
+    #[inline(always)]
+    fn place(&mut self, long: Edge, short: Edge) {
+        if self.long_left {
+            (self.left, self.right) = (long, short);
+        } else {
+            (self.left, self.right) = (short, long);
+        }
     }
 
     fn unpositioned(s: &Setup, y: i32) -> Walker {
@@ -152,27 +204,24 @@ impl Walker {
         let half = 1 << (SUBPIXEL_BITS - 1);
         let ym = xy[m].1;
         let below = ((ym - half) >> SUBPIXEL_BITS) + 1;
-        let level = if (ym - half) & ((1 << SUBPIXEL_BITS) - 1) == 0 {
-            below - 1
-        } else {
-            i32::MIN
-        };
+        let level = (ym - half) & ((1 << SUBPIXEL_BITS) - 1) == 0;
         // a horizontal edge a → b is a top edge (row included) iff dx > 0
         let flat = |i: usize, j: usize| {
             let (a, bb) = if (i + 1) % 3 == j { (i, j) } else { (j, i) };
             (xy[a].1 == xy[bb].1).then(|| xy[bb].0 <= xy[a].0)
         };
+        // the long edge as oriented: going down (t → b) it is a right edge
+        let long_left = (t + 1) % 3 != b;
         Walker {
-            long: Edge::default(),
-            upper: Edge::default(),
-            lower: Edge::default(),
+            left: Edge::default(),
+            right: Edge::default(),
             y,
             last: s.rows.1,
-            below,
+            switch: if level { below - 1 } else { below },
             level,
-            lower_ready: false,
-            upper_flat_excludes: flat(t, m),
-            lower_flat_excludes: flat(m, b),
+            long_left,
+            upper_flat: flat(t, m),
+            lower_flat: flat(m, b),
             tmb: s.tmb,
             xy,
         }
@@ -184,6 +233,11 @@ impl Walker {
     fn edge_near(&self, i: usize, j: usize, row: i32) -> Edge {
         let (a, b) = if (i + 1) % 3 == j { (i, j) } else { (j, i) };
         let (pa, pb) = (self.xy[a], self.xy[b]);
+        if pa.1 == pb.1 {
+            // a horizontal edge bounds no column (its fill rule is applied
+            // separately); an edge that never walks
+            return Edge::default();
+        }
         let upper = if pa.1 <= pb.1 { pa } else { pb };
         let (dx, dy) = (pb.0 - pa.0, pb.1 - pa.1);
         let down = (row << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1)) - upper.1;
@@ -199,6 +253,9 @@ impl Walker {
     /// The edge between `i` and `j` at `row`, searching from column `guess`.
     fn edge_from(&self, i: usize, j: usize, row: i32, guess: i32) -> Edge {
         let (a, b) = if (i + 1) % 3 == j { (i, j) } else { (j, i) };
+        if self.xy[a].1 == self.xy[b].1 {
+            return Edge::default();
+        }
         Edge::new(self.xy[a], self.xy[b], row, guess)
     }
 
@@ -212,68 +269,82 @@ impl Walker {
     /// then moves to the next row.
     #[inline(always)]
     pub(crate) fn next(&mut self) -> (i32, i32) {
-        let y = self.y;
-        let (mut lo, mut hi) = (i32::MIN, i32::MAX);
-        Self::bound(&self.long, &mut lo, &mut hi);
-        if y < self.below && y != self.level {
-            Self::bound(&self.upper, &mut lo, &mut hi);
-            self.upper.step();
-        } else if y == self.level {
-            self.level_row(y, &mut lo, &mut hi);
-        } else {
-            if !self.lower_ready {
-                let [_, m, b] = self.tmb;
-                self.lower = self.edge_near(m, b, y);
-                self.lower_ready = true;
-            }
-            Self::bound(&self.lower, &mut lo, &mut hi);
-            self.lower.step();
+        if self.y == self.switch {
+            return self.switch_row();
         }
-        self.long.step();
+        let r = (self.left.x, self.right.x);
+        self.left.step_side::<true>();
+        self.right.step_side::<false>();
+        self.y += 1;
+        r
+    }
+
+    /// The row where the short edge changes from the upper to the lower one.
+    #[cold]
+    #[inline(never)]
+    fn switch_row(&mut self) -> (i32, i32) {
+        let [_, m, b] = self.tmb;
+        let y = self.y;
+        self.switch = i32::MAX;
+        let (mut lo, mut hi) = (self.left.x, self.right.x);
+        let lower = self.edge_near(m, b, y);
+        if self.level {
+            // level with the middle vertex: the upper short edge (or its fill
+            // rule), the lower one (or its), and the long edge all apply
+            let ex = |f: Option<bool>| f == Some(true);
+            if ex(self.upper_flat) || ex(self.lower_flat) {
+                hi = lo - 1;
+            }
+            if self.lower_flat.is_none() {
+                if self.long_left {
+                    hi = hi.min(lower.x);
+                } else {
+                    lo = lo.max(lower.x);
+                }
+            }
+            if self.upper_flat.is_some() {
+                // the upper short edge never walked: the long edge alone
+                // bounded its side
+                if self.long_left {
+                    hi = if ex(self.upper_flat) || ex(self.lower_flat) {
+                        lo - 1
+                    } else {
+                        lower.x
+                    };
+                } else {
+                    lo = lower.x;
+                    if ex(self.upper_flat) || ex(self.lower_flat) {
+                        hi = lo - 1;
+                    }
+                }
+            }
+        } else if self.long_left {
+            hi = lower.x;
+        } else {
+            lo = lower.x;
+        }
+        if self.long_left {
+            self.right = lower;
+            self.left.step_side::<true>();
+            self.right.step_side::<false>();
+        } else {
+            self.left = lower;
+            self.left.step_side::<true>();
+            self.right.step_side::<false>();
+        }
         self.y += 1;
         (lo, hi)
-    }
-
-    #[inline(always)]
-    fn bound(e: &Edge, lo: &mut i32, hi: &mut i32) {
-        if e.is_left() {
-            *lo = (*lo).max(e.x);
-        } else {
-            *hi = (*hi).min(e.x);
-        }
-    }
-
-    /// The row level with the middle vertex: both short edges apply.
-    #[cold]
-    fn level_row(&mut self, y: i32, lo: &mut i32, hi: &mut i32) {
-        let [_, m, b] = self.tmb;
-        match self.upper_flat_excludes {
-            Some(true) => *hi = lo.saturating_sub(1).min(*hi),
-            Some(false) => {}
-            None => Self::bound(&self.upper, lo, hi),
-        }
-        match self.lower_flat_excludes {
-            Some(true) => *hi = lo.saturating_sub(1).min(*hi),
-            Some(false) => {}
-            None => {
-                self.lower = self.edge_near(m, b, y);
-                Self::bound(&self.lower, lo, hi);
-                self.lower.step();
-                self.lower_ready = true;
-            }
-        }
     }
 
     /// What [`Walker::resume`] needs to continue at the current row: the bound
     /// columns of the long edge and of the short edge in use at this row.
     #[inline]
     pub(crate) fn snapshot(&self) -> (i32, i32) {
-        let short = if self.y < self.below || self.y == self.level {
-            self.upper.x
+        if self.long_left {
+            (self.left.x, self.right.x)
         } else {
-            self.lower.x
-        };
-        (self.long.x, short)
+            (self.right.x, self.left.x)
+        }
     }
 
     /// The walker at `row` given the bound columns from [`Walker::snapshot`]
@@ -281,15 +352,15 @@ impl Walker {
     pub(crate) fn resume(s: &Setup, row: i32, cols: (i32, i32)) -> Walker {
         let mut w = Walker::unpositioned(s, row);
         let [t, m, b] = w.tmb;
-        w.long = w.edge_from(t, b, row, cols.0);
-        if row < w.below || row == w.level {
-            if w.upper_flat_excludes.is_none() {
-                w.upper = w.edge_from(t, m, row, cols.1);
-            }
-        } else if w.lower_flat_excludes.is_none() {
-            w.lower = w.edge_from(m, b, row, cols.1);
-            w.lower_ready = true;
-        }
+        let long = w.edge_from(t, b, row, cols.0);
+        let short = if row <= w.switch {
+            // before the switch (or at it: the upper edge is still in use)
+            w.edge_from(t, m, row, cols.1)
+        } else {
+            w.switch = i32::MAX;
+            w.edge_from(m, b, row, cols.1)
+        };
+        w.place(long, short);
         w
     }
 }

@@ -289,9 +289,25 @@ impl Plane {
     /// `(start, step)` of a run of `n ≥ 1` pixels from column `x`, clamped so
     /// that `start + k·step` stays within the vertex range for `k < n` (the step
     /// shrinks toward zero when the end would leave it: one division, rare).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn clamped(&self, x: i32, n: i32) -> (i32, i32) {
-        let s = self.at(x).clamp_to(self.lo, self.hi);
+        // the run's last value is the plane's at its last pixel, exactly
+        // `start + (n − 1)·step` (wrapping arithmetic, and both pixels are inside
+        // the triangle, so no value is off by 2^32): the common case needs no
+        // division
+        let s = self.at(x);
+        let e = s.wrapping_add(self.dx.wrapping_mul(n - 1));
+        if s >= self.lo && s <= self.hi && e >= self.lo && e <= self.hi {
+            return (s, self.dx);
+        }
+        self.clamped_slow(s, n)
+    }
+
+    /// [`Plane::clamped`] when an end leaves the vertex range (one division).
+    #[cold]
+    #[inline(never)]
+    fn clamped_slow(&self, s: i32, n: i32) -> (i32, i32) {
+        let s = s.clamp_to(self.lo, self.hi);
         let mut d = self.dx;
         if n > 1 {
             let k = n - 1;

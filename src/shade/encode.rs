@@ -17,6 +17,8 @@ pub const VERTEX_BITS: u32 = 15;
 pub trait Encoder<C: OutputColor>: Copy {
     /// Whether [`Encoder::pixel`] depends on the pixel position (dithering).
     const POSITIONAL: bool;
+    /// Whether this is [`Linear`] rounding (kernels may then pack channels).
+    const LINEAR: bool = false;
     /// The pixel at (`x`, `y`) of linear colour `c` (flat and Phong shading).
     fn encode<S: Scalar>(&self, c: Rgb<S>, x: i32, y: i32) -> C;
     /// What a Gouraud vertex of linear colour `c` carries, per channel (each
@@ -70,6 +72,7 @@ pub struct Linear;
 
 impl<C: OutputColor> Encoder<C> for Linear {
     const POSITIONAL: bool = false;
+    const LINEAR: bool = true;
     #[inline(always)]
     fn encode<S: Scalar>(&self, c: Rgb<S>, _x: i32, _y: i32) -> C {
         C::from_linear(c)

@@ -285,36 +285,81 @@ pub trait Kernel {
     );
 }
 
-/// The generic depth-tested loop of a run: pixel `k` gets `pixel(state)` when
-/// its depth `(z + k·dz) >> 14` passes, and `step` advances the state.
+/// The depth test of a run, split from the shading: pixel `k` has depth
+/// `(z + k·dz) >> 14` and passes when that is less than `depth[k]`, which then
+/// takes it; `shade(k0, k1)` is called for every maximal run `k0..k1` of
+/// passing pixels, in order. Two short loops instead of one long one: on a
+/// Cortex-M0 the fused loop keeps more values live than there are registers.
+#[inline(always)]
+pub(crate) fn depth_runs(z: i32, dz: i32, depth: &mut [u16], mut shade: impl FnMut(usize, usize)) {
+    let n = depth.len();
+    let mut z = z as u32;
+    let dz = dz as u32;
+    let mut k = 0;
+    while k < n {
+        // skip failing pixels
+        while k < n {
+            let zi = (z >> crate::raster::ATTR_FRAC) as u16;
+            if zi < depth[k] {
+                break;
+            }
+            z = z.wrapping_add(dz);
+            k += 1;
+        }
+        let k0 = k;
+        // take passing pixels
+        while k < n {
+            let zi = (z >> crate::raster::ATTR_FRAC) as u16;
+            let d = &mut depth[k];
+            if zi >= *d {
+                break;
+            }
+            *d = zi;
+            // the value after the last pixel is not used: wrapping is harmless
+            z = z.wrapping_add(dz);
+            k += 1;
+        }
+        if k > k0 {
+            shade(k0, k);
+        }
+    }
+}
+
+/// The generic depth-tested loop of a run: pixel `k` gets `pixel(state_k)`
+/// when its depth passes, `state_k` being `state` advanced `k` times by
+/// `step`; `skip(state, n)` advances a state `n` pixels at once.
 #[inline(always)]
 pub(crate) fn depth_loop<C, T: Copy>(
     z: i32,
     dz: i32,
     color: &mut [C],
     depth: Option<&mut [u16]>,
-    mut state: T,
+    state: T,
     mut pixel: impl FnMut(&T) -> C,
     mut step: impl FnMut(&mut T),
 ) {
     match depth {
         Some(depth) => {
-            let mut z = z;
-            for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
-                let zi = (z >> crate::raster::ATTR_FRAC) as u16;
-                if zi < *d {
-                    *d = zi;
-                    *c = pixel(&state);
+            let mut s = state;
+            let mut at = 0;
+            let n = color.len().min(depth.len());
+            depth_runs(z, dz, &mut depth[..n], |k0, k1| {
+                while at < k0 {
+                    step(&mut s);
+                    at += 1;
                 }
-                // the values after the last pixel are not used: wrapping is harmless
-                z = z.wrapping_add(dz);
-                step(&mut state);
-            }
+                for c in color[k0..k1].iter_mut() {
+                    *c = pixel(&s);
+                    step(&mut s);
+                }
+                at = k1;
+            });
         }
         None => {
+            let mut s = state;
             for c in color.iter_mut() {
-                *c = pixel(&state);
-                step(&mut state);
+                *c = pixel(&s);
+                step(&mut s);
             }
         }
     }

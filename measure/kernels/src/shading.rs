@@ -26,12 +26,16 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use fixshade::light::LightSet;
 use fixshade::lighting::Model;
 use fixshade::prelude::*;
-use fixshade::raster::{RasterOptions, SpanShader, SUBPIXEL_BITS};
+use fixshade::raster::{SpanShader, ATTR_FRAC, SUBPIXEL_BITS};
 use fixshade::shade::{
-    Flat, Gouraud, IncrementalModel, IncrementalPhong, Linear, Phong as PhongShading, ShadeVertex,
-    Shading,
+    FlatShading, GouraudShading, IncrementalModel, IncrementalPhongShading, Linear, PhongShading,
+    ShadeVertex, Shader,
 };
-use fixshade::target::SliceFramebuffer;
+use fixshade::camera::{Camera, MeshTransform, Orthographic};
+use fixshade::mesh::{Mat4, Mesh, Viewport};
+use fixshade::raster::Cull;
+use fixshade::render::{bins_len, CachedVertex, DrawOptions, FullFrame, Layout, MeshDraw, MeshMemory};
+use fixshade::shade::Kernel;
 
 // `out` is handed to the library as `&mut [Rgb565]`: Rgb565 is a newtype of a
 // newtype of the raw 5:6:5 `u16`, so its only possible layout is that `u16`.
@@ -145,7 +149,7 @@ fn normal_pos_attrs<S: Scalar>(v: &ShadeVertex<S>) -> [i32; 6] {
 #[inline(always)]
 unsafe fn span_flat<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let mut sh = Flat::new(&lit, Linear);
+    let mut sh = Shader::<_, _, _, Rgb565>::new(FlatShading, &lit, Linear);
     // the colour lit at the span's middle (what `draw` does at the centroid)
     let mid = vertex::<S>([0, 0], [0.0, 0.1, 0.79]);
     sh.set_color(lit.shade(&mid.position, mid.normal));
@@ -168,10 +172,12 @@ unsafe fn span_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
     out: *mut u16,
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let mut sh = Gouraud::new(&lit, Linear);
+    let mut sh = Shader::<_, _, _, Rgb565>::new(GouraudShading, &lit, Linear);
     let [v0, v1] = span_ends::<S>();
     let n = black_box(n);
-    let (start, step) = ramp(sh.vertex_attrs(&v0), sh.vertex_attrs(&v1), n);
+    // the attributes `Shading::draw` gives the rasterizer: encoder values with ATTR_FRAC bits
+    let a = |v: &ShadeVertex<S>| sh.vertex_values(&v.position, v.normal).map(|c| c << ATTR_FRAC);
+    let (start, step) = ramp(a(&v0), a(&v1), n);
     SpanShader::<3>::shade_span(
         &mut sh,
         black_box(0),
@@ -186,11 +192,12 @@ unsafe fn span_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
 #[inline(always)]
 unsafe fn span_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let mut sh = PhongShading::new(&lit, Linear);
+    let mut sh = Shader::<_, _, _, Rgb565>::new(PhongShading, &lit, Linear);
     let [v0, v1] = span_ends::<S>();
     let n = black_box(n);
     let (x, y, px) = (black_box(0), black_box(0), pixels(out, n as usize));
-    // as `Phong::draw`: the position is interpolated only when the lighting reads it
+    // as `Shading::draw`: the position (relative to the triangle's first
+    // vertex, here the origin) is interpolated only when the lighting reads it
     if Lighting::<S, L, M>::NEEDS_POSITION {
         let (start, step) = ramp(normal_pos_attrs(&v0), normal_pos_attrs(&v1), n);
         SpanShader::<6>::shade_span(&mut sh, x, y, &start, &step, px);
@@ -205,10 +212,10 @@ unsafe fn span_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out
 #[inline(always)]
 unsafe fn span_phong_inc<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
-    let mut sh = IncrementalPhong::<NW, 1, M, Rgb565>::new(&lit);
+    let mut sh = Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading, &lit, Linear);
     let [v0, v1] = span_ends::<Q14<NW>>();
     let n = black_box(n);
-    // the attributes `IncrementalPhong::draw` gives the rasterizer: N, N·L, N·H
+    // the attributes `Shading::draw` gives the rasterizer: N, N·L, N·H
     let attrs = |v: &ShadeVertex<Q14<NW>>| {
         let a = normal_attrs(v);
         let (l, h) = (
@@ -243,32 +250,75 @@ fn l_dir<const NW: u8, M: Model>(
 
 // ---- triangle kernels ------------------------------------------------------------
 
-/// Draws the triangle with legs of `scale` pixels (`scale = 0`: no draw call).
-#[inline(always)]
-unsafe fn draw<S: Scalar, Sh: Shading<S, Color = Rgb565>>(
-    sh: &mut Sh,
-    scale: u32,
-    out: *mut u16,
-) -> u32 {
-    // a patch of the sphere: top-left, top-right, bottom-left (y down on screen)
-    let mut tri = [
-        vertex::<S>([0, 0], [-0.5, 0.4, 0.77]),
-        vertex::<S>([0, 0], [0.5, 0.4, 0.77]),
-        vertex::<S>([0, 0], [-0.5, -0.4, 0.77]),
-    ];
-    let mut fb = SliceFramebuffer::new(pixels(out, (FB * FB) as usize), FB, FB).unwrap();
-    let s = black_box(scale);
-    if s == 0 {
-        return 0;
-    }
-    // corner at (2.25, 2.25): a leg of 1 pixel covers exactly the pixel centred at (2.5, 2.5)
-    let (o, d) = (9 << (SUBPIXEL_BITS - 2), (s as i32) << SUBPIXEL_BITS);
-    tri[0].screen = [o, o];
-    tri[1].screen = [o + d, o];
-    tri[2].screen = [o, o + d];
-    sh.draw(&mut fb, None, &black_box(tri), &RasterOptions::default())
-        .pixels
+/// The one-triangle frame of the triangle kernels: an orthographic camera
+/// mapping one model unit to one pixel (y up in the model, down on the screen).
+fn tri_transform() -> MeshTransform<Orthographic> {
+    let s = FB as f32;
+    Camera::orthographic(0.0, s, -s, 0.0, 0.5, 10.0, Viewport::new(0, 0, FB as i32, FB as i32).unwrap())
+        .unwrap()
+        .with_view(Mat4::translate([0.0, 0.0, -1.0]))
+        .mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8)
+        .unwrap()
 }
+
+
+/// Draws the triangle with legs of `scale` pixels (`scale = 0`: clears the
+/// frame and returns) through the mesh renderer: vertex stage, binning, set-up
+/// and the mode's depth-fused kernel, into a 64×64 frame with a depth buffer.
+#[inline(always)]
+unsafe fn draw<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -> u32
+where
+    K::Vertex: fixshade::render::Lerp,
+{
+    let t = black_box(tri_transform());
+    let s = black_box(scale);
+    // SAFETY: the kernels run one at a time (single-threaded emulator); nothing
+    // else references DEPTH
+    let depth = slice::from_raw_parts_mut(core::ptr::addr_of_mut!(DEPTH) as *mut u16, (FB * FB) as usize);
+    let Ok(mut frame) = FullFrame::new(FB, FB, pixels(out, (FB * FB) as usize), Some(depth)) else {
+        return 0;
+    };
+    if s == 0 {
+        // the baseline clears and counts too: the counts are the triangle's alone
+        frame.render(Rgb565::BLACK, &mut []);
+        drop(frame);
+        return covered();
+    }
+    // corner at (2.25, 2.25): a leg of 1 pixel covers exactly the pixel centred at (2.5, 2.5);
+    // positions in 1/16 pixel (frac 4), y up in the model
+    let (o, d) = (9 << (SUBPIXEL_BITS - 2), (s as i32) << SUBPIXEL_BITS);
+    let pos = [[o, -o, 0], [o + d, -o, 0], [o, -(o + d), 0]].map(|p| p.map(|c| c as i16));
+    // a patch of the sphere: top-left, top-right, bottom-left: the unit vectors
+    // along (∓0.5, ±0.4, 0.77) in Q14
+    let nrm: [[i16; 3]; 3] = [[-8180, 6544, 12597], [8180, 6544, 12597], [-8180, -6544, 12597]];
+    let tris = [[0u16, 1, 2]];
+    let (pos, nrm) = (black_box(pos), black_box(nrm));
+    let Ok(mesh) = Mesh::new(&pos, &nrm, &tris, SUBPIXEL_BITS as u8) else {
+        return 0;
+    };
+    let layout = Layout::full(FB, FB).unwrap();
+    let mut cache = [CachedVertex::<K::Vertex>::default(); 3];
+    let mut bins = [0u16; bins_len(1, 1)];
+    let memory = MeshMemory { vertices: &mut cache, bins: &mut bins, carry: &mut [] };
+    let opts = DrawOptions { cull: Cull::None };
+    let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
+        return 0;
+    };
+    frame.render(Rgb565::BLACK, &mut [&mut tri]);
+    drop(frame);
+    covered()
+}
+
+/// Covered pixels: those whose depth was written.
+#[inline(never)]
+unsafe fn covered() -> u32 {
+    let depth = slice::from_raw_parts(core::ptr::addr_of!(DEPTH) as *const u16, (FB * FB) as usize);
+    // branch-free, so that the count costs the same in the baseline
+    depth.iter().map(|z| u32::from(*z != u16::MAX)).sum()
+}
+
+/// The triangle kernels' depth buffer.
+static mut DEPTH: [u16; (FB * FB) as usize] = [0; (FB * FB) as usize];
 
 #[inline(always)]
 unsafe fn tri_flat<S: Scalar, L: LightSet<S>, M: Model>(
@@ -277,7 +327,7 @@ unsafe fn tri_flat<S: Scalar, L: LightSet<S>, M: Model>(
     out: *mut u16,
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    draw(&mut Flat::new(&lit, Linear), scale, out)
+    draw(Shader::new(FlatShading, &lit, Linear), scale, out)
 }
 
 #[inline(always)]
@@ -287,7 +337,7 @@ unsafe fn tri_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
     out: *mut u16,
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    draw(&mut Gouraud::new(&lit, Linear), scale, out)
+    draw(Shader::new(GouraudShading, &lit, Linear), scale, out)
 }
 
 #[inline(always)]
@@ -297,17 +347,13 @@ unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(
     out: *mut u16,
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    draw(&mut PhongShading::new(&lit, Linear), scale, out)
+    draw(Shader::new(PhongShading, &lit, Linear), scale, out)
 }
 
 #[inline(always)]
 unsafe fn tri_phong_inc<const NW: u8, M: IncrementalModel>(scale: u32, out: *mut u16) -> u32 {
     let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
-    draw(
-        &mut IncrementalPhong::<NW, 1, M, Rgb565>::new(&lit),
-        scale,
-        out,
-    )
+    draw(Shader::new(IncrementalPhongShading, &lit, Linear), scale, out)
 }
 
 /// `span_<tier>_phong_inc_<set>` / `tri_…`: incremental Phong kernels (Q14 tiers,
