@@ -87,7 +87,9 @@ class Result:
 
 
 class Emulator:
-    def __init__(self, elf: str | Path, core: str = "m0"):
+    def __init__(self, elf: str | Path, core: str = "m0", ram_size: int = RAM_SIZE):
+        """`ram_size`: bytes mapped at RAM (the image's memory.x: 256 KiB for
+        the kernels, 1 MiB for measure/frame); the stack starts at its top."""
         self.core, self.elf = core, Path(elf)
         model, _ = CORES[core]
         # Not UC_MODE_MCLASS: with it Unicorn 2 silently forces a Cortex-M33 model.
@@ -96,7 +98,7 @@ class Emulator:
         uc.ctl_set_cpu_model(model)
         assert uc.ctl_get_cpu_model() == model
         uc.mem_map(FLASH, FLASH_SIZE)
-        uc.mem_map(RAM, RAM_SIZE)
+        uc.mem_map(RAM, ram_size)
         uc.mem_map(RETURN, 0x1000)
         uc.mem_write(RETURN, b"\xfe\xe7" * 0x800)  # `b .`, never reached
         self.funcs: dict[str, tuple[int, int]] = {}  # name -> (address, st_size)
@@ -107,7 +109,7 @@ class Emulator:
                 # Load at the VMA: .data is then initialised without running Reset.
                 v = seg["p_vaddr"]
                 uc.mem_write(v, seg.data() + bytes(seg["p_memsz"] - seg["p_filesz"]))
-                if RAM <= v < RAM + RAM_SIZE:
+                if RAM <= v < RAM + ram_size:
                     ram_end = max(ram_end, v + seg["p_memsz"])
             self._text = e.get_section_by_name(".text")["sh_size"]
             self._code = []  # Thumb ranges between $t/$d mapping symbols
@@ -126,11 +128,11 @@ class Emulator:
         self._starts = sorted((a, n) for n, (a, _) in self.funcs.items())
         self._sizes = {n: s for n, (_, s) in self.funcs.items()}
         self.arena = (ram_end + 7) & ~7  # inputs go here, the stack at the top of RAM
-        self.stack_top = RAM + RAM_SIZE
+        self.stack_top = RAM + ram_size
         self.cs = capstone.Cs(capstone.CS_ARCH_ARM, capstone.CS_MODE_THUMB | capstone.CS_MODE_MCLASS)
         self._blocks: dict[tuple[int, int], tuple[int, str]] = {}
         self._insns, self._by_func, self.limit = 0, Counter(), 0
-        uc.hook_add(unicorn.UC_HOOK_BLOCK, self._on_block)
+        self.block_hook = uc.hook_add(unicorn.UC_HOOK_BLOCK, self._on_block)  # handle, for hook_del
         # FPU: Unicorn's Cortex-M4 model executes VFP with no CPACR set-up (and
         # 0xE000ED88 is not mapped); --selftest checks that vmla/vmul.f32 run.
 

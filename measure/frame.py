@@ -1,0 +1,867 @@
+#!/usr/bin/env python3
+"""Whole-frame figures of the standard scene on emulated Cortex-M0 and Cortex-M4F.
+
+    python3 measure/frame.py               # build, measure, write measure/out/frame.json, print the table
+    python3 measure/frame.py --breakdown   # also: where each frame's instructions go, by pipeline stage
+    python3 measure/frame.py --check       # CI: checksums, no 64-bit mul/div on the M0 frame path,
+                                           # bounds of measure/frame_bounds.json; exit 1 on any failure
+    python3 measure/frame.py --write-bounds  # measure, then rewrite frame_bounds.json (measured + margin)
+
+`measure/frame/` (a `no_std` crate, its own workspace) is built for
+thumbv6m-none-eabi and thumbv7em-none-eabihf (profile `release`: opt-level 3,
+LTO, panic=abort), thumbv6m-none-eabi at opt-level "z" (profile `release-z`)
+and for the host. Each firmware entry `frame_<config>[_band8]` renders one
+complete frame of `fixshade::standard` (lighting and shader built from their
+`f32` parameters, vertex stage and binning in `MeshDraw::new`, clears, set-up,
+spans, band flushes or the final flush) into a `fixshade::target::Checksum`
+display and returns the checksum; Unicorn (measure/cortex.py) runs it once.
+The mesh transform is built once before the frames (entry `init`, `f32`) and
+is not part of a frame's count (`transform_instr` reports its cost).
+
+Per core section (`m0`, `m4f`, `m0_z` = M0 at opt-level "z", band8 only) and
+configuration: instructions of the call; per lit pixel (non-black pixels of
+the host's frame); peak stack (lowest written address of a painted stack,
+below the initial SP, entry frame included); RAM of the frame's buffers (ELF
+symbol sizes of the statics it uses); flash of the code reachable from the
+entry (static call graph, see `Image`); the checksum (must equal the host's).
+"""
+from __future__ import annotations
+
+import argparse
+import bisect
+import json
+import math
+import re
+import subprocess
+import sys
+import time
+from collections import Counter, defaultdict, deque
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+from cortex import CORES, RETURN, Emulator, Result  # noqa: E402
+from counts import callees as direct_callees, insns, is_runtime_lib  # noqa: E402
+from elftools.elf.elffile import ELFFile  # noqa: E402
+from unicorn import arm_const as A  # noqa: E402
+
+FRAME_DIR = HERE / "frame"
+OUT = HERE / "out" / "frame.json"
+BOUNDS = HERE / "frame_bounds.json"
+RAM_SIZE = 1 << 20  # measure/frame/memory.x
+CONFIGS = ["lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat"]
+ENTRIES = [c + k for c in CONFIGS for k in ("", "_band8")]
+# section -> (core, cargo profile, entries measured)
+SECTIONS = {
+    "m0": ("m0", "release", ENTRIES),
+    "m4f": ("m4f", "release", ENTRIES),
+    "m0_z": ("m0", "release-z", [e for e in ENTRIES if e.endswith("_band8")]),
+}
+# Issue 8, deliverable 3: none of these may be reachable from the frame path of
+# an orthographic Gouraud or Phong scene on thumbv6m.
+FORBIDDEN = ("u64_div_rem", "__aeabi_ldivmod", "__aeabi_uldivmod", "__aeabi_lmul",
+             "__udivmoddi4", "__divdi3", "__muldi3")
+CROSS_CHECK = "flat_band8"  # --check runs it with both block counters
+NO_WIDE = [c + k for c in ("lambert_gouraud", "blinn_gouraud", "blinn_phong", "flat") for k in ("", "_band8")]
+PAINT = 0x4000  # bytes of stack painted below the initial SP
+PATTERN = 0xA5C3_5A3C
+TIMEOUT_S = 300  # seconds per call before the emulator gives up
+_UC_HOOK_BLOCK = 1 << 3  # unicorn.UC_HOOK_BLOCK
+# Issue 8's targets for the M0 with 8-row bands (O3 and z); reported, not enforced.
+TARGETS = {"stack_bytes": 1024, "ram_plus_stack": 14 * 1024, "code_bytes_lib lambert_gouraud_band8": 12 * 1024}
+
+
+def log(*a) -> None:
+    print(*a, file=sys.stderr, flush=True)
+
+
+# -- names ---------------------------------------------------------------------------
+_LEGACY = {"$LT$": "<", "$GT$": ">", "$u20$": " ", "$C$": ",", "$RF$": "&", "$BP$": "*",
+           "$SP$": "@", "$LP$": "(", "$RP$": ")", "$u5b$": "[", "$u5d$": "]", "$u3b$": ";",
+           "$u7b$": "{", "$u7d$": "}", "$u27$": "'", "$u22$": '"', "$u7e$": "~", "$u2b$": "+"}
+
+
+def demangle(sym: str) -> str:
+    """Rust legacy (`_ZN…E`) names in Python, v0 (`_R…`) through llvm-cxxfilt;
+    the hash and `.llvm.N` suffixes dropped."""
+    base = sym.split(".llvm.")[0]
+    if base.startswith("_ZN") and base.endswith("E"):
+        s, i, parts = base[3:-1], 0, []
+        while i < len(s) and s[i].isdigit():
+            j = i
+            while s[j].isdigit():
+                j += 1
+            n = int(s[i:j])
+            parts.append(s[j:j + n])
+            i = j + n
+        if parts and re.fullmatch(r"h[0-9a-f]{16}", parts[-1]):
+            parts.pop()
+        out = "::".join(p[1:] if p.startswith("_$") else p for p in parts)
+        for k, v in _LEGACY.items():
+            out = out.replace(k, v)
+        return out.replace("..", "::")
+    if base.startswith("_R"):
+        return _cxxfilt(base)
+    return base
+
+
+_CXX: dict[str, str] = {}
+
+
+def _cxxfilt(sym: str) -> str:
+    if sym not in _CXX:
+        try:
+            r = subprocess.run(["llvm-cxxfilt"], input=sym + "\n", capture_output=True, text=True)
+            _CXX[sym] = re.sub(r" \(\.llvm\.\d+\)$", "", r.stdout.strip()) or sym
+        except FileNotFoundError:
+            _CXX[sym] = sym
+    return _CXX[sym]
+
+
+def is_soft_float(name: str) -> bool:
+    """Soft-float and libm code (demangled name)."""
+    return (name.startswith(("__aeabi_f", "__aeabi_d", "__aeabi_i2f", "__aeabi_ui2f", "__aeabi_l2f",
+                             "__aeabi_ul2f", "__aeabi_i2d", "__aeabi_ui2d", "__aeabi_l2d", "__aeabi_ul2d"))
+            or re.match(r"__\w+[sd]f\d?$", name) is not None
+            or "compiler_builtins::float" in name or name.startswith("libm::"))
+
+
+def is_forbidden(name: str) -> bool:
+    return any(f in name for f in FORBIDDEN)
+
+
+# -- the image: static call graph ----------------------------------------------------
+class Image(Emulator):
+    """An Emulator plus the image's static call graph.
+
+    Edges of the graph (a conservative over-approximation of what a function
+    can call):
+    * direct: every `b`/`bl`/`b<cc>` with an immediate target in another
+      function (literal pools skipped through the ELF `$t`/`$d` mapping symbols);
+    * address taken: the image is linked with `--emit-relocs`, so every word
+      of the code that holds an address is known (R_ARM_ABS32 in a literal
+      pool, R_ARM_THM_MOVW/MOVT pairs). A function whose address a reachable
+      function materialises is reachable from it; an address inside `.rodata`
+      names an object (from that address up to the next address any code
+      refers to, the next `.rodata` symbol or the end of the section): every
+      function whose address that object holds (R_ARM_ABS32 in `.rel.rodata`)
+      is reachable. This resolves the `&mut dyn DrawBand` call of
+      `Bands::render` (`blx rN`): the vtable is referenced from the literal
+      pool of `draw_bands::<K>`. One level only: pointers in `.rodata`
+      objects pointing to further `.rodata` objects are not followed.
+    The emulated run checks the graph: every function executed must be
+    statically reachable from the entry (`frame.py` fails otherwise).
+    """
+
+    def __init__(self, elf, core):
+        super().__init__(elf, core, ram_size=RAM_SIZE)
+        self.names = {n: demangle(n) for n in self.funcs}
+        self.objects: dict[str, tuple[int, int]] = {}  # data symbols: name -> (address, size)
+        refs: dict[str, set[int]] = {}  # function -> addresses its code materialises
+        ro_ptrs: dict[int, int] = {}  # .rodata offset -> code address stored there
+        with open(self.elf, "rb") as f:
+            e = ELFFile(f)
+            ro = e.get_section_by_name(".rodata")
+            self.rodata = (ro["sh_addr"], ro["sh_addr"] + ro["sh_size"])
+            symtab = e.get_section_by_name(".symtab")
+            for s in symtab.iter_symbols():
+                if s["st_info"]["type"] == "STT_OBJECT" and s["st_size"]:
+                    self.objects.setdefault(s.name, (s["st_value"], s["st_size"]))
+            movs: dict[tuple, dict] = {}
+            rel = e.get_section_by_name(".rel.text")
+            for r in (rel.iter_relocations() if rel else []):
+                off, typ = r["r_offset"], r["r_info_type"]
+                fn = self.symbol_at(off)
+                if typ == 2:  # R_ARM_ABS32: a literal pool word
+                    refs.setdefault(fn, set()).add(self._word(off))
+                elif typ in (47, 48):  # R_ARM_THM_MOVW_ABS_NC / R_ARM_THM_MOVT_ABS
+                    i = next(self.cs.disasm(bytes(self.uc.mem_read(off, 4)), off))
+                    reg, imm = i.op_str.split(", #")
+                    movs.setdefault((fn, r["r_info_sym"], reg), {})[typ] = int(imm, 0)
+            for (fn, _, _), m in movs.items():
+                refs.setdefault(fn, set()).add(m.get(47, 0) | m.get(48, 0) << 16)
+            rel = e.get_section_by_name(".rel.rodata")
+            for r in (rel.iter_relocations() if rel else []):
+                if r["r_info_type"] == 2:
+                    ro_ptrs[r["r_offset"]] = self._word(r["r_offset"])
+        self.refs = refs
+        lo, hi = self.rodata
+        bounds = {a for v in refs.values() for a in v if lo <= a < hi}
+        bounds |= {a for a in ro_ptrs.values() if lo <= a < hi}
+        bounds |= {a for a, _ in self.objects.values() if lo <= a < hi}
+        self._ro_bounds = sorted(bounds | {hi})
+        self._ro_ptrs = sorted(ro_ptrs.items())
+        self._edges: dict[str, dict[str, str]] = {}
+
+    def _word(self, addr: int) -> int:
+        return int.from_bytes(bytes(self.uc.mem_read(addr, 4)), "little")
+
+    def func_at(self, addr: int) -> str | None:
+        """The function starting at code address `addr` (Thumb bit set or not)."""
+        name = self.symbol_at(addr & ~1)
+        return name if name in self.funcs and self.funcs[name][0] == addr & ~1 else None
+
+    def rodata_object(self, addr: int) -> tuple[int, int]:
+        i = bisect.bisect_right(self._ro_bounds, addr)
+        return addr, self._ro_bounds[i] if i < len(self._ro_bounds) else self.rodata[1]
+
+    def edges(self, fn: str) -> dict[str, str]:
+        """Callee -> how (`call`, `address`, `vtable@0x…`)."""
+        if fn not in self._edges:
+            out = {g: "call" for g in direct_callees(self, fn)}
+            for a in sorted(self.refs.get(fn, ())):
+                g = self.func_at(a)
+                if g and g != fn:
+                    out.setdefault(g, "address")
+                elif self.rodata[0] <= a < self.rodata[1]:
+                    s, t = self.rodata_object(a)
+                    i = bisect.bisect_left(self._ro_ptrs, (s, -1))
+                    while i < len(self._ro_ptrs) and self._ro_ptrs[i][0] < t:
+                        g = self.func_at(self._ro_ptrs[i][1])
+                        if g and g != fn:
+                            out.setdefault(g, f"vtable@{s:#x}")
+                        i += 1
+            self._edges[fn] = out
+        return self._edges[fn]
+
+    def reach(self, entry: str) -> dict[str, str | None]:
+        """Reachable functions -> their parent on a shortest path (BFS)."""
+        parent: dict[str, str | None] = {entry: None}
+        todo = deque([entry])
+        while todo:
+            f = todo.popleft()
+            for g in sorted(self.edges(f)):
+                if g not in parent:
+                    parent[g] = f
+                    todo.append(g)
+        return parent
+
+    def chain(self, parent: dict, f: str) -> str:
+        path = [f]
+        while parent[path[-1]] is not None:
+            path.append(parent[path[-1]])
+        path.reverse()
+        out = self.short(path[0])
+        for a, b in zip(path, path[1:]):
+            out += f" -[{self.edges(a)[b]}]-> {self.short(b)}"
+        return out
+
+    def short(self, name: str) -> str:
+        d = self.names.get(name, name)
+        d = re.sub(r"<[^<>]*(?:<[^<>]*(?:<[^<>]*>[^<>]*)*>[^<>]*)*>", "<…>", d) if len(d) > 90 else d
+        return d
+
+    def indirect(self, fs) -> list[str]:
+        """Indirect calls (`blx rN`, `bx rN` with N ≠ lr) in the functions `fs`."""
+        return [f"{self.short(f)}: {i.mnemonic} {i.op_str} @ {i.address:#x}" for f in sorted(fs)
+                for i in insns(self, f) if i.mnemonic in ("blx", "bx") and i.op_str not in ("lr",)
+                and not i.op_str.startswith("#")]
+
+    def size_of(self, fs) -> tuple[int, int]:
+        total = sum(self.func_size(f) for f in fs)
+        return total, total - sum(self.func_size(f) for f in fs if is_runtime_lib(f))
+
+    def object(self, suffix: str) -> tuple[str, int]:
+        for n, (_, size) in self.objects.items():
+            if n == suffix or demangle(n).endswith(suffix):
+                return n, size
+        raise KeyError(f"no data symbol {suffix} in {self.elf}")
+
+
+# -- building ------------------------------------------------------------------------
+def elf(core: str, profile: str) -> Path:
+    return FRAME_DIR / "target" / CORES[core][1] / profile / "frame"
+
+
+def cargo(args: list[str]) -> str:
+    cmd = ["cargo", *args]
+    log(f"$ (cd measure/frame && {' '.join(cmd)})")
+    r = subprocess.run(cmd, cwd=FRAME_DIR, capture_output=True, text=True)
+    if r.returncode:
+        sys.stderr.write(r.stderr)
+        raise SystemExit(f"FAIL: cargo {' '.join(args)} exited with {r.returncode}")
+    return r.stdout
+
+
+def build() -> dict:
+    t = time.time()
+    cargo(["build", "--quiet", "--release", "--target", CORES["m0"][1], "--target", CORES["m4f"][1]])
+    cargo(["build", "--quiet", "--profile", "release-z", "--target", CORES["m0"][1]])
+    host = host_reference()
+    log(f"built in {time.time() - t:.0f} s")
+    return host
+
+
+def host_reference() -> dict:
+    """The host's checksums, lit pixels and buffer needs (profile `host`: no LTO, fast to build)."""
+    return json.loads(cargo(["run", "--quiet", "--profile", "host"]))
+
+
+# -- running -------------------------------------------------------------------------
+_NATIVE_SRC = r"""
+#include <stdint.h>
+/* Unicorn UC_HOOK_BLOCK callback: executions per block, indexed by the block's
+   start address (Thumb: 2-byte steps) over [lo, lo + 2n). */
+static uint32_t *cnt; static uint16_t *sz; static uint64_t lo, n, bad_at; static uint32_t bad;
+void bc_setup(uint32_t *c, uint16_t *s, uint64_t l, uint64_t len) { cnt = c; sz = s; lo = l; n = len; bad = 0; }
+uint32_t bc_bad(void) { return bad; }
+uint64_t bc_bad_at(void) { return bad_at; }
+void bc_block(void *uc, uint64_t addr, uint32_t size, void *user) {
+    uint64_t i = (addr - lo) >> 1;
+    (void)uc; (void)user;
+    if (addr < lo || i >= n || size > 65535 || (sz[i] && sz[i] != size)) { bad++; bad_at = addr; return; }
+    sz[i] = (uint16_t)size;
+    cnt[i]++;
+}
+"""
+
+
+class NativeCounter:
+    """A block hook in C (compiled once with `cc`, cached under
+    measure/frame/target/): counts executions per block start address, about
+    ten times faster than a Python hook. Unicorn calls it exactly where it
+    would call the Python hook; the counts are decoded afterwards with the
+    same capstone block cache, so the figures are identical."""
+
+    def __init__(self, emu: Emulator):
+        import ctypes
+        import hashlib
+        so = FRAME_DIR / "target" / f"blockcount-{hashlib.sha1(_NATIVE_SRC.encode()).hexdigest()[:12]}.so"
+        if not so.exists():
+            so.parent.mkdir(parents=True, exist_ok=True)
+            src = so.with_suffix(".c")
+            src.write_text(_NATIVE_SRC)
+            subprocess.run(["cc", "-O2", "-shared", "-fPIC", "-o", str(so), str(src)], check=True,
+                           capture_output=True)
+        self.ct = ctypes
+        self.lib = lib = ctypes.CDLL(str(so))
+        text = min(a for a, _ in emu._code), max(b for _, b in emu._code)
+        self.lo, self.n = text[0] & ~1, (text[1] - (text[0] & ~1) + 1) // 2
+        self.cnt = (ctypes.c_uint32 * self.n)()
+        self.sz = (ctypes.c_uint16 * self.n)()
+        lib.bc_setup.argtypes = [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint64, ctypes.c_uint64]
+        lib.bc_bad.restype = ctypes.c_uint32
+        lib.bc_bad_at.restype = ctypes.c_uint64
+        uclib = sys.modules["unicorn.unicorn_py3.unicorn"].uclib
+        uc = emu.uc
+        uc.hook_del(emu.block_hook)
+        h = ctypes.c_size_t()
+        err = uclib.uc_hook_add(uc._uch, ctypes.byref(h), _UC_HOOK_BLOCK,
+                                ctypes.cast(lib.bc_block, ctypes.c_void_p), None,
+                                ctypes.c_uint64(1), ctypes.c_uint64(0))
+        if err:
+            raise RuntimeError(f"uc_hook_add: {err}")
+        uc.ctl_flush_tb()
+
+    def reset(self) -> None:
+        self.ct.memset(self.cnt, 0, 4 * self.n)
+        self.ct.memset(self.sz, 0, 2 * self.n)
+        self.lib.bc_setup(self.cnt, self.sz, self.lo, self.n)
+
+    def counts(self) -> dict[tuple[int, int], int]:
+        if self.lib.bc_bad():
+            raise RuntimeError(f"{self.lib.bc_bad()} blocks outside .text or with varying sizes"
+                               f" (last at {self.lib.bc_bad_at():#x})")
+        c = memoryview(self.cnt).cast("B").cast("I")
+        return {(self.lo + 2 * i, self.sz[i]): v for i, v in enumerate(c) if v}
+
+
+class Frame(Image):
+    """Runs one frame entry. Counting: a native block hook (`NativeCounter`),
+    or with `profile` the Python hook, which also records the call site of
+    every compiler-builtins invocation and the stack at the deepest block entry
+    (for `--breakdown`). Both count every executed block's instructions
+    (decoded once with capstone), so the figures are the same."""
+
+    def __init__(self, elf, core, profile: bool = False):
+        super().__init__(elf, core)
+        self.profile = profile
+        self.native = None
+        self._lib: dict[tuple[int, int], tuple] = {}  # block -> (instructions, builtin) or ()
+        if not profile:
+            try:
+                self.native = NativeCounter(self)
+            except (OSError, subprocess.CalledProcessError, RuntimeError, KeyError) as err:
+                log(f"  (no native block counter, {err!r}: counting in Python, slower)")
+
+    def _on_block(self, uc, addr, size, user):
+        key = (addr, size)
+        self._bc[key] += 1
+        if self.profile:
+            lib = self._lib.get(key)
+            if lib is None:
+                n, name = self._block(addr, size)
+                lib = self._lib[key] = (n, name) if is_runtime_lib(name) else ()
+            if lib:
+                if self._site is None:  # entering a builtin from fixshade code: LR is the return address
+                    self._site = (uc.reg_read(A.UC_ARM_REG_LR) & ~1) - 2
+                self.builtin_sites[(self._site, lib[1])] += lib[0]
+            else:
+                self._site = None
+            sp = uc.reg_read(A.UC_ARM_REG_SP)
+            if sp < self.min_sp[0]:  # the deepest block entry: keep the stack for a backtrace
+                self.min_sp = (sp, addr, bytes(uc.mem_read(sp, self.stack_top - sp)))
+
+    def _block(self, addr: int, size: int) -> tuple[int, str]:
+        hit = self._blocks.get((addr, size))
+        if hit is None:
+            code = bytes(self.uc.mem_read(addr, size))
+            n = len(list(self.cs.disasm(code, addr)))
+            assert sum(i.size for i in self.cs.disasm(code, addr)) == size, f"capstone stopped early at {addr:#x}"
+            hit = self._blocks[(addr, size)] = (n, self.symbol_at(addr))
+        return hit
+
+    def run(self, sym: str) -> tuple[Result, int, int]:
+        """(result, status word r1, peak stack bytes) of one call of `sym()`."""
+        uc, top = self.uc, self.stack_top
+        uc.mem_write(top - PAINT, PATTERN.to_bytes(4, "little") * (PAINT // 4))
+        for r in range(13):
+            uc.reg_write(A.UC_ARM_REG_R0 + r, 0)
+        uc.reg_write(A.UC_ARM_REG_SP, top)
+        uc.reg_write(A.UC_ARM_REG_LR, RETURN | 1)
+        uc.reg_write(A.UC_ARM_REG_XPSR, 1 << 24)
+        self._bc, self.builtin_sites, self._site = defaultdict(int), Counter(), None
+        self.min_sp = (top, 0, b"")
+        if self.native:
+            self.native.reset()
+        uc.emu_start(self.funcs[sym][0] | 1, RETURN, timeout=TIMEOUT_S * 1_000_000)
+        pc = uc.reg_read(A.UC_ARM_REG_PC)
+        if pc != RETURN:
+            raise SystemExit(f"FAIL {self.elf.parent.parent.name} {sym}: stopped at {pc:#x} "
+                             f"({self.short(self.symbol_at(pc))}) after {TIMEOUT_S} s or a fault")
+        self.blocks = self.native.counts() if self.native else dict(self._bc)
+        insns, by_func = 0, Counter()
+        for (a, n), times in self.blocks.items():
+            k, name = self._block(a, n)
+            insns += k * times
+            by_func[name] += k * times
+        raw = bytes(uc.mem_read(top - PAINT, PAINT))
+        low = next((top - PAINT + i for i in range(0, PAINT, 4)
+                    if int.from_bytes(raw[i:i + 4], "little") != PATTERN), top)
+        if low <= top - PAINT + 64:
+            raise SystemExit(f"FAIL {sym}: the stack went below the {PAINT} painted bytes")
+        return Result(uc.reg_read(A.UC_ARM_REG_R0), insns, by_func), uc.reg_read(A.UC_ARM_REG_R1), top - low
+
+
+def measure_section(section: str, host: dict, profile: set[str]) -> tuple[dict, dict]:
+    """Runs the section's entries (those in `profile` with the profiling hook)."""
+    core, prof, entries = SECTIONS[section]
+    path = elf(core, prof)
+    emu = Frame(path, core)
+    if core == "m0":
+        bad = emu.v6m_violations()
+        if bad:
+            raise SystemExit(f"FAIL {section}: ARMv7-M instructions in the M0 image: {bad[:3]}")
+    r, _, _ = emu.run("init")
+    if r.ret != 0:
+        raise SystemExit(f"FAIL {section}: init (standard::transform) returned {r.ret}")
+    transform_instr = r.insns
+    mesh_bytes = emu.object("fixshade::standard::SPHERE")[1]
+    res, prof_data, profiled, slow = {}, {}, {}, None
+    for ent in entries:
+        t0 = time.time()
+        cfg, band = ent.removesuffix("_band8"), ent.endswith("_band8")
+        sym = f"frame_{ent}"
+        r, status, stack = emu.run(sym)
+        if ent in profile:
+            if slow is None:
+                slow = Frame(path, core, profile=True)
+                slow.run("init")
+            rp, _, _ = slow.run(sym)
+            if (rp.insns, rp.by_func) != (r.insns, r.by_func):
+                raise SystemExit(f"FAIL {section} {ent}: the profiling run counted {rp.insns} instructions,"
+                                 f" the native counter {r.insns}")
+            profiled[ent] = {"blocks": slow.blocks, "sites": slow.builtin_sites, "min_sp": slow.min_sp}
+        if status:
+            raise SystemExit(f"FAIL {section} {ent}: status {status:#x} (1 lighting, 2 render, "
+                             f"3 | needed << 8 buffer too small, 4 pixels missing)")
+        checksum = f"{r.ret:#010x}"
+        want = host[ent]["checksum"]
+        if checksum != want:
+            raise SystemExit(f"FAIL {section} {ent}: checksum {checksum} != host {want}: the emulated "
+                             "frame's pixels differ from the host's (a library bug on this target)")
+        # static call graph from the entry and from the per-frame path
+        parent = emu.reach(sym)
+        draw = [g for g in emu.edges(sym) if emu.names[g].startswith("fixshade_frame::draw_")]
+        if len(draw) != 1:
+            raise SystemExit(f"FAIL {section} {ent}: expected one draw_full/draw_bands callee, got {draw}")
+        frame_parent = emu.reach(draw[0])
+        ran = set(r.by_func)
+        unreached = sorted(emu.short(f) for f in ran - set(parent))
+        if unreached:
+            raise SystemExit(f"FAIL {section} {ent}: executed but not statically reachable (the call "
+                             f"graph misses an edge): {unreached}")
+        # RAM: the statics this entry uses (ELF symbol sizes)
+        ram = {
+            "color": emu.object("STRIP_COLOR" if band else "FRAME_COLOR")[1],
+            "depth": emu.object("STRIP_DEPTH" if band else "FRAME_DEPTH")[1],
+            "cache": emu.object(f"CACHE_{cfg}")[1],
+            "bins": emu.object(f"{'BINS_BAND' if band else 'BINS_FULL'}_{cfg}")[1],
+            "carry": emu.object(f"CARRY_BAND_{cfg}")[1] if band else 0,
+        }
+        ram_min = (ram["color"] + ram["depth"] + ram["cache"] + 2 * host[ent]["bins_needed"]
+                   + 6 * host[ent]["carry_needed"])
+        code, code_lib = emu.size_of(parent)
+        code_frame, code_frame_lib = emu.size_of(frame_parent)
+        lit = host[ent]["lit_px"]
+        a, _ = emu.objects[emu.object(f"TYPES_{cfg}")[0]]
+        types = dict(zip(("lighting", "shader", "mesh_draw"), (emu._word(a + 4 * i) for i in range(3))))
+        d = {
+            "instructions": r.insns,
+            "instr_per_lit_px": round(r.insns / lit, 2),
+            "lit_px": lit,
+            "stack_bytes": stack,
+            "ram_bytes": sum(ram.values()),
+            "ram": ram,
+            "ram_min_bytes": ram_min,
+            "code_bytes": code,
+            "code_bytes_lib": code_lib,
+            "code_bytes_frame": code_frame,
+            "code_bytes_frame_lib": code_frame_lib,
+            "mesh_bytes": mesh_bytes,
+            "type_bytes": types,
+            "transform_instr": transform_instr,
+            "soft_float": sorted({emu.short(f) for f in parent if is_soft_float(emu.names[f])}),
+            "soft_float_frame": sorted({emu.short(f) for f in frame_parent if is_soft_float(emu.names[f])}),
+            "wide_reachable": sorted({emu.short(f) for f in parent if is_forbidden(emu.names[f])}),
+            "wide_executed": {emu.short(f): n for f, n in sorted(r.by_func.items()) if is_forbidden(emu.names[f])},
+            "checksum": checksum,
+        }
+        res[ent] = d
+        prof_data[ent] = {"parent": parent, "by_func": r.by_func, "indirect": emu.indirect(parent),
+                          **profiled.get(ent, {})}
+        log(f"  {section:<5} {ent:<22} {r.insns:>10} instr  {time.time() - t0:5.1f} s")
+    return res, {"emu": emu, "slow": slow, "entries": prof_data, "profiled": sorted(profiled)}
+
+
+# -- breakdown -------------------------------------------------------------------------
+# (category, regex on a demangled function name of the inline stack). The
+# innermost frame that matches decides; compiler-builtins count for their call site.
+STAGES = [
+    ("vertex", r"render::vertex::orthographic$"),
+    ("bins", r"render::bins::sort$|render::draw::classify$"),
+    ("clip", r"MeshDraw<K>::clipped$|raster::clip::"),
+    ("setup", r"Setup::(new|prepare_planes|plane|walker)$|Kernel for .*>::(triangle|skip_rows)$"
+              r"|Walker::(new|resume|unpositioned|edge_near|edge_from|level_row)$|Plane::skip_rows$"),
+    ("edges", r"Walker::(next|more|snapshot)$|Edge::"),
+    ("span_clamp", r"Plane::clamped$"),
+    ("rows", r"Kernel for .*>::next_row$|Plane::next_row$|BandView<C>::span$"),
+    ("spans", r"Kernel for .*>::run(::\{\{closure\}\})*$|::depth_loop(::\{\{closure\}\})*$"
+              r"|incremental::.*::span$"),
+    ("clears", r"render::fill$"),
+    ("flush", r"Checksum<C>|FullFrame<C>::flush$"),
+    ("scene", r"fixshade::standard::|fixshade_frame::inc_lighting$|Shader<.*>::new$|ModeState.*::state$"
+              r"|PowTable::new$|Lighting<.*>::new$|Material<S>::new$|DirectionalLight<S>::new$"
+              r"|LightColors<S>::new$|Rgb<S>::try_from_f32$"),
+    ("triangles", r"::draw_band$|MeshDraw<K>::(triangle|draw_setup)$|Bands<C>::render$|FullFrame<C>::render$"),
+]
+STAGE_NAMES = [s for s, _ in STAGES] + ["other"]
+
+
+def symbolize(path: Path, addrs: list[int]) -> dict[int, list[tuple[str, str]]]:
+    """address -> inline stack [(function, file:line)], innermost first."""
+    inp = "".join(f"{a:#x}\n" for a in addrs)
+    out = subprocess.run(["llvm-symbolizer", "--obj", str(path), "--inlining", "--functions=linkage",
+                          "--no-demangle"], input=inp, capture_output=True, text=True, check=True).stdout
+    res = {}
+    for a, blk in zip(addrs, out.strip("\n").split("\n\n")):
+        lines = blk.splitlines()
+        frames = []
+        for fn, loc in zip(lines[0::2], lines[1::2]):
+            fn = demangle(fn) if fn.startswith(("_ZN", "_R")) else fn
+            m = re.search(r"(?:/src/|/library/)(.*)$", loc)
+            frames.append((fn, m[1].rsplit(":", 1)[0] if m else loc))
+        res[a] = frames
+    return res
+
+
+def stage_of(stack: list[tuple[str, str]]) -> str:
+    for fn, _ in stack:
+        for name, rx in STAGES:
+            if re.search(rx, fn):
+                return name
+    return "other"
+
+
+def breakdown(section: str, data: dict) -> dict:
+    """entry -> {stage: instructions} (+ `builtins`: {name: instructions})."""
+    emu = data["emu"]
+    per_insn: dict[str, Counter] = {}
+    addrs = set()
+    dis: dict[tuple, list[int]] = {}
+    for ent in data["profiled"]:
+        d = data["entries"][ent]
+        c = Counter()
+        for (addr, size), times in d["blocks"].items():
+            if is_runtime_lib(emu._block(addr, size)[1]):
+                continue  # counted at their call sites
+            if (addr, size) not in dis:
+                dis[(addr, size)] = [i.address for i in emu.cs.disasm(bytes(emu.uc.mem_read(addr, size)), addr)]
+            for a in dis[(addr, size)]:
+                c[a] += times
+        for (site, _), n in d["sites"].items():
+            c[site] += n
+        per_insn[ent] = c
+        addrs |= set(c)
+    stacks = symbolize(emu.elf, sorted(addrs))
+    stage = {a: stage_of(stacks[a]) for a in addrs}
+    out = {}
+    for ent, c in per_insn.items():
+        s = Counter()
+        for a, n in c.items():
+            s[stage[a]] += n
+        total = sum(s.values())
+        assert total == data["entries"][ent]["by_func"].total(), (ent, total)
+        b = {k: s[k] for k in STAGE_NAMES if s[k]}
+        b["builtins"] = {emu.short(f): n for f, n in data["entries"][ent]["by_func"].most_common()
+                         if is_runtime_lib(f)}
+        b["builtins_by_stage"] = {}
+        for (site, f), n in sorted(data["entries"][ent]["sites"].items()):
+            k = f"{stage[site]}: {emu.short(f)}"
+            b["builtins_by_stage"][k] = b["builtins_by_stage"].get(k, 0) + n
+        b["top_functions"] = {emu.short(f)[:100]: n for f, n in data["entries"][ent]["by_func"].most_common(12)}
+        b["deepest_stack"] = backtrace(emu, *data["entries"][ent]["min_sp"])
+        parent = data["entries"][ent]["parent"]
+        b["largest_functions"] = {emu.short(f)[:100]: emu.func_size(f) for f in
+                                  sorted(parent, key=lambda f: (-emu.func_size(f), f))[:12]}
+        out[ent] = b
+    return out
+
+
+def backtrace(emu: Image, sp: int, addr: int, mem: bytes) -> list[str]:
+    """The call chain at the deepest block entry of a run, outermost first,
+    each function with its approximate frame size (the distance between the
+    return addresses its callee and it pushed). A stack word is taken as the
+    return address into the caller when the instruction before it is a `bl`
+    to the current function (or to a function that branches to it) or a `blx rN`."""
+    cur, frames = emu.symbol_at(addr), [(addr, sp)]
+    for i in range(0, len(mem) - 3, 4):
+        w = int.from_bytes(mem[i:i + 4], "little")
+        if not w & 1 or emu.symbol_at(w & ~1)[:1] == "?":
+            continue
+        ret = w & ~1
+        bl = next(emu.cs.disasm(bytes(emu.uc.mem_read(ret - 4, 4)), ret - 4), None)
+        blx = next(emu.cs.disasm(bytes(emu.uc.mem_read(ret - 2, 2)), ret - 2), None)
+        if bl is not None and bl.mnemonic == "bl":
+            target = emu.symbol_at(int(bl.op_str[1:], 16))
+            ok, site = target == cur or emu.edges(target).get(cur) == "call", ret - 4
+        elif blx is not None and blx.mnemonic == "blx" and not blx.op_str.startswith("#"):
+            ok, site = True, ret - 2
+        else:
+            ok = False
+        if ok:
+            frames.append((site, sp + i))
+            cur = emu.symbol_at(site)
+    st = symbolize(emu.elf, sorted({a for a, _ in frames}))
+    out, below = [], emu.stack_top
+    for a, at in reversed(frames):  # outermost first
+        inl = " < ".join(fn.split("::")[-1] for fn, _ in st[a][:3])
+        out.append(f"{emu.short(emu.symbol_at(a))} [{inl}] ~{below - at} B")
+        below = at
+    return out
+
+
+def print_breakdown(section: str, bd: dict, res: dict) -> None:
+    print(f"\n{section}: instructions per frame by stage (innermost matching function of the inline"
+          " stack; compiler-builtins count for their call site)")
+    cols = [s for s in STAGE_NAMES if any(s in b for b in bd.values())]
+    print(f"{'config':<22}" + "".join(f"{c:>11}" for c in cols) + f"{'total':>11}")
+    for ent, b in bd.items():
+        print(f"{ent:<22}" + "".join(f"{b.get(c, 0):>11}" for c in cols) + f"{res[ent]['instructions']:>11}")
+    for ent, b in bd.items():
+        lit = res[ent]["lit_px"]
+        print(f"\n  {section} {ent}: per lit pixel " + ", ".join(
+            f"{c} {b[c] / lit:.2f}" for c in cols if c in b))
+        top = sorted(b["builtins_by_stage"].items(), key=lambda kv: -kv[1])
+        print("    compiler-builtins by call-site stage: " + ", ".join(f"{k} {v}" for k, v in top[:8])
+              + (f", … ({len(top) - 8} more, {sum(v for _, v in top[8:])} instr)" if len(top) > 8 else ""))
+        print("    top functions (instructions, callees excluded): "
+              + "; ".join(f"{k} {v}" for k, v in b["top_functions"].items()))
+        print(f"    deepest stack (outermost first; peak {res[ent]['stack_bytes']} B): "
+              + " -> ".join(b["deepest_stack"]))
+        print("    largest reachable functions (bytes): " + "; ".join(
+            f"{k} {v}" for k, v in b["largest_functions"].items()))
+
+
+# -- checks ----------------------------------------------------------------------------
+def call_sites(emu: Image, caller: str, callee: str) -> list[int]:
+    start = emu.funcs[callee][0]
+    return [i.address for i in insns(emu, caller)
+            if i.mnemonic.split(".")[0].startswith("b") and i.op_str == f"#{start:#x}"]
+
+
+def wide_check(section: str, data: dict, res: dict) -> tuple[int, int, list[str]]:
+    """No forbidden 64-bit symbol reachable from (statically) or executed by (dynamically)
+    the NO_WIDE entries of an M0 section. (passed, failed, report lines): for each
+    forbidden symbol, every reachable caller, a shortest chain from the entry to it
+    and the source lines of its calls (inline stacks)."""
+    emu, lines, ok, bad = data["emu"], [], 0, 0
+    for ent in NO_WIDE:
+        if ent not in data["entries"]:
+            continue
+        parent = data["entries"][ent]["parent"]
+        found = sorted(f for f in parent if is_forbidden(emu.names[f]))
+        ran = res[ent]["wide_executed"]
+        if found or ran:
+            bad += 1
+            lines.append(f"FAIL {section} {ent}: 64-bit multiply/divide reachable: "
+                         f"{[emu.short(f) for f in found]}; executed: {ran or 'none'}")
+            for f in found:
+                for c in sorted(c for c in parent if f in emu.edges(c) and c != f):
+                    lines.append(f"     {emu.chain(parent, c)} -> {emu.short(f)}")
+                    if is_runtime_lib(c):
+                        continue
+                    sites = call_sites(emu, c, f)
+                    for a, st in symbolize(emu.elf, sites).items():
+                        lines.append(f"         {a:#x}: " + " < ".join(
+                            f"{emu.short(fn).split('::')[-1]} ({loc})" for fn, loc in st[:4]))
+        else:
+            ok += 1
+            lines.append(f"ok   {section} {ent}: no 64-bit multiply/divide reachable ({len(parent)} functions) "
+                         "or executed")
+        ind = data["entries"][ent]["indirect"]
+        if ind:
+            lines.append(f"     (indirect calls `blx/bx rN`, resolved through the addresses and vtables the code refers to: {ind})")
+    return ok, bad, lines
+
+
+def bounds_check(res: dict, bounds: dict) -> tuple[int, int, list[str]]:
+    ok = bad = 0
+    lines = []
+    for b in bounds["bounds"]:
+        got = res.get(b["section"], {}).get(b["config"], {}).get(b["metric"])
+        if got is None:
+            bad += 1
+            lines.append(f"FAIL {b['section']} {b['config']} {b['metric']}: not measured")
+            continue
+        good = got <= b["max"]
+        ok += good
+        bad += not good
+        lines.append(f"{'ok  ' if good else 'FAIL'} {b['section']} {b['config']} {b['metric']} = {got}"
+                     f" (bound {b['max']})")
+    return ok, bad, lines
+
+
+def write_bounds(res: dict) -> None:
+    margin = {"instructions": 0.02, "stack_bytes": 0.10, "code_bytes": 0.05}
+    bounds = []
+    for section, per in res.items():
+        if section == "host":
+            continue
+        for ent, d in per.items():
+            for metric, m in margin.items():
+                bounds.append({"section": section, "config": ent, "metric": metric,
+                               "measured": d[metric], "max": math.ceil(d[metric] * (1 + m))})
+    doc = {
+        "about": [
+            "Upper bounds for `python3 measure/frame.py --check` (exit 1 if a figure exceeds its bound).",
+            "instructions: whole frame of the standard scene (one call), measured + 2 %;"
+            " stack_bytes: peak stack + 10 %; code_bytes: flash reachable from the entry + 5 %; rounded up.",
+            "Rewrite with `python3 measure/frame.py --write-bounds` in the commit that changes a figure"
+            " (lower the bounds when an optimisation lands).",
+            "The check also requires every checksum to equal the host's, and no 64-bit multiply or divide"
+            " reachable from or executed by the Gouraud, Phong and flat frames on the M0 (issue 8, deliverable 3).",
+        ],
+        "bounds": bounds,
+    }
+    BOUNDS.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
+    log(f"wrote {BOUNDS.relative_to(HERE.parent)} ({len(bounds)} bounds)")
+
+
+# -- output ----------------------------------------------------------------------------
+def table(res: dict) -> None:
+    print(f"{'section':<6} {'config':<22} {'instr':>10} {'/lit px':>8} {'stack':>6} {'ram':>7} {'ram min':>7}"
+          f" {'code':>6} {'lib':>6} {'frame':>6} {'checksum':>10}  soft-float in frame path / 64-bit")
+    for section, per in res.items():
+        if section == "host":
+            continue
+        for ent, d in per.items():
+            print(f"{section:<6} {ent:<22} {d['instructions']:>10} {d['instr_per_lit_px']:>8.2f}"
+                  f" {d['stack_bytes']:>6} {d['ram_bytes']:>7} {d['ram_min_bytes']:>7} {d['code_bytes']:>6}"
+                  f" {d['code_bytes_lib']:>6} {d['code_bytes_frame_lib']:>6} {d['checksum']:>10}"
+                  f"  {','.join(d['soft_float_frame']) or '-'} / {','.join(d['wide_reachable']) or '-'}")
+    any_sec = next(s for s in res if s != "host")
+    ent0 = next(iter(res[any_sec].values()))
+    print(f"mesh (SPHERE, flash): {ent0['mesh_bytes']} B; transform built once outside the frame: "
+          + ", ".join(f"{s} {next(iter(p.values()))['transform_instr']} instr" for s, p in res.items() if s != "host"))
+    print("columns: stack = peak bytes below the initial SP; ram = frame buffers as allocated (bins at"
+          " bins_len, 64 resume records); ram min = bins and records at the frame's exact need; code = flash"
+          " reachable from the entry; lib = without compiler-builtins/libm; frame = lib, per-frame path only"
+          " (draw_full/draw_bands: no lighting construction)")
+    print("\nissue 8 targets, M0 with 8-row bands (reported, not enforced):")
+    for section in ("m0", "m0_z"):
+        for ent, d in res.get(section, {}).items():
+            if not ent.endswith("_band8"):
+                continue
+            s, tot = d["stack_bytes"], d["ram_bytes"] + d["stack_bytes"]
+            tmin = d["ram_min_bytes"] + s
+            line = (f"  {section:<5} {ent:<22} stack {s:>5} {'ok' if s <= 1024 else 'OVER'} (≤ 1024);"
+                    f" buffers + stack {tot:>6} {'ok' if tot <= 14336 else 'OVER'}"
+                    f" (exact-need buffers {tmin} {'ok' if tmin <= 14336 else 'OVER'}) (≤ 14336)")
+            if ent == "lambert_gouraud_band8":
+                c = d["code_bytes_lib"]
+                line += f"; fixshade code {c} {'ok' if c <= 12288 else 'OVER'} (≤ 12288)"
+            print(line)
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--no-build", action="store_true", help="use the ELFs as they are (host: still run)")
+    p.add_argument("--check", action="store_true", help=f"CI: checksums, 64-bit symbols, {BOUNDS.name}")
+    p.add_argument("--breakdown", nargs="?", const="all", metavar="ENTRIES",
+                   help="instructions per pipeline stage, M0 and M4F (slow: a Python block hook);"
+                        " optionally a comma-separated list of entries, e.g. lambert_gouraud_band8,blinn_phong")
+    p.add_argument("--write-bounds", action="store_true", help=f"rewrite {BOUNDS.name} from this run")
+    p.add_argument("--sections", default=",".join(SECTIONS), help="comma-separated subset of " + ",".join(SECTIONS))
+    a = p.parse_args(argv)
+    t = time.time()
+    host = host_reference() if a.no_build else build()
+    res: dict = {}
+    runs: dict = {}
+    bd = set(ENTRIES if a.breakdown == "all" else (a.breakdown or "").split(",")) - {""}
+    if bd - set(ENTRIES):
+        p.error(f"unknown entries {sorted(bd - set(ENTRIES))}: choose from {ENTRIES}")
+    for section in a.sections.split(","):
+        prof = set() if section == "m0_z" else set(bd)
+        if a.check and section == "m0":
+            prof.add(CROSS_CHECK)  # the native counter against the Python hook (measure_section compares)
+        res[section], runs[section] = measure_section(section, host, prof)
+    res["host"] = {ent: {"checksum": host[ent]["checksum"]} for ent in ENTRIES}
+    table(res)
+    if bd:
+        for section in runs:
+            if runs[section]["profiled"]:
+                print_breakdown(section, breakdown(section, runs[section]), res[section])
+    passed = failed = 0
+    lines = []
+    for section in runs:
+        if SECTIONS[section][0] == "m0":
+            ok, bad, ls = wide_check(section, runs[section], res[section])
+            passed, failed, lines = passed + ok, failed + bad, lines + ls
+    print("\nno 64-bit multiply/divide on the M0 frame path (static call graph and executed):")
+    print("\n".join(lines))
+    if a.check:
+        ok, bad, ls = bounds_check(res, json.loads(BOUNDS.read_text()))
+        print("\n".join(ls))
+        passed, failed = passed + ok, failed + bad
+        n = sum(len(p) for s, p in res.items() if s != "host")
+        print(f"ok   {n} emulated checksums equal the host's")
+        passed += n
+        if CROSS_CHECK in runs.get("m0", {}).get("profiled", []):
+            passed += 1
+            print(f"ok   m0 {CROSS_CHECK}: the native block counter and the Python block hook count the same"
+                  " instructions per function")
+        print(f"{passed} passed, {failed} failed ({time.time() - t:.0f} s)")
+        return 1 if failed else 0
+    if a.write_bounds:
+        write_bounds(res)
+    if set(a.sections.split(",")) == set(SECTIONS):
+        doc = {s: res[s] for s in ("m0", "m4f", "host", "m0_z")}
+        OUT.parent.mkdir(exist_ok=True)
+        OUT.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
+        log(f"wrote {OUT.relative_to(HERE.parent)} ({time.time() - t:.0f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

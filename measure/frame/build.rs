@@ -1,0 +1,17 @@
+//! Firmware targets (`target_os = "none"`): puts this crate's memory.x on the
+//! linker path and links with cortex-m-rt's link.x. Host builds: nothing.
+use std::{env, fs, path::PathBuf};
+
+fn main() {
+    println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo:rerun-if-changed=build.rs");
+    if env::var("CARGO_CFG_TARGET_OS").as_deref() != Ok("none") {
+        return;
+    }
+    let out = PathBuf::from(env::var_os("OUT_DIR").unwrap());
+    fs::copy("memory.x", out.join("memory.x")).unwrap();
+    println!("cargo:rustc-link-search={}", out.display());
+    println!("cargo:rustc-link-arg-bins=-Tlink.x");
+    // keep the relocations: frame.py reads which words are code pointers
+    println!("cargo:rustc-link-arg-bins=--emit-relocs");
+}

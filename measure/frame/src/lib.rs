@@ -1,0 +1,244 @@
+//! The standard scene (`fixshade::standard`) rendered as one whole frame, for
+//! `measure/frame.py`: the same functions run on the host (reference
+//! checksums, lit pixels) and in the firmware image (emulated Cortex-M0/M4F).
+//!
+//! One module per configuration (`lambert_gouraud`, `blinn_gouraud`,
+//! `blinn_phong`, `blinn_phong_inc`, `flat`), each with
+//!
+//! * `full(t, buffers, display)`: a 240 × 240 [`FullFrame`] (colour + depth
+//!   buffer) rendered and flushed to `display`;
+//! * `band8(t, buffers, display)`: [`Bands`] of 8 rows over a 240 · 8 strip and
+//!   depth strip, each band sent to `display`.
+//!
+//! Both build the lighting and the shader (the scene set-up, from `f32`
+//! parameters), then call [`draw_full`] / [`draw_bands`] (never inlined: the
+//! per-frame path, whose call graph `frame.py --check` inspects on its own):
+//! vertex stage and binning (`MeshDraw::new`), clears, spans, flush. The
+//! mesh transform is built once beforehand ([`standard::transform`], `f32`)
+//! and passed in.
+#![no_std]
+
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use fixshade::camera::{MeshTransform, Orthographic};
+use fixshade::prelude::*;
+use fixshade::render::{
+    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, Lerp, MeshDraw,
+    RenderError,
+};
+use fixshade::shade::{DirectionalLighting, Kernel};
+use fixshade::standard;
+
+/// Frame width and height.
+pub const W: usize = standard::SIZE as usize;
+/// Mesh vertices and triangles.
+pub const NV: usize = standard::COUNTS.0;
+pub const NT: usize = standard::COUNTS.1;
+/// Rows per band of the banded configurations.
+pub const BAND_ROWS: usize = 8;
+/// Bands of the banded configurations.
+pub const BANDS: usize = W.div_ceil(BAND_ROWS);
+/// Bins: the documented size `bins_len` (every triangle could be visible).
+pub const BINS_FULL: usize = bins_len(NT, 1);
+pub const BINS_BAND: usize = bins_len(NT, BANDS);
+/// Resume records for 8-row bands: the standard scene needs
+/// `MeshDraw::carry_needed()` = 48 (the host run prints it; a smaller
+/// array makes every banded frame fail with status `Fail::Buffer`).
+pub const CARRY_BAND: usize = 64;
+
+/// Why a frame was not drawn (the firmware returns it in the upper word).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fail {
+    /// The lighting's `f32` parameters were rejected.
+    Lighting,
+    /// `RenderError::Size` or `TooManyVertices`.
+    Render,
+    /// A buffer too small: elements needed.
+    Buffer(usize),
+}
+
+impl Fail {
+    /// Status word: 1 lighting, 2 render, 3 | needed << 8 buffer.
+    pub fn code(self) -> u32 {
+        match self {
+            Fail::Lighting => 1,
+            Fail::Render => 2,
+            Fail::Buffer(n) => 3 | (n as u32) << 8,
+        }
+    }
+}
+
+impl From<RenderError> for Fail {
+    fn from(e: RenderError) -> Fail {
+        match e {
+            RenderError::BufferTooSmall { needed, .. } => Fail::Buffer(needed),
+            _ => Fail::Render,
+        }
+    }
+}
+
+/// Caller-owned memory of one frame: the whole frame (`color`, `depth`:
+/// `W·W`) or one band strip (`W·BAND_ROWS`).
+pub struct Buffers<'a, V> {
+    pub cache: &'a mut [CachedVertex<V>],
+    pub bins: &'a mut [u16],
+    pub carry: &'a mut [Carry],
+    pub color: &'a mut [Rgb565],
+    pub depth: &'a mut [u16],
+}
+
+/// The per-frame path of a whole frame: vertex stage and bins, clear, draw,
+/// flush to `display`.
+#[inline(never)]
+pub fn draw_full<K, D>(
+    kernel: K,
+    t: &MeshTransform<Orthographic>,
+    b: Buffers<'_, K::Vertex>,
+    display: &mut D,
+) -> Result<(), Fail>
+where
+    K: Kernel<Color = Rgb565>,
+    K::Vertex: Lerp,
+    D: DrawTarget<Color = Rgb565>,
+{
+    let layout = Layout::full(W as u32, W as u32)?;
+    let mut draw = MeshDraw::new(
+        layout,
+        standard::SPHERE.mesh(),
+        t,
+        kernel,
+        DrawOptions::default(),
+        b.cache,
+        b.bins,
+        b.carry,
+    )?;
+    let mut frame = FullFrame::new(W as u32, W as u32, b.color, Some(b.depth))?;
+    frame.render(Rgb565::BLACK, &mut [&mut draw]);
+    frame.flush(display).map_err(|_| Fail::Render)
+}
+
+/// The per-frame path in 8-row bands: vertex stage and bins, then per band
+/// clear, draw, send to `display`.
+#[inline(never)]
+pub fn draw_bands<K, D>(
+    kernel: K,
+    t: &MeshTransform<Orthographic>,
+    b: Buffers<'_, K::Vertex>,
+    display: &mut D,
+) -> Result<(), Fail>
+where
+    K: Kernel<Color = Rgb565>,
+    K::Vertex: Lerp,
+    D: DrawTarget<Color = Rgb565>,
+{
+    let layout = Layout::banded(W as u32, W as u32, BAND_ROWS as u32)?;
+    let mut draw = MeshDraw::new(
+        layout,
+        standard::SPHERE.mesh(),
+        t,
+        kernel,
+        DrawOptions::default(),
+        b.cache,
+        b.bins,
+        b.carry,
+    )?;
+    let mut bands = Bands::new(layout, b.color, Some(b.depth))?;
+    let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
+    bands
+        .render(display, Rgb565::BLACK, items)
+        .map_err(|_| Fail::Render)
+}
+
+/// The lighting of `blinn_phong_inc`: one directional light in an array, as
+/// `IncrementalPhongShading` requires.
+pub fn inc_lighting() -> Result<DirectionalLighting<2, 1, BlinnPhong>, ParamError> {
+    Ok(Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
+        [standard::light()?],
+        Material::new(&standard::material())?,
+    ))
+}
+
+macro_rules! configs {
+    ($($name:ident: $v:ty, $l:ty, $m:ty = $lighting:expr, $mode:expr;)*) => {
+        /// Configuration names, in order.
+        pub const CONFIGS: &[&str] = &[$(stringify!($name)),*];
+        $(
+            #[doc = concat!("The `", stringify!($name), "` configuration.")]
+            pub mod $name {
+                use super::*;
+                /// The vertex cache payload of this shader.
+                pub type Vertex = $v;
+                /// The lighting.
+                pub type Light = $l;
+                /// The shader (the `Kernel`).
+                pub type Kern = Shader<'static, $m, Light, Linear, Rgb565>;
+                /// Bytes of the lighting, the shader and the `MeshDraw` on this target
+                /// (the firmware exports them for frame.py: they explain the stack).
+                pub const TYPE_BYTES: [u32; 3] = [
+                    core::mem::size_of::<Light>() as u32,
+                    core::mem::size_of::<Kern>() as u32,
+                    core::mem::size_of::<MeshDraw<'static, Kern>>() as u32,
+                ];
+                const _: () = assert!(core::mem::size_of::<<Kern as Kernel>::Vertex>() == core::mem::size_of::<Vertex>());
+                /// Lighting, shader, then [`draw_full`].
+                pub fn full<D: DrawTarget<Color = Rgb565>>(
+                    t: &MeshTransform<Orthographic>,
+                    b: Buffers<'_, Vertex>,
+                    display: &mut D,
+                ) -> Result<(), Fail> {
+                    let lighting: Light = $lighting.map_err(|_| Fail::Lighting)?;
+                    draw_full(Shader::new($mode, &lighting, Linear), t, b, display)
+                }
+                /// Lighting, shader, then [`draw_bands`].
+                pub fn band8<D: DrawTarget<Color = Rgb565>>(
+                    t: &MeshTransform<Orthographic>,
+                    b: Buffers<'_, Vertex>,
+                    display: &mut D,
+                ) -> Result<(), Fail> {
+                    let lighting: Light = $lighting.map_err(|_| Fail::Lighting)?;
+                    draw_bands(Shader::new($mode, &lighting, Linear), t, b, display)
+                }
+            }
+        )*
+        /// Runs configuration `name` (`band8`: in bands) on the given buffers
+        /// (the host reference; the firmware calls the modules directly).
+        pub fn run<D: DrawTarget<Color = Rgb565>>(
+            name: &str,
+            band8: bool,
+            t: &MeshTransform<Orthographic>,
+            bins: &mut [u16],
+            carry: &mut [Carry],
+            color: &mut [Rgb565],
+            depth: &mut [u16],
+            display: &mut D,
+        ) -> Option<Result<(), Fail>> {
+            $(
+                if name == stringify!($name) {
+                    let mut c = [CachedVertex::<$v>::default(); NV];
+                    let b = Buffers { cache: &mut c, bins, carry, color, depth };
+                    return Some(if band8 {
+                        $name::band8(t, b, display)
+                    } else {
+                        $name::full(t, b, display)
+                    });
+                }
+            )*
+            None
+        }
+    };
+}
+
+type Dir = DirectionalLight<Q14>;
+
+configs! {
+    lambert_gouraud: [u16; 3], Lighting<Q14, Dir, Lambert>, GouraudShading
+        = standard::lambert::<Q14>(), GouraudShading;
+    blinn_gouraud: [u16; 3], Lighting<Q14, Dir, BlinnPhong>, GouraudShading
+        = standard::blinn::<Q14>(), GouraudShading;
+    blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>, PhongShading
+        = standard::blinn::<Q14>(), PhongShading;
+    blinn_phong_inc: [i16; 3], DirectionalLighting<2, 1, BlinnPhong>, IncrementalPhongShading
+        = inc_lighting(), IncrementalPhongShading;
+    flat: [i16; 3], Lighting<Q14, Dir, Lambert>, FlatShading
+        = standard::lambert::<Q14>(), FlatShading;
+}

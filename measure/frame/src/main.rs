@@ -1,0 +1,247 @@
+//! The frame image counted by `measure/frame.py`, and its host reference.
+//!
+//! * `thumbv6m-none-eabi`, `thumbv7em-none-eabihf` (`target_os = "none"`): a
+//!   firmware image with one `extern "C"` entry per configuration and frame
+//!   kind, `frame_<config>` (whole frame) and `frame_<config>_band8`, each
+//!   rendering one complete frame of the standard scene into a
+//!   `fixshade::target::Checksum<Rgb565>` and returning
+//!   `status << 32 | checksum` (status 0: drawn, all 57 600 pixels sent).
+//!   `init()` builds the mesh transform once (`standard::transform()`, `f32`)
+//!   into a static that every frame reads; frame.py calls it first and counts
+//!   it separately. Buffers are statics (`.bss`), named for frame.py:
+//!   `FRAME_COLOR`, `FRAME_DEPTH` (whole frame), `STRIP_COLOR`,
+//!   `STRIP_DEPTH` (8-row bands), and per configuration `CACHE_<config>`,
+//!   `BINS_FULL_<config>`, `BINS_BAND_<config>`, `CARRY_BAND_<config>`;
+//!   `TYPES_<config>` holds the bytes of the lighting, the shader and the
+//!   `MeshDraw` on the target.
+//! * the host: `cargo run --release` prints, as JSON, every configuration's
+//!   checksum, lit (non-black) pixels, and the bins and resume records the
+//!   frame needs, from the same library functions.
+#![cfg_attr(target_os = "none", no_std, no_main)]
+
+#[cfg(target_os = "none")]
+mod firmware {
+    use core::hint::black_box;
+    use core::mem::{zeroed, MaybeUninit};
+    use core::ptr::{addr_of, addr_of_mut};
+
+    use cortex_m_rt::entry;
+    use embedded_graphics_core::geometry::Size;
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use fixshade::camera::{MeshTransform, Orthographic};
+    use fixshade::render::{CachedVertex, Carry};
+    use fixshade::target::Checksum;
+    use fixshade_frame::{Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, W};
+
+    // All-zero is a valid value of every buffer element (integers, Rgb565 =
+    // u16, CachedVertex and Carry = integers and integer arrays): `.bss`.
+    const _: () = assert!(BANDS * BAND_ROWS >= W);
+    static mut TRANSFORM: MaybeUninit<MeshTransform<Orthographic>> = MaybeUninit::uninit();
+    #[no_mangle]
+    static mut FRAME_COLOR: [Rgb565; W * W] = unsafe { zeroed() };
+    #[no_mangle]
+    static mut FRAME_DEPTH: [u16; W * W] = [0; W * W];
+    #[no_mangle]
+    static mut STRIP_COLOR: [Rgb565; W * BAND_ROWS] = unsafe { zeroed() };
+    #[no_mangle]
+    static mut STRIP_DEPTH: [u16; W * BAND_ROWS] = [0; W * BAND_ROWS];
+
+    /// Builds the mesh transform (once, before any frame). 0: done.
+    #[no_mangle]
+    pub unsafe extern "C" fn init() -> u32 {
+        match fixshade::standard::transform() {
+            Ok(t) => {
+                (*addr_of_mut!(TRANSFORM)).write(t);
+                0
+            }
+            Err(_) => 1,
+        }
+    }
+
+    /// The transform `init` built.
+    unsafe fn transform<'a>() -> &'a MeshTransform<Orthographic> {
+        &*black_box(addr_of!(TRANSFORM)).cast::<MeshTransform<Orthographic>>()
+    }
+
+    fn checksum() -> Checksum<Rgb565> {
+        Checksum::new(Size::new(W as u32, W as u32))
+    }
+
+    /// `status << 32 | checksum`; status 4: not every pixel was sent.
+    fn finish(r: Result<(), Fail>, d: &Checksum<Rgb565>) -> u64 {
+        let status = match r {
+            Ok(()) if d.pixels() == (W * W) as u32 => 0,
+            Ok(()) => 4,
+            Err(e) => e.code(),
+        };
+        (u64::from(status) << 32) | u64::from(d.value())
+    }
+
+    macro_rules! entries {
+        ($($name:ident),*) => {
+            $(
+                mod $name {
+                    use super::*;
+                    #[export_name = concat!("CACHE_", stringify!($name))]
+                    static mut CACHE: [CachedVertex<fixshade_frame::$name::Vertex>; NV] =
+                        unsafe { zeroed() };
+                    #[export_name = concat!("BINS_FULL_", stringify!($name))]
+                    static mut BINS1: [u16; BINS_FULL] = [0; BINS_FULL];
+                    #[export_name = concat!("BINS_BAND_", stringify!($name))]
+                    static mut BINS8: [u16; BINS_BAND] = [0; BINS_BAND];
+                    #[export_name = concat!("TYPES_", stringify!($name))]
+                    #[used]
+                    static TYPES: [u32; 3] = fixshade_frame::$name::TYPE_BYTES;
+                    #[export_name = concat!("CARRY_BAND_", stringify!($name))]
+                    static mut CARRY8: [Carry; CARRY_BAND] = unsafe { zeroed() };
+
+                    /// One whole frame (FullFrame + flush).
+                    #[export_name = concat!("frame_", stringify!($name))]
+                    pub unsafe extern "C" fn full() -> u64 {
+                        let mut d = checksum();
+                        let b = Buffers {
+                            cache: &mut *addr_of_mut!(CACHE),
+                            bins: &mut *addr_of_mut!(BINS1),
+                            carry: &mut [],
+                            color: &mut *addr_of_mut!(FRAME_COLOR),
+                            depth: &mut *addr_of_mut!(FRAME_DEPTH),
+                        };
+                        let r = fixshade_frame::$name::full(transform(), b, &mut d);
+                        finish(r, &d)
+                    }
+
+                    /// One whole frame in 8-row bands.
+                    #[export_name = concat!("frame_", stringify!($name), "_band8")]
+                    pub unsafe extern "C" fn band8() -> u64 {
+                        let mut d = checksum();
+                        let b = Buffers {
+                            cache: &mut *addr_of_mut!(CACHE),
+                            bins: &mut *addr_of_mut!(BINS8),
+                            carry: &mut *addr_of_mut!(CARRY8),
+                            color: &mut *addr_of_mut!(STRIP_COLOR),
+                            depth: &mut *addr_of_mut!(STRIP_DEPTH),
+                        };
+                        let r = fixshade_frame::$name::band8(transform(), b, &mut d);
+                        finish(r, &d)
+                    }
+                }
+            )*
+
+            /// Function pointers that keep every entry in the LTO image.
+            pub struct Keep<T>(pub T);
+            // SAFETY: read-only tables of code addresses.
+            unsafe impl<T> Sync for Keep<T> {}
+            #[used]
+            pub static KEEP: Keep<[*const (); 1 + 2 * [$(stringify!($name)),*].len()]> = Keep([
+                init as *const (),
+                $($name::full as *const (), $name::band8 as *const (),)*
+            ]);
+        };
+    }
+
+    entries!(lambert_gouraud, blinn_gouraud, blinn_phong, blinn_phong_inc, flat);
+
+    #[entry]
+    fn main() -> ! {
+        // `#[used]` alone does not survive the linker's --gc-sections: reference it.
+        black_box(&KEEP);
+        loop {
+            core::hint::spin_loop();
+        }
+    }
+
+    #[panic_handler]
+    fn panic(_: &core::panic::PanicInfo) -> ! {
+        loop {
+            core::hint::spin_loop();
+        }
+    }
+}
+
+#[cfg(not(target_os = "none"))]
+fn main() {
+    use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+    use embedded_graphics_core::prelude::*;
+    use fixshade::render::Carry;
+    use fixshade::target::Checksum;
+    use fixshade_frame::*;
+
+    /// Checksums the stream like the firmware and counts the non-black pixels.
+    struct Recorder(Checksum<Rgb565>, usize);
+    impl OriginDimensions for Recorder {
+        fn size(&self) -> Size {
+            Size::new(W as u32, W as u32)
+        }
+    }
+    impl DrawTarget for Recorder {
+        type Color = Rgb565;
+        type Error = core::convert::Infallible;
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, _: I) -> Result<(), Self::Error> {
+            unreachable!("frames are sent with fill_contiguous")
+        }
+        fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
+            &mut self,
+            area: &embedded_graphics_core::primitives::Rectangle,
+            colors: I,
+        ) -> Result<(), Self::Error> {
+            let c: Vec<Rgb565> = colors.into_iter().collect();
+            self.1 += c.iter().filter(|p| **p != Rgb565::BLACK).count();
+            self.0.fill_contiguous(area, c)
+        }
+    }
+
+    let t = fixshade::standard::transform().expect("standard transform");
+    let mut out = Vec::new();
+    for name in CONFIGS {
+        for band8 in [false, true] {
+            let (bins_len, carry_len, px) = if band8 {
+                (BINS_BAND, CARRY_BAND, W * BAND_ROWS)
+            } else {
+                (BINS_FULL, 0, W * W)
+            };
+            let go = |bins: usize, carry: usize, d: &mut dyn FnMut(&mut [u16], &mut [Carry], &mut [Rgb565], &mut [u16]) -> Result<(), Fail>| {
+                let mut b = vec![0u16; bins];
+                let mut c = vec![Carry::default(); carry];
+                let mut color = vec![Rgb565::BLACK; px];
+                let mut depth = vec![0u16; px];
+                d(&mut b, &mut c, &mut color, &mut depth)
+            };
+            // the checksum through exactly the firmware's display type
+            let mut sum = Checksum::<Rgb565>::new(Size::new(W as u32, W as u32));
+            go(bins_len, carry_len, &mut |b, c, col, dep| {
+                run(name, band8, &t, b, c, col, dep, &mut sum).unwrap()
+            })
+            .expect("frame");
+            let mut rec = Recorder(Checksum::new(Size::new(W as u32, W as u32)), 0);
+            go(bins_len, carry_len, &mut |b, c, col, dep| {
+                run(name, band8, &t, b, c, col, dep, &mut rec).unwrap()
+            })
+            .expect("frame");
+            assert_eq!(rec.0.value(), sum.value(), "{name}: recorder and checksum disagree");
+            assert_eq!(sum.pixels() as usize, W * W, "{name}: pixels sent");
+            // the exact needs, from the errors of too small buffers
+            let need = |bins: usize, carry: usize| {
+                let mut s = Checksum::<Rgb565>::new(Size::new(W as u32, W as u32));
+                match go(bins, carry, &mut |b, c, col, dep| {
+                    run(name, band8, &t, b, c, col, dep, &mut s).unwrap()
+                }) {
+                    Err(Fail::Buffer(n)) => n,
+                    Ok(()) => 0,
+                    Err(e) => panic!("{name}: {e:?}"),
+                }
+            };
+            let bands = if band8 { BANDS } else { 1 };
+            let bins_needed = need(2 * (bands + 1), carry_len);
+            let carry_needed = need(bins_len, 0);
+            let key = if band8 { format!("{name}_band8") } else { name.to_string() };
+            out.push(format!(
+                "  \"{key}\": {{\"checksum\": \"{:#010x}\", \"lit_px\": {}, \"pixels\": {}, \
+                 \"bins_needed\": {bins_needed}, \"carry_needed\": {carry_needed}}}",
+                sum.value(),
+                rec.1,
+                sum.pixels()
+            ));
+        }
+    }
+    println!("{{\n{}\n}}", out.join(",\n"));
+}
