@@ -272,7 +272,17 @@ impl Row {
             let f = self.frac.min(31) as u32;
             ((v >> (f - 1)) + 1) >> 1
         } else {
-            v.saturating_mul(1 << (-self.frac).min(30))
+            // a matrix scaling one raw unit beyond 2^13 sub-pixels: whole units,
+            // saturated (without a 64-bit multiply)
+            let s = (-self.frac).min(30) as u32;
+            let lim = i32::MAX >> s;
+            if v > lim {
+                i32::MAX
+            } else if v < -lim {
+                -i32::MAX
+            } else {
+                v << s
+            }
         }
     }
 
@@ -354,7 +364,15 @@ impl EyeRows {
                     ((v >> (s - 1)) + 1) >> 1
                 }
             } else {
-                v.saturating_mul(1 << (-s).min(30))
+                let s = (-s).min(30) as u32;
+                let lim = i32::MAX >> s;
+                if v > lim {
+                    i32::MAX
+                } else if v < -lim {
+                    -i32::MAX
+                } else {
+                    v << s
+                }
             }
         })
     }

@@ -11,7 +11,7 @@
 //! integers as evaluating `E` at every pixel) and costs one step per column the
 //! edge moves, so the whole walk of an edge costs its horizontal extent.
 
-use super::setup::Setup;
+use super::setup::{next3, Setup};
 use super::SUBPIXEL_BITS;
 
 /// One non-horizontal edge of a triangle, positioned at a row.
@@ -93,15 +93,9 @@ impl Edge {
         }
     }
 
-    /// Moves to the next row.
-    #[inline(always)]
-    pub(crate) fn step(&mut self) {
-        self.e += self.q;
-        self.settle();
-    }
-
-    /// [`Edge::step`] for an edge known to be a left edge (`LEFT`) or a right
-    /// edge: the direction of the walk is a constant.
+    /// Moves to the next row: `e += q`, then the bound walks back into
+    /// `0..pp`; for an edge known to be a left edge (`LEFT`) or a right edge,
+    /// so that the direction of the walk is a constant.
     #[inline(always)]
     fn step_side<const LEFT: bool>(&mut self) {
         let d = if LEFT { 1 } else { -1 };
@@ -123,12 +117,6 @@ impl Edge {
                 }
             }
         }
-    }
-
-    /// Whether this is a left edge (its bound is the first inside column).
-    #[inline(always)]
-    pub(crate) fn is_left(&self) -> bool {
-        self.d > 0
     }
 }
 
@@ -207,11 +195,11 @@ impl Walker {
         let level = (ym - half) & ((1 << SUBPIXEL_BITS) - 1) == 0;
         // a horizontal edge a → b is a top edge (row included) iff dx > 0
         let flat = |i: usize, j: usize| {
-            let (a, bb) = if (i + 1) % 3 == j { (i, j) } else { (j, i) };
+            let (a, bb) = if next3(i) == j { (i, j) } else { (j, i) };
             (xy[a].1 == xy[bb].1).then(|| xy[bb].0 <= xy[a].0)
         };
         // the long edge as oriented: going down (t → b) it is a right edge
-        let long_left = (t + 1) % 3 != b;
+        let long_left = next3(t) != b;
         Walker {
             left: Edge::default(),
             right: Edge::default(),
@@ -231,7 +219,7 @@ impl Walker {
     /// row `row`, searching from the upper vertex's column when the bound is
     /// within 4 columns of it, else from a division estimate.
     fn edge_near(&self, i: usize, j: usize, row: i32) -> Edge {
-        let (a, b) = if (i + 1) % 3 == j { (i, j) } else { (j, i) };
+        let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
         let (pa, pb) = (self.xy[a], self.xy[b]);
         if pa.1 == pb.1 {
             // a horizontal edge bounds no column (its fill rule is applied
@@ -252,7 +240,7 @@ impl Walker {
 
     /// The edge between `i` and `j` at `row`, searching from column `guess`.
     fn edge_from(&self, i: usize, j: usize, row: i32, guess: i32) -> Edge {
-        let (a, b) = if (i + 1) % 3 == j { (i, j) } else { (j, i) };
+        let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
         if self.xy[a].1 == self.xy[b].1 {
             return Edge::default();
         }

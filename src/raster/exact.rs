@@ -9,7 +9,7 @@
 //! one rounded to a unit (perspective weights keep at least 30 significant
 //! bits: within one unit).
 
-use super::setup::{bit_length, Setup};
+use super::setup::{bit_length, next3, Setup};
 use super::{fit, ClampTo, RasterVertex, SUBPIXEL_BITS};
 use crate::num::wide::{div_u64_u32, mul_u32};
 
@@ -65,7 +65,7 @@ impl<const N: usize, const PERSP: bool> Exact<N, PERSP> {
     /// The evaluator of set-up triangle `s` with vertices `v` (input order).
     pub(crate) fn new(s: &Setup, v: &[RasterVertex<N>; 3]) -> Self {
         let t = s.tmb[0];
-        let (i1, i2) = ((t + 1) % 3, (t + 2) % 3);
+        let (i1, i2) = (next3(t), next3(next3(t)));
         let vt = v[s.order[t]];
         let v1 = v[s.order[i1]];
         let v2 = v[s.order[i2]];

@@ -44,6 +44,17 @@ pub(crate) fn bit_length(x: u32) -> u32 {
     n + x
 }
 
+/// The vertex after `i` in the triangle's order: `(i + 1) mod 3` without a
+/// division (a library call on a Cortex-M0).
+#[inline(always)]
+pub(crate) fn next3(i: usize) -> usize {
+    if i >= 2 {
+        0
+    } else {
+        i + 1
+    }
+}
+
 /// `v · 2^s` for a signed shift `s`: a right shift rounds to nearest, a left
 /// shift saturates at ±2^30 (gradients of triangles smaller than a pixel).
 #[inline]
@@ -105,8 +116,18 @@ pub struct Bary {
     c2x: i32,
     c1y: i32,
     c2y: i32,
-    /// The scale exponent `k`.
-    k: i32,
+    /// `ATTR_FRAC + SUBPIXEL_BITS − k`: a gradient `G` is `G·2^s` per pixel.
+    s: i32,
+    /// The reference pixel centre `(c0, rows.0)` relative to the top vertex:
+    /// `dxs` sub-pixels (in −8..8) across, `rows` whole rows and `rem`
+    /// sub-pixels (in 0..16) down.
+    c0: i32,
+    dxs: i32,
+    rows: i32,
+    rem: i32,
+    /// Bounding-box width and height in pixels, plus slack (for error bounds).
+    w: u32,
+    h: u32,
 }
 
 impl Setup {
@@ -159,7 +180,7 @@ impl Setup {
     #[inline]
     pub(crate) fn prepare_planes(&mut self) {
         let t = self.tmb[0];
-        let (i1, i2) = ((t + 1) % 3, (t + 2) % 3);
+        let (i1, i2) = (next3(t), next3(next3(t)));
         let o = self.xy[t];
         let d1 = (self.xy[i1].0 - o.0, self.xy[i1].1 - o.1);
         let d2 = (self.xy[i2].0 - o.0, self.xy[i2].1 - o.1);
@@ -178,62 +199,107 @@ impl Setup {
         // |C| < 2^14
         let shift = (bit_length(m) as i32 - 14).max(0);
         let c = raw.map(|v| scale(v, -shift));
+        let k = 31 + sh - shift;
+        let half = 1 << (SUBPIXEL_BITS - 1);
+        let c0 = o.0 >> SUBPIXEL_BITS;
+        let dys = (self.rows.0 << SUBPIXEL_BITS) + half - o.1;
         self.bary = Bary {
             other: [i1, i2],
             c1x: c[0],
             c2x: c[1],
             c1y: c[2],
             c2y: c[3],
-            k: 31 + sh - shift,
+            s: ATTR_FRAC as i32 + SUBPIXEL_BITS as i32 - k,
+            c0,
+            dxs: (c0 << SUBPIXEL_BITS) + half - o.0,
+            rows: dys >> SUBPIXEL_BITS,
+            rem: dys & ((1 << SUBPIXEL_BITS) - 1),
+            w: {
+                let (x0, x1) = (o.0.min(self.xy[i1].0).min(self.xy[i2].0), o.0.max(self.xy[i1].0).max(self.xy[i2].0));
+                ((x1 - x0) >> SUBPIXEL_BITS) as u32 + 2
+            },
+            h: (self.rows.1 - self.rows.0).max(0) as u32 + 3,
         };
+    }
+
+    /// An upper bound of `|computed − exact|` (in the plane's units) of every
+    /// value a [`Plane`] of this triangle yields at a pixel inside the
+    /// triangle, reached by stepping rows and columns from its reference pixel
+    /// without clamping.
+    ///
+    /// Each coefficient `C` is within 1.5 of its exact value (the normalised
+    /// area and its reciprocal carry 2^−15 relative error each, `C` is
+    /// rounded), so the per-pixel gradients are off by at most
+    /// `ε = ½ + 1.5·2^s·spread` (`spread = |Δa₁| + |Δa₂|` of the plane); over
+    /// the bounding box (`w` columns, `h` rows from the reference pixel) and
+    /// with the reference value's own rounding (< 24 units) the error is below
+    /// `ε·(w + h) + 24`. Computed generously, saturating.
+    #[inline]
+    pub(crate) fn err(&self, p: &Plane) -> u32 {
+        let b = &self.bary;
+        let spread3 = 3u32.saturating_mul(p.spread);
+        // 1.5·2^s·spread = 3·spread·2^(s − 1), rounded up
+        let s = b.s - 1;
+        let g = if s >= 0 {
+            if s >= 31 || spread3 > (u32::MAX >> s) {
+                u32::MAX
+            } else {
+                spread3 << s
+            }
+        } else {
+            let r = (-s) as u32;
+            if r >= 32 {
+                1
+            } else {
+                (spread3 >> r) + 1
+            }
+        };
+        g.saturating_add(1).saturating_mul(b.w + b.h).saturating_add(24)
     }
 
     /// The plane of an attribute with values `a` at the oriented vertices
     /// (`a[i]` belongs to `xy[i]`), relative to the top vertex's value, in
     /// `2^ATTR_FRAC` units of `a >> sa`, where `sa` is chosen so that the
-    /// differences fit 16 bits. The row value is positioned at the pixel centre
-    /// `(c0, r0)` = (column of the top vertex, `row`).
+    /// differences fit 16 bits (0 for differences below 2^16). The row value
+    /// is positioned at the pixel centre `(c0, rows.0)` (the column of the top
+    /// vertex, the triangle's first row). Needs [`Setup::prepare_planes`].
     #[inline]
-    pub(crate) fn plane(&self, a: [i32; 3], row: i32) -> Plane {
+    pub(crate) fn plane(&self, a: [i32; 3]) -> Plane {
         let b = &self.bary;
         let t = self.tmb[0];
         // differences may need 32 bits (attributes in ±2^30)
         let d1 = a[b.other[0]].wrapping_sub(a[t]);
         let d2 = a[b.other[1]].wrapping_sub(a[t]);
-        let big = d1.unsigned_abs().max(d2.unsigned_abs());
-        let sa = (bit_length(big) as i32 - 16).max(0);
+        let fits = |d: i32| (d as u32).wrapping_add(1 << 16) < (1 << 17);
+        let sa = if fits(d1) && fits(d2) {
+            0
+        } else {
+            let big = d1.unsigned_abs().max(d2.unsigned_abs());
+            (bit_length(big) as i32 - 16).max(0)
+        };
         let (d1, d2) = (d1 >> sa, d2 >> sa);
         // |d|·|C| < 2^16·2^14: each product < 2^30, the sum < 2^31
         let gx = d1 * b.c1x + d2 * b.c2x;
         let gy = d1 * b.c1y + d2 * b.c2y;
-        // per sub-pixel: g·2^(ATTR_FRAC − k); per pixel: ·16
-        let s = ATTR_FRAC as i32 + SUBPIXEL_BITS as i32 - b.k;
-        let dx = scale(gx, s);
-        let dy = scale(gy, s);
-        // value at (c0, row) relative to the top vertex: g_sub·δ, |δ| < 2^15 for δY
-        let (xt, yt) = self.xy[t];
-        let half = 1 << (SUBPIXEL_BITS - 1);
-        let c0 = xt >> SUBPIXEL_BITS;
-        let dxs = (c0 << SUBPIXEL_BITS) + half - xt; // in −8..8
-        let dys = (row << SUBPIXEL_BITS) + half - yt;
-        let sx = dx >> SUBPIXEL_BITS; // per sub-pixel, |·| < 2^27
-        let sy = dy >> SUBPIXEL_BITS;
-        // δY can be large (a band far below the top vertex): whole rows first
-        let rows = dys >> SUBPIXEL_BITS;
-        let rem = dys & ((1 << SUBPIXEL_BITS) - 1);
-        let v = (sx * dxs)
-            .wrapping_add(sy * rem)
-            .wrapping_add(dy.wrapping_mul(rows));
+        // per pixel: G·2^s
+        let dx = scale(gx, b.s);
+        let dy = scale(gy, b.s);
+        // value at (c0, rows.0) relative to the top vertex: per sub-pixel
+        // gradients times the offsets, whole rows by the row step
+        let v = ((dx >> SUBPIXEL_BITS) * b.dxs)
+            .wrapping_add((dy >> SUBPIXEL_BITS) * b.rem)
+            .wrapping_add(dy.wrapping_mul(b.rows));
         let lo = 0.min(d1).min(d2);
         let hi = 0.max(d1).max(d2);
         Plane {
             row: v,
             dx,
             dy,
-            c0,
+            c0: b.c0,
             lo: lo << ATTR_FRAC,
             hi: hi << ATTR_FRAC,
             sa: sa as u32,
+            spread: d1.unsigned_abs() + d2.unsigned_abs(),
         }
     }
 
@@ -265,6 +331,8 @@ pub struct Plane {
     pub(crate) hi: i32,
     /// The shift applied to the attribute's differences.
     pub(crate) sa: u32,
+    /// `|Δa₁| + |Δa₂|` after the shift (for [`Setup::err`]).
+    pub(crate) spread: u32,
 }
 
 impl Plane {

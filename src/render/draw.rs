@@ -272,11 +272,14 @@ where
         s.prepare_planes();
         let o = s.order;
         let row0 = s.rows.0;
-        let mut zp = s.plane(o.map(|i| i32::from(z[i])), row0);
+        let mut zp = s.plane(o.map(|i| i32::from(z[i])));
+        // depth with ATTR_FRAC bits, + ½ so that the shift rounds
         let zbase = (i32::from(z[o[s.tmb[0]]]) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
-        let mut t = self
+        let (mut t, kclamp) = self
             .kernel
             .triangle(&s, o.map(|i| pay[i]), o.map(|i| eye[i]));
+        // depth values must stay in 0..65536 (with ATTR_FRAC bits)
+        let clamp = kclamp || !crate::shade::within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
         let rows = band.rows();
         let mut w = match resume {
             Some(cols) => Walker::resume(&s, rows.start, cols),
@@ -288,23 +291,58 @@ where
             zp.skip_rows(skip);
         }
         let last = w.last.min(rows.end - 1);
-        let width = band.width() as i32;
+        zp.row = zp.row.wrapping_add(zbase);
+        match (clamp, band.depth.is_some()) {
+            (false, true) => self.rows::<false, true>(&mut w, last, &mut t, &mut zp, band),
+            (true, true) => self.rows::<true, true>(&mut w, last, &mut t, &mut zp, band),
+            (false, false) => self.rows::<false, false>(&mut w, last, &mut t, &mut zp, band),
+            (true, false) => self.rows::<true, false>(&mut w, last, &mut t, &mut zp, band),
+        }
+        w.more().then(|| w.snapshot())
+    }
+
+    /// The rows `w.y..=last` of a set-up triangle: the walker's columns, the
+    /// depth test of each run (the depth plane `zp` holds absolute values), the
+    /// kernel on the passing pixels. `CLAMP`: values clamped per run; `DEPTH`:
+    /// the band has a depth buffer.
+    #[inline(always)]
+    fn rows<const CLAMP: bool, const DEPTH: bool>(
+        &self,
+        w: &mut Walker,
+        last: i32,
+        t: &mut K::Triangle,
+        zp: &mut crate::raster::Plane,
+        band: &mut BandView<'_, K::Color>,
+    ) {
+        let width = band.width as i32;
+        let start = band.rows.start;
+        let mut row = (w.y - start) as usize * band.width as usize;
         while w.y <= last {
             let y = w.y;
             let (lo, hi) = w.next();
             let (lo, hi) = (lo.max(0), hi.min(width - 1));
             if lo <= hi {
                 let n = (hi - lo + 1) as usize;
-                let (z0, dz) = zp.clamped(lo, n as i32);
-                if let Some((color, depth)) = band.span(lo, y, n) {
-                    self.kernel
-                        .run(&t, lo, y, zbase.wrapping_add(z0), dz, color, depth);
+                let at = row + lo as usize;
+                if let Some(color) = band.color.get_mut(at..at + n) {
+                    if DEPTH {
+                        let (z0, dz) = crate::shade::start::<CLAMP>(zp, lo, n);
+                        if let Some(depth) = band.depth.as_deref_mut().and_then(|d| d.get_mut(at..at + n)) {
+                            crate::shade::depth_runs(z0, dz, depth, |k0, k1| {
+                                if let Some(c) = color.get_mut(k0..k1) {
+                                    self.kernel.shade::<CLAMP>(t, lo + k0 as i32, y, c);
+                                }
+                            });
+                        }
+                    } else {
+                        self.kernel.shade::<CLAMP>(t, lo, y, color);
+                    }
                 }
             }
-            K::next_row(&mut t);
+            K::next_row(t);
             zp.next_row();
+            row += band.width as usize;
         }
-        w.more().then(|| w.snapshot())
     }
 
     /// A triangle with a vertex outside the set-up window: clipped to the

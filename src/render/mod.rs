@@ -158,8 +158,9 @@ impl Layout {
 
     /// The rows of band `b`.
     pub fn rows(&self, b: u32) -> Range<i32> {
-        let start = b.saturating_mul(self.band_rows).min(self.height);
-        let end = start.saturating_add(self.band_rows).min(self.height);
+        // b·band_rows cannot overflow for b ≤ bands: both are at most MAX_SIZE
+        let start = b.min(MAX_SIZE).wrapping_mul(self.band_rows).min(self.height);
+        let end = (start + self.band_rows).min(self.height);
         start as i32..end as i32
     }
 
@@ -195,21 +196,7 @@ impl<'a, C> BandView<'a, C> {
         self.width
     }
 
-    /// Colour and depth of pixels `x..x + n` of frame row `y` (inside the band).
-    #[inline(always)]
-    pub(crate) fn span(
-        &mut self,
-        x: i32,
-        y: i32,
-        n: usize,
-    ) -> Option<(&mut [C], Option<&mut [u16]>)> {
-        let row = (y - self.rows.start) as usize * self.width as usize + x as usize;
-        let color = self.color.get_mut(row..row + n)?;
-        match self.depth.as_deref_mut() {
-            None => Some((color, None)),
-            Some(d) => Some((color, Some(d.get_mut(row..row + n)?))),
-        }
-    }
+
 }
 
 /// Something drawn band by band: a prepared mesh ([`MeshDraw`]), or anything
@@ -401,16 +388,16 @@ impl<'a, C: PixelColor> FullFrame<'a, C> {
             Point::zero(),
             Size::new(self.layout.width, self.layout.height),
         );
-        display.fill_contiguous(&area, self.color.iter().take(n).copied())
+        let px = self.color.get(..n).unwrap_or(&[]);
+        display.fill_contiguous(&area, px.iter().copied())
     }
 }
 
-/// Sets every element (a plain loop the compiler turns into wide stores).
+/// Sets every element (`slice::fill`: a `memset` where the value's bytes are
+/// all equal, e.g. black and the far depth).
 #[inline]
 fn fill<T: Copy>(buf: &mut [T], v: T) {
-    for x in buf.iter_mut() {
-        *x = v;
-    }
+    buf.fill(v);
 }
 
 /// The length of the bins slice [`MeshDraw`] needs for a mesh of `triangles`

@@ -27,6 +27,11 @@ pub trait Encoder<C: OutputColor>: Copy {
     /// The pixel at (`x`, `y`) of interpolated vertex values `a` (with
     /// [`ATTR_FRAC`] fraction bits, within the range of the vertex values).
     fn pixel(&self, a: [i32; 3], x: i32, y: i32) -> C;
+    /// The values of channel `i` (with [`ATTR_FRAC`] bits) for which
+    /// [`Encoder::pixel`] gives the correctly rounded channel: interpolated
+    /// values that may leave the vertex range by a known error need no clamping
+    /// while they stay inside it.
+    fn safe(i: usize) -> (i32, i32);
 }
 
 /// Bits of a channel whose largest value is `max` (0 for an unused channel).
@@ -90,6 +95,12 @@ impl<C: OutputColor> Encoder<C> for Linear {
             (a[i] >> (ATTR_FRAC + vertex_shift(C::CHANNEL_MAX[i]))) as u32
         }))
     }
+    #[inline]
+    fn safe(i: usize) -> (i32, i32) {
+        // ⌊a / 2^(ATTR_FRAC + s)⌋ is a channel value for 0 ≤ a < (max + 1)·2^(s + ATTR_FRAC)
+        let max = C::CHANNEL_MAX[i.min(2)];
+        (0, ((max + 1) << (vertex_shift(max) + ATTR_FRAC)) as i32 - 1)
+    }
 }
 
 /// 4×4 ordered (Bayer) dithering: `⌊v·max + t(x, y)⌋` with thresholds `t` spread
@@ -133,6 +144,12 @@ impl<C: OutputColor> Encoder<C> for Dithered {
             ((a[i] as u32 + t) >> sh).min(max[i])
         }))
     }
+    #[inline]
+    fn safe(i: usize) -> (i32, i32) {
+        // non-negative values; larger ones clamp to the channel maximum
+        let max = C::CHANNEL_MAX[i.min(2)];
+        (0, ((max + 1) << (vertex_shift(max) + ATTR_FRAC)) as i32 - 1)
+    }
 }
 
 /// A gamma table: the linear channel indexes the table (8-bit encoded output),
@@ -161,6 +178,11 @@ impl<C: OutputColor, const N: usize> Encoder<C> for Gamma<'_, N> {
             let e = self.0.apply_unorm16(v) as u32;
             div255(e * max[i] + 127)
         }))
+    }
+    #[inline]
+    fn safe(_: usize) -> (i32, i32) {
+        // negative values read as 0, large ones clamp to the table's end
+        (i32::MIN, i32::MAX)
     }
 }
 

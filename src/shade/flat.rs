@@ -1,8 +1,8 @@
 //! Flat shading: one colour per triangle, lit at its centroid.
 
 use super::{
-    depth_loop, eye_point, raster_draw, unit_normal, Encoder, FlatShading, Kernel, ModeState,
-    ShadeVertex, Shader, Shading,
+    eye_point, raster_draw, unit_normal, Encoder, FlatShading, Kernel, ModeState, ShadeVertex,
+    Shader, Shading,
 };
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::Illuminate;
@@ -131,11 +131,10 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
 
     #[inline]
     fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
-        let u = unit_normal::<crate::num::Q14<2>>(n);
-        [u.x.raw() as i16, u.y.raw() as i16, u.z.raw() as i16]
+        super::unit_q14(n)
     }
 
-    fn triangle(&self, _s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> FlatTriangle<C> {
+    fn triangle(&self, _s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> (FlatTriangle<C>, bool) {
         // the normalised sum of the unit vertex normals (Q14, |sum| ≤ 3·2^14)
         let n =
             core::array::from_fn(|i| i32::from(v[0][i]) + i32::from(v[1][i]) + i32::from(v[2][i]));
@@ -152,10 +151,12 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
             .lighting
             .shade(&eye_point::<I::Scalar>(pos), unit_normal::<I::Scalar>(n));
         let a = self.encoder.vertex(c).map(|v| v << ATTR_FRAC);
-        FlatTriangle {
+        let t = FlatTriangle {
             a,
             color: self.encoder.pixel(a, 0, 0),
-        }
+        };
+        // one colour: nothing is interpolated, nothing needs clamping
+        (t, false)
     }
 
     #[inline(always)]
@@ -164,31 +165,14 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     #[inline(always)]
     fn next_row(_: &mut FlatTriangle<C>) {}
 
-    #[inline]
-    fn run(
-        &self,
-        t: &FlatTriangle<C>,
-        x: i32,
-        y: i32,
-        z: i32,
-        dz: i32,
-        color: &mut [C],
-        depth: Option<&mut [u16]>,
-    ) {
+    #[inline(always)]
+    fn shade<const CLAMP: bool>(&self, t: &FlatTriangle<C>, x: i32, y: i32, color: &mut [C]) {
         if E::POSITIONAL {
-            let enc = self.encoder;
-            depth_loop(
-                z,
-                dz,
-                color,
-                depth,
-                x,
-                |x| enc.pixel(t.a, *x, y),
-                |x| *x += 1,
-            );
+            for (x, c) in (x..).zip(color.iter_mut()) {
+                *c = self.encoder.pixel(t.a, x, y);
+            }
         } else {
-            let c = t.color;
-            depth_loop(z, dz, color, depth, (), |_| c, |_| {});
+            color.fill(t.color);
         }
     }
 }

@@ -1,8 +1,8 @@
 //! Gouraud shading: lit per vertex, encoded colour channels interpolated.
 
 use super::{
-    depth_loop, eye_point, raster_draw, unit_normal, Encoder, GouraudShading, Kernel, ModeState,
-    ShadeVertex, Shader, Shading,
+    eye_point, raster_draw, unit_normal, Encoder, GouraudShading, Kernel, ModeState, ShadeVertex,
+    Shader, Shading,
 };
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
@@ -118,15 +118,12 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     }
 
     #[inline]
-    fn triangle(&self, s: &Setup, v: [&[u16; 3]; 3], _p: [[i32; 3]; 3]) -> GouraudTriangle {
+    fn triangle(&self, s: &Setup, v: [&[u16; 3]; 3], _p: [[i32; 3]; 3]) -> (GouraudTriangle, bool) {
         let t = s.tmb[0];
-        let row = s.rows.0;
-        GouraudTriangle {
-            planes: core::array::from_fn(|i| {
-                s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from), row)
-            }),
-            base: core::array::from_fn(|i| i32::from(v[t][i]) << ATTR_FRAC),
-        }
+        let planes = core::array::from_fn(|i| s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from)));
+        let base: [i32; 3] = core::array::from_fn(|i| i32::from(v[t][i]) << ATTR_FRAC);
+        let clamp = (0..3).any(|i| !super::within(s, &planes[i], base[i], E::safe(i)));
+        (GouraudTriangle { planes, base }, clamp)
     }
 
     #[inline]
@@ -143,93 +140,56 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
         }
     }
 
-    #[inline]
-    fn run(
-        &self,
-        t: &GouraudTriangle,
-        x: i32,
-        y: i32,
-        z: i32,
-        dz: i32,
-        color: &mut [C],
-        depth: Option<&mut [u16]>,
-    ) {
-        let n = color.len() as i32;
+    #[inline(always)]
+    fn shade<const CLAMP: bool>(&self, t: &GouraudTriangle, x: i32, y: i32, color: &mut [C]) {
+        let n = color.len();
         let mut a = [0i32; 3];
         let mut d = [0i32; 3];
         for i in 0..3 {
-            let (s, st) = t.planes[i].clamped(x, n);
+            let (s, st) = super::start::<CLAMP>(&t.planes[i], x, n);
             a[i] = t.base[i].wrapping_add(s);
             d[i] = st;
         }
         if C::IS_RGB565 && E::LINEAR {
-            return run_rgb565(a, d, z, dz, color, depth);
+            return fill565(a, d, color);
         }
         let enc = self.encoder;
-        depth_loop(
-            z,
-            dz,
-            color,
-            depth,
-            (a, x),
-            |s| enc.pixel(s.0, s.1, y),
-            |s| {
-                for (a, d) in s.0.iter_mut().zip(d) {
-                    *a = a.wrapping_add(d);
-                }
-                if E::POSITIONAL {
-                    s.1 += 1;
-                }
-            },
-        );
+        let mut x = x;
+        for c in color.iter_mut() {
+            *c = enc.pixel(a, x, y);
+            for (a, d) in a.iter_mut().zip(d) {
+                // the values after the last pixel are not used: wrapping is harmless
+                *a = a.wrapping_add(d);
+            }
+            if E::POSITIONAL {
+                x += 1;
+            }
+        }
     }
 }
 
 /// The Gouraud loop for rounded 5-6-5 pixels: red and blue interpolated in one
 /// `u32` (red in the high half, blue in the low half, 11 fraction bits each),
-/// green in another: two additions instead of three, and no masks.
+/// green in another: two additions instead of three, and no masks; a function
+/// of its own, so that its six live values fit the Cortex-M0's registers.
 ///
 /// Each field stays inside its 16 bits: the vertex values are
 /// `c·2^s + 2^(s−1)` with `(c + ½)·2^s < 2^15` (see [`Linear`](super::Linear)), the
-/// run's end values are within the vertex range, and rounding the steps to
-/// 2^−11 of a channel moves a value by at most `len/2` such units over a run,
-/// far less than the half-step margin (1024 units) for any run of the window.
+/// run's values are within the range [`Encoder::safe`] allows, and rounding
+/// the steps to 2^−11 of a channel moves a value by at most `len/2` such units
+/// over a run, far less than the half-step margin (1024 units) for any run of
+/// the window.
 #[inline(never)]
-fn run_rgb565<C: OutputColor>(
-    a: [i32; 3],
-    d: [i32; 3],
-    z: i32,
-    dz: i32,
-    color: &mut [C],
-    depth: Option<&mut [u16]>,
-) {
+fn fill565<C: OutputColor>(a: [i32; 3], d: [i32; 3], color: &mut [C]) {
     // 5-bit channels: vertex values c·2^10 (+½) with ATTR_FRAC bits → c·2^11 in 16 bits
     let sh = ATTR_FRAC - 1;
     let half = 1 << (sh - 1);
-    let rb = (((a[0] >> sh) as u32) << 16) | (a[2] >> sh) as u32;
+    let mut rb = (((a[0] >> sh) as u32) << 16) | (a[2] >> sh) as u32;
     let drb = (((d[0] + half) >> sh) as u32)
         .wrapping_shl(16)
         .wrapping_add(((d[2] + half) >> sh) as u32);
     // 6-bit green: vertex values c·2^9 (+½) with ATTR_FRAC bits: c = g >> 23
-    let (g, dg) = (a[1] as u32, d[1] as u32);
-    match depth {
-        Some(depth) => {
-            let n = color.len().min(depth.len());
-            super::depth_runs(z, dz, &mut depth[..n], |k0, k1| {
-                // pixel k0 of the run: k0 steps from the first
-                let k = k0 as u32;
-                let rb = rb.wrapping_add(drb.wrapping_mul(k));
-                let g = g.wrapping_add(dg.wrapping_mul(k));
-                fill565(rb, drb, g, dg, &mut color[k0..k1]);
-            });
-        }
-        None => fill565(rb, drb, g, dg, color),
-    }
-}
-
-/// Pixels of a run from the packed channels `rb`, `g` and their steps.
-#[inline(always)]
-fn fill565<C: OutputColor>(mut rb: u32, drb: u32, mut g: u32, dg: u32, color: &mut [C]) {
+    let (mut g, dg) = (a[1] as u32, d[1] as u32);
     for c in color.iter_mut() {
         // r = rb >> 27, b = bits 27..32 of rb << 16, g = g >> 23
         let raw = ((rb >> 27) << 11) | ((rb << 16) >> 27) | ((g >> 23) << 5);

@@ -324,11 +324,10 @@ macro_rules! incremental_lights {
 
             #[inline]
             fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
-                let u = super::unit_normal::<Q14<2>>(n);
-                [u.x.raw() as i16, u.y.raw() as i16, u.z.raw() as i16]
+                super::unit_q14(n)
             }
 
-            fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], _p: [[i32; 3]; 3]) -> IncTriangle<$n> {
+            fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], _p: [[i32; 3]; 3]) -> (IncTriangle<$n>, bool) {
                 // attributes per vertex: the normal and N·L, N·H per light (Q14)
                 let attrs = v.map(|n| {
                     let n = n.map(i32::from);
@@ -342,10 +341,15 @@ macro_rules! incremental_lights {
                     a
                 });
                 let t = s.tmb[0];
-                IncTriangle {
-                    planes: core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]], s.rows.0)),
+                let tri = IncTriangle {
+                    planes: core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]])),
                     base: core::array::from_fn(|i| attrs[t][i] << ATTR_FRAC),
-                }
+                };
+                // the span code checks |N|² itself; the values must only stay
+                // inside ±2 (Q14, with ATTR_FRAC bits) so that nothing wraps
+                let two = 1 << (15 + ATTR_FRAC);
+                let clamp = (0..$n).any(|i| !super::within(s, &tri.planes[i], tri.base[i], (-two, two - 1)));
+                (tri, clamp)
             }
 
             fn skip_rows(t: &mut IncTriangle<$n>, rows: i32) {
@@ -360,55 +364,17 @@ macro_rules! incremental_lights {
                 }
             }
 
-            fn run(
-                &self,
-                t: &IncTriangle<$n>,
-                x: i32,
-                y: i32,
-                z: i32,
-                dz: i32,
-                color: &mut [C],
-                depth: Option<&mut [u16]>,
-            ) {
-                let len = color.len() as i32;
+            fn shade<const CLAMP: bool>(&self, t: &IncTriangle<$n>, x: i32, y: i32, color: &mut [C]) {
+                let len = color.len();
                 // Q14 with ATTR_FRAC bits (Q28) → Q26
                 let mut start = [0i32; $n];
                 let mut step = [0i32; $n];
                 for i in 0..$n {
-                    let (s0, d) = t.planes[i].clamped(x, len);
+                    let (s0, d) = super::start::<CLAMP>(&t.planes[i], x, len);
                     start[i] = t.base[i].wrapping_add(s0) >> 2;
                     step[i] = d >> 2;
                 }
-                let Some(depth) = depth else {
-                    return self.span(x, y, &start, &step, color);
-                };
-                // shade the runs of pixels that pass the depth test
-                let mut zz = z;
-                let mut run: Option<usize> = None;
-                let n = color.len();
-                for k in 0..=n {
-                    let pass = k < n && {
-                        let zi = (zz >> ATTR_FRAC) as u16;
-                        zz = zz.wrapping_add(dz);
-                        let d = &mut depth[k];
-                        if zi < *d {
-                            *d = zi;
-                            true
-                        } else {
-                            false
-                        }
-                    };
-                    match (pass, run) {
-                        (true, None) => run = Some(k),
-                        (false, Some(r)) => {
-                            let off = r as i32;
-                            let s: [i32; $n] = core::array::from_fn(|i| start[i].wrapping_add(step[i].wrapping_mul(off)));
-                            self.span(x + off, y, &s, &step, &mut color[r..k]);
-                            run = None;
-                        }
-                        _ => {}
-                    }
-                }
+                self.span(x, y, &start, &step, color)
             }
         }
     )*};

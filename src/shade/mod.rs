@@ -237,12 +237,12 @@ pub trait Shading<S: Scalar> {
 }
 
 /// What the mesh renderer needs from a shader: the vertex payload stored in the
-/// vertex cache, the per-triangle state and the depth-fused span kernel.
+/// vertex cache, the per-triangle state and the span kernel.
 ///
 /// Implemented by every [`Shader`]; the renderer calls, per frame, `vertex`
-/// once per vertex, `triangle` once per visible triangle (`resume` when it
-/// continues into the next band), `next_row` per row and `run` per run of
-/// covered pixels.
+/// once per vertex, `triangle` once per visible triangle (and when it
+/// continues into the next band), `next_row` per row and `shade` per run of
+/// pixels that passed the depth test.
 pub trait Kernel {
     /// The pixel colour written.
     type Color: Copy;
@@ -259,9 +259,12 @@ pub trait Kernel {
     fn vertex(&self, n: [i32; 3], p: [i32; 3]) -> Self::Vertex;
 
     /// The state of set-up triangle `s` (its planes positioned at its first
-    /// row), from the payloads and eye positions of its oriented vertices.
+    /// row), from the payloads and eye positions of its oriented vertices, and
+    /// whether its values must be clamped per run (`true` when the error bound
+    /// of its planes exceeds the kernel's margin: then
+    /// [`Kernel::shade`]`::<true>` is used).
     #[doc(hidden)]
-    fn triangle(&self, s: &Setup, v: [&Self::Vertex; 3], p: [[i32; 3]; 3]) -> Self::Triangle;
+    fn triangle(&self, s: &Setup, v: [&Self::Vertex; 3], p: [[i32; 3]; 3]) -> (Self::Triangle, bool);
 
     /// Moves the state `rows` rows down (exactly as `rows` calls of `next_row`).
     fn skip_rows(t: &mut Self::Triangle, rows: i32);
@@ -269,108 +272,133 @@ pub trait Kernel {
     /// Moves the state to the next row.
     fn next_row(t: &mut Self::Triangle);
 
-    /// Shades pixels `x..x + color.len()` of row `y`: pixel `k` has depth
-    /// `(z + k·dz) >> 14`; it is drawn (and its depth stored) when that is less
-    /// than `depth[k]`. Without a depth buffer every pixel is drawn.
-    #[allow(clippy::too_many_arguments)]
-    fn run(
-        &self,
-        t: &Self::Triangle,
-        x: i32,
-        y: i32,
-        z: i32,
-        dz: i32,
-        color: &mut [Self::Color],
-        depth: Option<&mut [u16]>,
-    );
+    /// Shades pixels `x..x + color.len()` of row `y` (they passed the depth
+    /// test); with `CLAMP` the interpolated values are clamped to the vertex
+    /// range.
+    fn shade<const CLAMP: bool>(&self, t: &Self::Triangle, x: i32, y: i32, color: &mut [Self::Color]);
 }
 
-/// The depth test of a run, split from the shading: pixel `k` has depth
+/// Whether a plane's values, with its error bound, stay in `safe` when added
+/// to `base` (so that they need no clamping).
+#[inline]
+pub(crate) fn within(s: &Setup, p: &crate::raster::Plane, base: i32, safe: (i32, i32)) -> bool {
+    let err = s.err(p);
+    if err >= 1 << 29 {
+        return false;
+    }
+    let err = err as i32;
+    // |base|, |lo|, |hi| < 2^30 and err < 2^29: no overflow in i32 arithmetic
+    // (computed in i64-free two steps)
+    let lo = base.saturating_add(p.lo).saturating_sub(err);
+    let hi = base.saturating_add(p.hi).saturating_add(err);
+    lo >= safe.0 && hi <= safe.1
+}
+
+/// The start value of a plane at column `x` and its step, clamped to the
+/// vertex range for `n` pixels when `CLAMP`.
+#[inline(always)]
+pub(crate) fn start<const CLAMP: bool>(p: &crate::raster::Plane, x: i32, n: usize) -> (i32, i32) {
+    if CLAMP {
+        p.clamped(x, n as i32)
+    } else {
+        (p.at(x), p.dx)
+    }
+}
+
+/// The depth test of the leading pixels of a run: pixel `k` has depth
 /// `(z + k·dz) >> 14` and passes when that is less than `depth[k]`, which then
-/// takes it; `shade(k0, k1)` is called for every maximal run `k0..k1` of
-/// passing pixels, in order. Two short loops instead of one long one: on a
-/// Cortex-M0 the fused loop keeps more values live than there are registers.
+/// takes it. Stops at the first pixel that fails; returns how many passed.
+/// A loop of its own (few live values: no register spills on a Cortex-M0).
+#[inline(never)]
+pub(crate) fn depth_prefix(z: u32, dz: u32, depth: &mut [u16]) -> usize {
+    let mut z = z;
+    for (k, d) in depth.iter_mut().enumerate() {
+        let zi = (z >> crate::raster::ATTR_FRAC) as u16;
+        if zi >= *d {
+            return k;
+        }
+        *d = zi;
+        // the value after the last pixel is not used: wrapping is harmless
+        z = z.wrapping_add(dz);
+    }
+    depth.len()
+}
+
+/// How many leading pixels of a run fail the depth test (changing nothing).
+#[inline(never)]
+fn depth_fails(z: u32, dz: u32, depth: &[u16]) -> usize {
+    let mut z = z;
+    for (k, d) in depth.iter().enumerate() {
+        if ((z >> crate::raster::ATTR_FRAC) as u16) < *d {
+            return k;
+        }
+        z = z.wrapping_add(dz);
+    }
+    depth.len()
+}
+
+/// The depth test of a run, split from the shading: `shade(k0, k1)` is called
+/// for every maximal run `k0..k1` of passing pixels, in order (see
+/// [`depth_prefix`]). In the common case (every pixel passes) that is one
+/// depth loop and one call.
 #[inline(always)]
 pub(crate) fn depth_runs(z: i32, dz: i32, depth: &mut [u16], mut shade: impl FnMut(usize, usize)) {
     let n = depth.len();
-    let mut z = z as u32;
     let dz = dz as u32;
+    let mut z = z as u32;
     let mut k = 0;
     while k < n {
-        // skip failing pixels
-        while k < n {
-            let zi = (z >> crate::raster::ATTR_FRAC) as u16;
-            if zi < depth[k] {
-                break;
-            }
-            z = z.wrapping_add(dz);
-            k += 1;
+        let Some(rest) = depth.get_mut(k..) else {
+            return;
+        };
+        let m = depth_prefix(z, dz, rest);
+        if m > 0 {
+            shade(k, k + m);
         }
-        let k0 = k;
-        // take passing pixels
-        while k < n {
-            let zi = (z >> crate::raster::ATTR_FRAC) as u16;
-            let d = &mut depth[k];
-            if zi >= *d {
-                break;
-            }
-            *d = zi;
-            // the value after the last pixel is not used: wrapping is harmless
-            z = z.wrapping_add(dz);
-            k += 1;
-        }
-        if k > k0 {
-            shade(k0, k);
-        }
+        k += m;
+        z = z.wrapping_add(dz.wrapping_mul(m as u32));
+        let Some(rest) = depth.get(k..) else {
+            return;
+        };
+        let f = depth_fails(z, dz, rest);
+        k += f;
+        z = z.wrapping_add(dz.wrapping_mul(f as u32));
     }
 }
 
-/// The generic depth-tested loop of a run: pixel `k` gets `pixel(state_k)`
-/// when its depth passes, `state_k` being `state` advanced `k` times by
-/// `step`; `skip(state, n)` advances a state `n` pixels at once.
-#[inline(always)]
-pub(crate) fn depth_loop<C, T: Copy>(
-    z: i32,
-    dz: i32,
-    color: &mut [C],
-    depth: Option<&mut [u16]>,
-    state: T,
-    mut pixel: impl FnMut(&T) -> C,
-    mut step: impl FnMut(&mut T),
-) {
-    match depth {
-        Some(depth) => {
-            let mut s = state;
-            let mut at = 0;
-            let n = color.len().min(depth.len());
-            depth_runs(z, dz, &mut depth[..n], |k0, k1| {
-                while at < k0 {
-                    step(&mut s);
-                    at += 1;
-                }
-                for c in color[k0..k1].iter_mut() {
-                    *c = pixel(&s);
-                    step(&mut s);
-                }
-                at = k1;
-            });
-        }
-        None => {
-            let mut s = state;
-            for c in color.iter_mut() {
-                *c = pixel(&s);
-                step(&mut s);
-            }
-        }
+/// `n / |n|` in Q14 for a vector of `i32` components (any length): 32-bit
+/// arithmetic only (the inverse square root of `crate::num::Q14`: a seed and
+/// two Newton steps, about the Q14 resolution). The zero vector stays zero.
+#[inline]
+pub(crate) fn unit_q14(n: [i32; 3]) -> [i16; 3] {
+    use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
+    // components below 2^15, so that the squares and c·y fit 32 bits
+    let m = n[0].unsigned_abs() | n[1].unsigned_abs() | n[2].unsigned_abs();
+    let sh = (crate::raster::setup::bit_length(m) as i32 - 15).max(0) as u32;
+    let c = n.map(|v| v >> sh);
+    // each square < 2^30: the sum < 3·2^30 < 2^32
+    let s = c.iter().fold(0u32, |a, &v| a + (v * v) as u32);
+    if s == 0 {
+        return [0; 3];
     }
+    let (t, k) = split_u32(s);
+    let y = rsqrt_q14_mantissa(t, 2) as i32; // ≤ 2^15
+    // c/|c| in Q14 = c·y >> (16 − k/2), rounded; |c·y| < 2^30
+    let sh = 16 - k / 2;
+    c.map(|v| {
+        let r = ((v * y) >> (sh - 1)) + 1;
+        (r >> 1).clamp(-(1 << 14), 1 << 14) as i16
+    })
 }
 
-/// Converts a Q14 eye-space normal (any length) to a unit normal of tier `S`.
+/// Converts a Q14 eye-space normal (any length) to a unit normal of tier `S`
+/// (normalised in Q14, see [`unit_q14`]).
 #[inline(always)]
 pub(crate) fn unit_normal<S: Scalar>(n: [i32; 3]) -> Vec3<S> {
-    // Q14 → the tier's attribute (Q26) scale, saturated to the tier's range
-    let c = |v: i32| S::from_attr(v.clamp(-(1 << 17), 1 << 17) << 12);
-    S::normalize(Vec3::new(c(n[0]), c(n[1]), c(n[2])))
+    let u = unit_q14(n);
+    // Q14 → the tier's attribute (Q26) scale
+    let c = |v: i16| S::from_attr(i32::from(v) << 12);
+    Vec3::new(c(u[0]), c(u[1]), c(u[2]))
 }
 
 /// A Q16.16 eye-space position in tier `S`'s geometry type.

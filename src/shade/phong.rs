@@ -1,12 +1,11 @@
 //! Phong shading: normals interpolated per pixel, renormalised, lit per pixel.
 
 use super::{
-    depth_loop, eye_point, raster_draw, unit_normal, Encoder, Kernel, ModeState, PhongShading,
-    ShadeVertex, Shader, Shading,
+    eye_point, raster_draw, Encoder, Kernel, ModeState, PhongShading, ShadeVertex, Shader, Shading,
 };
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
-use crate::num::{Scalar, Q14};
+use crate::num::Scalar;
 use crate::raster::setup::bit_length;
 use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC, ATTR_LIMIT};
 use crate::target::{DepthBuffer, Framebuffer};
@@ -169,29 +168,32 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
 
     #[inline]
     fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
-        let u = unit_normal::<Q14<2>>(n);
-        [u.x.raw() as i16, u.y.raw() as i16, u.z.raw() as i16]
+        super::unit_q14(n)
     }
 
-    fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> PhongTriangle {
+    fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> (PhongTriangle, bool) {
         let t = s.tmb[0];
-        let row = s.rows.0;
-        let n = core::array::from_fn(|i| s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from), row));
+        let n = core::array::from_fn(|i| s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from)));
         let n_base = core::array::from_fn(|i| i32::from(v[t][i]) << ATTR_FRAC);
         let (pp, p_base) = if I::NEEDS_POSITION {
             (
-                core::array::from_fn(|i| s.plane([p[0][i], p[1][i], p[2][i]], row)),
+                core::array::from_fn(|i| s.plane([p[0][i], p[1][i], p[2][i]])),
                 p[t],
             )
         } else {
             ([Plane::default(); 3], [0; 3])
         };
-        PhongTriangle {
+        // normals must stay within [−1, 1] in Q14 (Q28 with ATTR_FRAC bits),
+        // positions anywhere the tier saturates them
+        let one = 1 << (14 + ATTR_FRAC);
+        let clamp = (0..3).any(|i| !super::within(s, &n[i], n_base[i], (-one, one)));
+        let t = PhongTriangle {
             n,
             n_base,
             p: pp,
             p_base,
-        }
+        };
+        (t, clamp)
     }
 
     #[inline]
@@ -218,70 +220,47 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
         }
     }
 
-    #[inline]
-    fn run(
-        &self,
-        t: &PhongTriangle,
-        x: i32,
-        y: i32,
-        z: i32,
-        dz: i32,
-        color: &mut [C],
-        depth: Option<&mut [u16]>,
-    ) {
-        let len = color.len() as i32;
+    #[inline(always)]
+    fn shade<const CLAMP: bool>(&self, t: &PhongTriangle, x: i32, y: i32, color: &mut [C]) {
+        let len = color.len();
         let mut a = [0i32; 6];
         let mut d = [0i32; 6];
         for i in 0..3 {
-            let (s, st) = t.n[i].clamped(x, len);
+            let (s, st) = super::start::<CLAMP>(&t.n[i], x, len);
             a[i] = t.n_base[i].wrapping_add(s);
             d[i] = st;
             if I::NEEDS_POSITION {
-                let (s, st) = t.p[i].clamped(x, len);
+                let (s, st) = super::start::<CLAMP>(&t.p[i], x, len);
                 a[3 + i] = s;
                 d[3 + i] = st;
             }
         }
         let psh: [u32; 3] = core::array::from_fn(|i| ATTR_FRAC - t.p[i].sa.min(ATTR_FRAC));
-        let lighting = self.lighting;
-        let enc = self.encoder;
-        let p_base = t.p_base;
-        depth_loop(
-            z,
-            dz,
-            color,
-            depth,
-            (a, x),
-            |s| {
-                // Q14 normal with ATTR_FRAC bits → the tier's attribute (Q26)
-                let n = S::normalize_interpolated(Vec3::new(
-                    S::from_attr(s.0[0] >> 2),
-                    S::from_attr(s.0[1] >> 2),
-                    S::from_attr(s.0[2] >> 2),
-                ));
-                let pos = if I::NEEDS_POSITION {
-                    let q = |i: usize| {
-                        let sh = psh[i];
-                        let r = if sh == 0 {
-                            s.0[3 + i]
-                        } else {
-                            ((s.0[3 + i] >> (sh - 1)) + 1) >> 1
-                        };
-                        p_base[i].wrapping_add(r)
-                    };
-                    eye_point::<S>([q(0), q(1), q(2)])
-                } else {
-                    eye_point::<S>([0; 3])
+        let mut x = x;
+        for c in color.iter_mut() {
+            // Q14 normal with ATTR_FRAC bits → the tier's attribute (Q26)
+            let n = S::normalize_interpolated(Vec3::new(
+                S::from_attr(a[0] >> 2),
+                S::from_attr(a[1] >> 2),
+                S::from_attr(a[2] >> 2),
+            ));
+            let pos = if I::NEEDS_POSITION {
+                let q = |i: usize| {
+                    let sh = psh[i];
+                    let r = if sh == 0 { a[3 + i] } else { ((a[3 + i] >> (sh - 1)) + 1) >> 1 };
+                    t.p_base[i].wrapping_add(r)
                 };
-                enc.encode(lighting.shade(&pos, n), s.1, y)
-            },
-            |s| {
-                let n = if I::NEEDS_POSITION { 6 } else { 3 };
-                for (a, d) in s.0.iter_mut().zip(d).take(n) {
-                    *a = a.wrapping_add(d);
-                }
-                s.1 += 1;
-            },
-        );
+                eye_point::<S>([q(0), q(1), q(2)])
+            } else {
+                eye_point::<S>([0; 3])
+            };
+            *c = self.encoder.encode(self.lighting.shade(&pos, n), x, y);
+            let m = if I::NEEDS_POSITION { 6 } else { 3 };
+            for (a, d) in a.iter_mut().zip(d).take(m) {
+                // the values after the last pixel are not used: wrapping is harmless
+                *a = a.wrapping_add(d);
+            }
+            x += 1;
+        }
     }
 }

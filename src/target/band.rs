@@ -118,9 +118,8 @@ impl<'a, C: PixelColor> BandBuffer<'a, C> {
     /// Sets every pixel of the selected band.
     pub fn clear(&mut self, color: C) {
         let n = self.band_len();
-        for p in self.buf.iter_mut().take(n) {
-            *p = color;
-        }
+        let n = n.min(self.buf.len());
+        self.buf[..n].fill(color);
     }
 
     /// Sends the selected band to `display` with one `fill_contiguous`.
@@ -130,7 +129,8 @@ impl<'a, C: PixelColor> BandBuffer<'a, C> {
             Point::new(0, rows.start),
             Size::new(self.width, (rows.end - rows.start) as u32),
         );
-        display.fill_contiguous(&area, self.buf.iter().take(self.band_len()).copied())
+        let px = self.buf.get(..self.band_len()).unwrap_or(&[]);
+        display.fill_contiguous(&area, px.iter().copied())
     }
 
     /// Draws a whole frame: for every band, clears it to `clear_color`, calls

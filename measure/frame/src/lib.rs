@@ -22,8 +22,8 @@ use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, Lerp, MeshDraw,
+use fixshade::render::{MeshMemory, 
+    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, Lerp, MeshDraw,
     RenderError,
 };
 use fixshade::shade::{DirectionalLighting, Kernel};
@@ -107,10 +107,11 @@ where
         standard::SPHERE.mesh(),
         t,
         kernel,
-        DrawOptions::default(),
-        b.cache,
-        b.bins,
-        b.carry,
+        MeshMemory {
+            vertices: b.cache,
+            bins: b.bins,
+            carry: b.carry,
+        },
     )?;
     let mut frame = FullFrame::new(W as u32, W as u32, b.color, Some(b.depth))?;
     frame.render(Rgb565::BLACK, &mut [&mut draw]);
@@ -137,10 +138,11 @@ where
         standard::SPHERE.mesh(),
         t,
         kernel,
-        DrawOptions::default(),
-        b.cache,
-        b.bins,
-        b.carry,
+        MeshMemory {
+            vertices: b.cache,
+            bins: b.bins,
+            carry: b.carry,
+        },
     )?;
     let mut bands = Bands::new(layout, b.color, Some(b.depth))?;
     let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
