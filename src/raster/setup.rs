@@ -215,7 +215,10 @@ impl Setup {
             rows: dys >> SUBPIXEL_BITS,
             rem: dys & ((1 << SUBPIXEL_BITS) - 1),
             w: {
-                let (x0, x1) = (o.0.min(self.xy[i1].0).min(self.xy[i2].0), o.0.max(self.xy[i1].0).max(self.xy[i2].0));
+                let (x0, x1) = (
+                    o.0.min(self.xy[i1].0).min(self.xy[i2].0),
+                    o.0.max(self.xy[i1].0).max(self.xy[i2].0),
+                );
                 ((x1 - x0) >> SUBPIXEL_BITS) as u32 + 2
             },
             h: (self.rows.1 - self.rows.0).max(0) as u32 + 3,
@@ -237,7 +240,7 @@ impl Setup {
     #[inline]
     pub(crate) fn err(&self, p: &Plane) -> u32 {
         let b = &self.bary;
-        let spread3 = 3u32.saturating_mul(p.spread);
+        let spread3 = mul_bound(3, p.spread);
         // 1.5·2^s·spread = 3·spread·2^(s − 1), rounded up
         let s = b.s - 1;
         let g = if s >= 0 {
@@ -254,7 +257,7 @@ impl Setup {
                 (spread3 >> r) + 1
             }
         };
-        g.saturating_add(1).saturating_mul(b.w + b.h).saturating_add(24)
+        mul_bound(g.saturating_add(1), b.w + b.h).saturating_add(24)
     }
 
     /// The plane of an attribute with values `a` at the oriented vertices
@@ -409,6 +412,18 @@ impl ClampTo for i32 {
         } else {
             self
         }
+    }
+}
+
+/// `a·b`, or `u32::MAX` when the product may not fit (decided from the bit
+/// lengths, without the 32×32→64 multiply that `saturating_mul` needs on
+/// thumbv6m): an upper bound of the saturated product.
+#[inline]
+fn mul_bound(a: u32, b: u32) -> u32 {
+    if a.leading_zeros() + b.leading_zeros() >= 32 {
+        a * b
+    } else {
+        u32::MAX
     }
 }
 

@@ -279,7 +279,8 @@ where
             .kernel
             .triangle(&s, o.map(|i| pay[i]), o.map(|i| eye[i]));
         // depth values must stay in 0..65536 (with ATTR_FRAC bits)
-        let clamp = kclamp || !crate::shade::within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
+        let clamp =
+            kclamp || !crate::shade::within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
         let rows = band.rows();
         let mut w = match resume {
             Some(cols) => Walker::resume(&s, rows.start, cols),
@@ -327,7 +328,11 @@ where
                 if let Some(color) = band.color.get_mut(at..at + n) {
                     if DEPTH {
                         let (z0, dz) = crate::shade::start::<CLAMP>(zp, lo, n);
-                        if let Some(depth) = band.depth.as_deref_mut().and_then(|d| d.get_mut(at..at + n)) {
+                        if let Some(depth) = band
+                            .depth
+                            .as_deref_mut()
+                            .and_then(|d| d.get_mut(at..at + n))
+                        {
                             crate::shade::depth_runs(z0, dz, depth, |k0, k1| {
                                 if let Some(c) = color.get_mut(k0..k1) {
                                     self.kernel.shade::<CLAMP>(t, lo + k0 as i32, y, c);

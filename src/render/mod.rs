@@ -159,7 +159,10 @@ impl Layout {
     /// The rows of band `b`.
     pub fn rows(&self, b: u32) -> Range<i32> {
         // b·band_rows cannot overflow for b ≤ bands: both are at most MAX_SIZE
-        let start = b.min(MAX_SIZE).wrapping_mul(self.band_rows).min(self.height);
+        let start = b
+            .min(MAX_SIZE)
+            .wrapping_mul(self.band_rows)
+            .min(self.height);
         let end = (start + self.band_rows).min(self.height);
         start as i32..end as i32
     }
@@ -195,8 +198,6 @@ impl<'a, C> BandView<'a, C> {
     pub fn width(&self) -> u32 {
         self.width
     }
-
-
 }
 
 /// Something drawn band by band: a prepared mesh ([`MeshDraw`]), or anything

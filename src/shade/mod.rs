@@ -264,7 +264,12 @@ pub trait Kernel {
     /// of its planes exceeds the kernel's margin: then
     /// [`Kernel::shade`]`::<true>` is used).
     #[doc(hidden)]
-    fn triangle(&self, s: &Setup, v: [&Self::Vertex; 3], p: [[i32; 3]; 3]) -> (Self::Triangle, bool);
+    fn triangle(
+        &self,
+        s: &Setup,
+        v: [&Self::Vertex; 3],
+        p: [[i32; 3]; 3],
+    ) -> (Self::Triangle, bool);
 
     /// Moves the state `rows` rows down (exactly as `rows` calls of `next_row`).
     fn skip_rows(t: &mut Self::Triangle, rows: i32);
@@ -275,7 +280,13 @@ pub trait Kernel {
     /// Shades pixels `x..x + color.len()` of row `y` (they passed the depth
     /// test); with `CLAMP` the interpolated values are clamped to the vertex
     /// range.
-    fn shade<const CLAMP: bool>(&self, t: &Self::Triangle, x: i32, y: i32, color: &mut [Self::Color]);
+    fn shade<const CLAMP: bool>(
+        &self,
+        t: &Self::Triangle,
+        x: i32,
+        y: i32,
+        color: &mut [Self::Color],
+    );
 }
 
 /// Whether a plane's values, with its error bound, stay in `safe` when added
@@ -305,6 +316,16 @@ pub(crate) fn start<const CLAMP: bool>(p: &crate::raster::Plane, x: i32, n: usiz
     }
 }
 
+/// Keeps LLVM from unrolling the loop that calls it: an empty barrier (no
+/// instruction) that the unroller counts as a call. Runtime unrolling costs a
+/// Cortex-M0 more than it saves: the unrolled body's values no longer fit its
+/// eight low registers, and short runs (a sphere's triangles are a few pixels
+/// wide) spend their time in the remainder loop.
+#[inline(always)]
+pub(crate) fn no_unroll() {
+    core::hint::black_box(());
+}
+
 /// The depth test of the leading pixels of a run: pixel `k` has depth
 /// `(z + k·dz) >> 14` and passes when that is less than `depth[k]`, which then
 /// takes it. Stops at the first pixel that fails; returns how many passed.
@@ -320,6 +341,7 @@ pub(crate) fn depth_prefix(z: u32, dz: u32, depth: &mut [u16]) -> usize {
         *d = zi;
         // the value after the last pixel is not used: wrapping is harmless
         z = z.wrapping_add(dz);
+        no_unroll();
     }
     depth.len()
 }
@@ -333,6 +355,7 @@ fn depth_fails(z: u32, dz: u32, depth: &[u16]) -> usize {
             return k;
         }
         z = z.wrapping_add(dz);
+        no_unroll();
     }
     depth.len()
 }
@@ -383,7 +406,7 @@ pub(crate) fn unit_q14(n: [i32; 3]) -> [i16; 3] {
     }
     let (t, k) = split_u32(s);
     let y = rsqrt_q14_mantissa(t, 2) as i32; // ≤ 2^15
-    // c/|c| in Q14 = c·y >> (16 − k/2), rounded; |c·y| < 2^30
+                                             // c/|c| in Q14 = c·y >> (16 − k/2), rounded; |c·y| < 2^30
     let sh = 16 - k / 2;
     c.map(|v| {
         let r = ((v * y) >> (sh - 1)) + 1;

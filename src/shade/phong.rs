@@ -247,7 +247,11 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
             let pos = if I::NEEDS_POSITION {
                 let q = |i: usize| {
                     let sh = psh[i];
-                    let r = if sh == 0 { a[3 + i] } else { ((a[3 + i] >> (sh - 1)) + 1) >> 1 };
+                    let r = if sh == 0 {
+                        a[3 + i]
+                    } else {
+                        ((a[3 + i] >> (sh - 1)) + 1) >> 1
+                    };
                     t.p_base[i].wrapping_add(r)
                 };
                 eye_point::<S>([q(0), q(1), q(2)])

@@ -182,23 +182,27 @@ macro_rules! configs {
                     core::mem::size_of::<MeshDraw<'static, Kern>>() as u32,
                 ];
                 const _: () = assert!(core::mem::size_of::<<Kern as Kernel>::Vertex>() == core::mem::size_of::<Vertex>());
-                /// Lighting, shader, then [`draw_full`].
+                /// The lighting (built once, like the transform, outside the frame).
+                pub fn lighting() -> Result<Light, Fail> {
+                    $lighting.map_err(|_| Fail::Lighting)
+                }
+                /// The shader, then [`draw_full`].
                 pub fn full<D: DrawTarget<Color = Rgb565>>(
                     t: &MeshTransform<Orthographic>,
+                    lighting: &Light,
                     b: Buffers<'_, Vertex>,
                     display: &mut D,
                 ) -> Result<(), Fail> {
-                    let lighting: Light = $lighting.map_err(|_| Fail::Lighting)?;
-                    draw_full(Shader::new($mode, &lighting, Linear), t, b, display)
+                    draw_full(Shader::new($mode, lighting, Linear), t, b, display)
                 }
-                /// Lighting, shader, then [`draw_bands`].
+                /// The shader, then [`draw_bands`].
                 pub fn band8<D: DrawTarget<Color = Rgb565>>(
                     t: &MeshTransform<Orthographic>,
+                    lighting: &Light,
                     b: Buffers<'_, Vertex>,
                     display: &mut D,
                 ) -> Result<(), Fail> {
-                    let lighting: Light = $lighting.map_err(|_| Fail::Lighting)?;
-                    draw_bands(Shader::new($mode, &lighting, Linear), t, b, display)
+                    draw_bands(Shader::new($mode, lighting, Linear), t, b, display)
                 }
             }
         )*
@@ -218,10 +222,14 @@ macro_rules! configs {
                 if name == stringify!($name) {
                     let mut c = [CachedVertex::<$v>::default(); NV];
                     let b = Buffers { cache: &mut c, bins, carry, color, depth };
+                    let l = match $name::lighting() {
+                        Ok(l) => l,
+                        Err(e) => return Some(Err(e)),
+                    };
                     return Some(if band8 {
-                        $name::band8(t, b, display)
+                        $name::band8(t, &l, b, display)
                     } else {
-                        $name::full(t, b, display)
+                        $name::full(t, &l, b, display)
                     });
                 }
             )*

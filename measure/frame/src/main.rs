@@ -6,8 +6,8 @@
 //!   rendering one complete frame of the standard scene into a
 //!   `fixshade::target::Checksum<Rgb565>` and returning
 //!   `status << 32 | checksum` (status 0: drawn, all 57 600 pixels sent).
-//!   `init()` builds the mesh transform once (`standard::transform()`, `f32`)
-//!   into a static that every frame reads; frame.py calls it first and counts
+//!   `init()` builds the mesh transform (`standard::transform()`, `f32`) and
+//!   every configuration's lighting once into statics that the frames read; frame.py calls it first and counts
 //!   it separately. Buffers are statics (`.bss`), named for frame.py:
 //!   `FRAME_COLOR`, `FRAME_DEPTH` (whole frame), `STRIP_COLOR`,
 //!   `STRIP_DEPTH` (8-row bands), and per configuration `CACHE_<config>`,
@@ -50,12 +50,10 @@ mod firmware {
     #[no_mangle]
     pub unsafe extern "C" fn init() -> u32 {
         match fixshade::standard::transform() {
-            Ok(t) => {
-                (*addr_of_mut!(TRANSFORM)).write(t);
-                0
-            }
-            Err(_) => 1,
-        }
+            Ok(t) => (*addr_of_mut!(TRANSFORM)).write(t),
+            Err(_) => return 1,
+        };
+        init_lightings()
     }
 
     /// The transform `init` built.
@@ -94,6 +92,23 @@ mod firmware {
                     static TYPES: [u32; 3] = fixshade_frame::$name::TYPE_BYTES;
                     #[export_name = concat!("CARRY_BAND_", stringify!($name))]
                     static mut CARRY8: [Carry; CARRY_BAND] = unsafe { zeroed() };
+                    static mut LIGHT: MaybeUninit<fixshade_frame::$name::Light> = MaybeUninit::uninit();
+
+                    /// Builds the lighting (from `init`). 0: done.
+                    pub unsafe fn init() -> u32 {
+                        match fixshade_frame::$name::lighting() {
+                            Ok(l) => {
+                                (*addr_of_mut!(LIGHT)).write(l);
+                                0
+                            }
+                            Err(_) => 2,
+                        }
+                    }
+
+                    /// The lighting `init` built.
+                    unsafe fn lighting<'a>() -> &'a fixshade_frame::$name::Light {
+                        &*black_box(addr_of!(LIGHT)).cast::<fixshade_frame::$name::Light>()
+                    }
 
                     /// One whole frame (FullFrame + flush).
                     #[export_name = concat!("frame_", stringify!($name))]
@@ -106,7 +121,7 @@ mod firmware {
                             color: &mut *addr_of_mut!(FRAME_COLOR),
                             depth: &mut *addr_of_mut!(FRAME_DEPTH),
                         };
-                        let r = fixshade_frame::$name::full(transform(), b, &mut d);
+                        let r = fixshade_frame::$name::full(transform(), lighting(), b, &mut d);
                         finish(r, &d)
                     }
 
@@ -121,11 +136,22 @@ mod firmware {
                             color: &mut *addr_of_mut!(STRIP_COLOR),
                             depth: &mut *addr_of_mut!(STRIP_DEPTH),
                         };
-                        let r = fixshade_frame::$name::band8(transform(), b, &mut d);
+                        let r = fixshade_frame::$name::band8(transform(), lighting(), b, &mut d);
                         finish(r, &d)
                     }
                 }
             )*
+
+            /// Builds every configuration's lighting.
+            unsafe fn init_lightings() -> u32 {
+                $(
+                    let r = $name::init();
+                    if r != 0 {
+                        return r;
+                    }
+                )*
+                0
+            }
 
             /// Function pointers that keep every entry in the LTO image.
             pub struct Keep<T>(pub T);
