@@ -202,6 +202,26 @@ def flatten(mesh):
     return {"positions": pos, "normals": nrm, "triangles": tris}
 
 
+def fill_rule_fan(w=128, h=128, px_per_unit=40.0):
+    """Triangles around the centre of pixel (64, 64) with corners on pixel centres
+    (for the orthographic camera of a w × h scene); each triangle has its own tilted
+    normal, so pixels on a shared edge show which triangle owns them."""
+    ring = [(30, 0), (30, 30), (0, 30), (-20, 30), (-30, 10), (-30, -30), (0, -30),
+            (7, -30), (25, -30), (30, -11)]
+    def eye(dx, dy):  # pixel centre (64.5 + dx, 64.5 + dy), y down
+        return [(64.5 + dx - w / 2) / px_per_unit, (h / 2 - (64.5 + dy)) / px_per_unit, 0.0]
+    pos, nrm, tris = [], [], []
+    for k in range(len(ring)):
+        a = 2 * math.pi * k / len(ring)
+        n = [0.45 * math.cos(a), 0.45 * math.sin(a), 1.0]
+        base = len(pos)
+        for dx, dy in ((0, 0), ring[k], ring[(k + 1) % len(ring)]):
+            pos.append(eye(dx, dy))
+            nrm.append(n)
+        tris.append([base, base + 1, base + 2])
+    return {"positions": pos, "normals": nrm, "triangles": orient(pos, [[0, 0, 1]] * len(pos), tris)}
+
+
 def with_normal_length(mesh, length):
     """Normals scaled to a non-unit length (for GL_NORMALIZE off)."""
     m = dict(mesh)
@@ -470,11 +490,13 @@ def scenes():
         "eight_lights",
         "all eight lights: coloured directional, point (attenuated) and spot lights, each "
         "with an ambient colour; per-pixel Blinn-Phong; sums above 1 clamp",
-        ["8 lights", "light GL_AMBIENT", "mixed light kinds", "clamping"],
+        ["8 lights", "light GL_AMBIENT", "mixed light kinds", "clamping",
+         "attenuation ignored for directional lights"],
         [sph(plastic([0.8, 0.8, 0.8], 24.0, ks=0.5, ka=0.2, kd=0.6), "blinn", big)],
         [
             light(diffuse=[0.5, 0.1, 0.1, 1], specular=[0.5, 0.2, 0.2, 1], position=KEY,
-                  ambient=[0.05, 0.0, 0.0, 1]),
+                  ambient=[0.05, 0.0, 0.0, 1], linear_attenuation=0.5,
+                  quadratic_attenuation=0.5),  # ignored: directional
             light(diffuse=[0.1, 0.4, 0.1, 1], specular=[0.2, 0.4, 0.2, 1],
                   position=[0.6, 0.3, 0.7, 0.0]),
             light(diffuse=[0.1, 0.1, 0.5, 1], specular=[0.2, 0.2, 0.5, 1],
@@ -612,6 +634,16 @@ def scenes():
          for k, c in enumerate([RED, BLUE, GREEN, GOLD, RED, BLUE, GREEN, GOLD, RED])],
         [white(1.0, position=KEY)],
         snap=False,
+    ))
+
+    s.append(scene(
+        "fill_rule",
+        "a fan of triangles whose vertices lie on pixel centres (horizontal, vertical, "
+        "diagonal and other edges through pixel centres), each with its own flat colour: "
+        "tests that Mesa (after the y flip) and fixshade break ties alike",
+        ["rasterization rule", "GL_FLAT"],
+        [obj(fill_rule_fan(), plastic([0.9, 0.9, 0.9], 10.0, ks=0.2), "flat")],
+        [white(1.0, position=[0.5, 0.4, 0.77, 0.0])],
     ))
 
     # --- the rows of issue 12's table --------------------------------------
@@ -808,11 +840,28 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--out", default="target/conformance/scenes")
     ap.add_argument("--list", action="store_true", help="print the scenes and exit")
+    ap.add_argument("--markdown", action="store_true",
+                    help="print the scene table of conformance/README.md and exit")
     ap.add_argument("--only", nargs="*", help="scene names")
     a = ap.parse_args()
     all_scenes = scenes()
     names = [s["name"] for s in all_scenes]
     assert len(set(names)) == len(names)
+    if a.markdown:
+        print("| scene | what it draws | GL parameters exercised | shading | camera | "
+              "expected to fail |")
+        print("|---|---|---|---|---|---|")
+        for s in all_scenes:
+            shading = ", ".join(dict.fromkeys(
+                {"flat": "GL_FLAT", "gouraud": "GL_SMOOTH", "phong": "per-pixel Phong",
+                 "blinn": "per-pixel Blinn-Phong"}[o["shading"]] for o in s["objects"]))
+            xf = ", ".join(s["expect_fail"]) or "–"
+            if s["known_issue"]:
+                xf += " (known issue: " + ", ".join(s["known_issue"]) + ")"
+            cam = s["camera"]["kind"] + ("" if s["snap"] else ", unsnapped")
+            print(f"| `{s['name']}` | {s['description']} | {'; '.join(s['features'])} | "
+                  f"{shading} | {cam} | {xf} |")
+        return
     if a.list:
         for s in all_scenes:
             xf = ", ".join(f"{t}" for t in s["expect_fail"]) or "-"
@@ -821,7 +870,7 @@ def main():
             print(f"{s['name']:26} xfail {xf:18} {'; '.join(s['features'])}")
         return
     os.makedirs(a.out, exist_ok=True)
-    for old in os.listdir(a.out):
+    for old in os.listdir(a.out) if not a.only else []:
         if old.endswith(".json"):
             os.remove(os.path.join(a.out, old))
     for s in all_scenes:
