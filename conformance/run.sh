@@ -18,7 +18,7 @@ if ! dpkg-query -W -f='${Status}' libosmesa6 2>/dev/null | grep -q "ok installed
     "${sudo[@]}" apt-get update -qq
     DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -qq libosmesa6 >/dev/null
 fi
-python3 -m pip install --quiet --disable-pip-version-check -r conformance/requirements.txt
+python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ignore -r conformance/requirements.txt
 
 echo "== scenes"
 python3 conformance/scenes.py --out "$OUT/scenes"
