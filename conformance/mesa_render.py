@@ -11,6 +11,13 @@ OSMesa) and writes, per scene, ``<out>/mesa/<scene>.npz`` with
 and ``<out>/mesa/meta.json`` (renderer strings and package versions).
 
     python3 conformance/mesa_render.py [--scenes DIR] [--out DIR] [--png] [names…]
+    python3 conformance/mesa_render.py --selftest
+
+``--selftest`` checks the shaders' lighting function against Mesa's fixed-function
+lighting: every scene is drawn with GL_SMOOTH twice, lit by fixed function and
+by the same GLSL function the per-pixel shader uses, evaluated per vertex (front
+and back colours, separate specular, colour material, GL_NORMALIZE); it fails if
+a pixel differs by more than 1 LSB.
 
 How the scenes are drawn (see ``conformance/README.md``):
 
@@ -57,48 +64,42 @@ void main() {
 }
 """
 
-# OpenGL 2.1 §2.14.1, evaluated per pixel with the interpolated eye-space
-# position and the renormalised interpolated normal.
-FRAGMENT = """#version 120
-varying vec3 v_pos;
-varying vec3 v_nrm;
-varying vec4 v_col;
+# OpenGL 2.1 §2.14.1 for one side of a surface, shared by the per-pixel shader
+# and the per-vertex shader of --selftest (which checks it against fixed function).
+LIGHTING = """
 uniform int u_nlights;
 uniform bool u_local_viewer;
-uniform bool u_two_side;
-uniform bool u_separate;
 uniform bool u_blinn;
 uniform int u_cm_mode;      // 0 off, 1 ambient, 2 diffuse, 3 specular, 4 emission, 5 both
 uniform bool u_cm_front;
 uniform bool u_cm_back;
-void main() {
-    vec3 n = normalize(v_nrm);
-    bool back = u_two_side && !gl_FrontFacing;
+// The primary colour (emission, ambient, diffuse) at eye-space point pos with
+// normal n (as given: not normalised here); the specular sum goes to spec.
+vec3 lighting(vec3 pos, vec3 n, bool back, vec4 col, out vec3 spec) {
     vec4 ka = gl_FrontMaterial.ambient, kd = gl_FrontMaterial.diffuse;
     vec4 ks = gl_FrontMaterial.specular, ke = gl_FrontMaterial.emission;
     float sh = gl_FrontMaterial.shininess;
     if (back) {
-        n = -n;
         ka = gl_BackMaterial.ambient; kd = gl_BackMaterial.diffuse;
         ks = gl_BackMaterial.specular; ke = gl_BackMaterial.emission;
         sh = gl_BackMaterial.shininess;
     }
     if (u_cm_mode != 0 && ((back && u_cm_back) || (!back && u_cm_front))) {
-        if (u_cm_mode == 1 || u_cm_mode == 5) ka = v_col;
-        if (u_cm_mode == 2 || u_cm_mode == 5) kd = v_col;
-        if (u_cm_mode == 3) ks = v_col;
-        if (u_cm_mode == 4) ke = v_col;
+        if (u_cm_mode == 1 || u_cm_mode == 5) ka = col;
+        if (u_cm_mode == 2 || u_cm_mode == 5) kd = col;
+        if (u_cm_mode == 3) ks = col;
+        if (u_cm_mode == 4) ke = col;
     }
-    vec3 v = u_local_viewer ? normalize(-v_pos) : vec3(0.0, 0.0, 1.0);
+    vec3 v = u_local_viewer ? normalize(-pos) : vec3(0.0, 0.0, 1.0);
     vec3 prim = ke.rgb + gl_LightModel.ambient.rgb * ka.rgb;
-    vec3 spec = vec3(0.0);
+    spec = vec3(0.0);
     for (int i = 0; i < 8; i++) {
         if (i >= u_nlights) break;
         vec4 lp = gl_LightSource[i].position;
         vec3 l;
         float k = 1.0;
         if (lp.w != 0.0) {
-            vec3 d = lp.xyz / lp.w - v_pos;
+            vec3 d = lp.xyz / lp.w - pos;
             float dist = length(d);
             l = d / dist;
             k = 1.0 / (gl_LightSource[i].constantAttenuation
@@ -125,8 +126,61 @@ void main() {
         prim += k * c;
         spec += k * s;
     }
+    return prim;
+}
+"""
+
+# Per pixel: the interpolated eye-space position and the renormalised
+# interpolated normal (negated on back faces with two-sided lighting).
+FRAGMENT = """#version 120
+varying vec3 v_pos;
+varying vec3 v_nrm;
+varying vec4 v_col;
+uniform bool u_two_side;
+uniform bool u_separate;
+""" + LIGHTING + """
+void main() {
+    vec3 n = normalize(v_nrm);
+    bool back = u_two_side && !gl_FrontFacing;
+    vec3 spec;
+    vec3 prim = lighting(v_pos, back ? -n : n, back, v_col, spec);
     vec3 col = u_separate ? clamp(prim, 0.0, 1.0) + clamp(spec, 0.0, 1.0) : prim + spec;
     gl_FragColor = vec4(clamp(col, 0.0, 1.0), 1.0);
+}
+"""
+
+# --selftest: the same function per vertex, as fixed function evaluates it
+# (front and back colours, primary and secondary colour clamped per vertex).
+SELFTEST_VERTEX = """#version 120
+uniform bool u_two_side;
+uniform bool u_separate;
+uniform bool u_normalize;
+""" + LIGHTING + """
+void side(vec3 pos, vec3 n, bool back, out vec4 prim_out, out vec4 spec_out) {
+    vec3 spec;
+    vec3 prim = lighting(pos, n, back, gl_Color, spec);
+    if (u_separate) {
+        prim_out = vec4(clamp(prim, 0.0, 1.0), 1.0);
+        spec_out = vec4(clamp(spec, 0.0, 1.0), 0.0);
+    } else {
+        prim_out = vec4(clamp(prim + spec, 0.0, 1.0), 1.0);
+        spec_out = vec4(0.0);
+    }
+}
+void main() {
+    vec4 e = gl_ModelViewMatrix * gl_Vertex;
+    vec3 pos = e.xyz / e.w;
+    vec3 n = gl_NormalMatrix * gl_Normal;
+    if (u_normalize) n = normalize(n);
+    side(pos, n, false, gl_FrontColor, gl_FrontSecondaryColor);
+    side(pos, -n, true, gl_BackColor, gl_BackSecondaryColor);
+    gl_Position = ftransform();
+}
+"""
+
+SELFTEST_FRAGMENT = """#version 120
+void main() {
+    gl_FragColor = vec4(clamp(gl_Color.rgb + gl_SecondaryColor.rgb, 0.0, 1.0), 1.0);
 }
 """
 
@@ -171,16 +225,17 @@ class Mesa:
         self.buf = None
         self.size = None
         self.make_current(16, 16)
-        self.prog = shaders.compileProgram(
-            shaders.compileShader(VERTEX, gl.GL_VERTEX_SHADER),
-            shaders.compileShader(FRAGMENT, gl.GL_FRAGMENT_SHADER),
-            validate=False,
-        )
-        self.uniforms = {
-            n: gl.glGetUniformLocation(self.prog, n)
-            for n in ("u_nlights", "u_local_viewer", "u_two_side", "u_separate", "u_blinn",
-                      "u_cm_mode", "u_cm_front", "u_cm_back")
-        }
+        names = ("u_nlights", "u_local_viewer", "u_two_side", "u_separate", "u_blinn",
+                 "u_cm_mode", "u_cm_front", "u_cm_back", "u_normalize")
+        self.programs = {}
+        for key, vs, fs in (("pixel", VERTEX, FRAGMENT),
+                            ("vertex", SELFTEST_VERTEX, SELFTEST_FRAGMENT)):
+            prog = shaders.compileProgram(
+                shaders.compileShader(vs, gl.GL_VERTEX_SHADER),
+                shaders.compileShader(fs, gl.GL_FRAGMENT_SHADER),
+                validate=False,
+            )
+            self.programs[key] = (prog, {n: gl.glGetUniformLocation(prog, n) for n in names})
 
     def make_current(self, w, h):
         self.buf = (ctypes.c_ubyte * (w * h * 4))()
@@ -282,7 +337,10 @@ class Mesa:
 
     # -- passes --------------------------------------------------------------
 
-    def render(self, sc):
+    def render(self, sc, selftest=None):
+        """The scene's image. ``selftest``: every object drawn GL_SMOOTH with Blinn-Phong,
+        lit by fixed function (``"fixed"``) or by ``lighting`` per vertex
+        (``"vertex"``)."""
         self.setup(sc)
         gl.glClear(gl.GL_COLOR_BUFFER_BIT | gl.GL_DEPTH_BUFFER_BIT)
         self.lights(sc)
@@ -297,23 +355,33 @@ class Mesa:
                 gl.glColorMaterial(FACE[cm["face"]], CM_GL[cm["mode"]])
                 gl.glEnable(gl.GL_COLOR_MATERIAL)
             (gl.glEnable if o["cull"] else gl.glDisable)(gl.GL_CULL_FACE)
-            sh = o["shading"]
-            if sh in ("flat", "gouraud"):
+            sh = o["shading"] if selftest is None else "gouraud"
+            program = {None: "pixel", "fixed": None, "vertex": "vertex"}[selftest]
+            if sh in ("flat", "gouraud") and selftest != "vertex":
                 gl.glUseProgram(0)
                 gl.glShadeModel(gl.GL_FLAT if sh == "flat" else gl.GL_SMOOTH)
             else:
-                gl.glUseProgram(self.prog)
-                u = self.uniforms
-                gl.glUniform1i(u["u_nlights"], len(sc["lights"]))
-                gl.glUniform1i(u["u_local_viewer"], int(lm["local_viewer"]))
-                gl.glUniform1i(u["u_two_side"], int(lm["two_side"]))
-                gl.glUniform1i(u["u_separate"], int(lm["color_control"] == "separate"))
-                gl.glUniform1i(u["u_blinn"], int(sh == "blinn"))
-                gl.glUniform1i(u["u_cm_mode"], CM_MODE[cm["mode"]] if cm else 0)
-                gl.glUniform1i(u["u_cm_front"], int(bool(cm) and cm["face"] != "back"))
-                gl.glUniform1i(u["u_cm_back"], int(bool(cm) and cm["face"] != "front"))
+                prog, u = self.programs[program]
+                gl.glUseProgram(prog)
+                gl.glShadeModel(gl.GL_SMOOTH)
+                two_side = bool(lm["two_side"])
+                (gl.glEnable if two_side else gl.glDisable)(gl.GL_VERTEX_PROGRAM_TWO_SIDE)
+                for name, value in (
+                    ("u_nlights", len(sc["lights"])),
+                    ("u_local_viewer", int(lm["local_viewer"])),
+                    ("u_two_side", int(two_side)),
+                    ("u_separate", int(lm["color_control"] == "separate")),
+                    ("u_blinn", int(sh != "phong")),
+                    ("u_cm_mode", CM_MODE[cm["mode"]] if cm else 0),
+                    ("u_cm_front", int(bool(cm) and cm["face"] != "back")),
+                    ("u_cm_back", int(bool(cm) and cm["face"] != "front")),
+                    ("u_normalize", int(sc["normalize"])),
+                ):
+                    if u[name] >= 0:
+                        gl.glUniform1i(u[name], value)
             self.arrays(o["mesh"], normals=True, colors=bool(cm))
             gl.glUseProgram(0)
+            gl.glDisable(gl.GL_VERTEX_PROGRAM_TWO_SIDE)
         gl.glDisable(gl.GL_COLOR_MATERIAL)
         return self.read()
 
@@ -365,6 +433,10 @@ def main():
     ap.add_argument("--scenes", default="target/conformance/scenes")
     ap.add_argument("--out", default="target/conformance")
     ap.add_argument("--png", action="store_true", help="also write PNG images")
+    ap.add_argument("--selftest", action="store_true",
+                    help="check the shaders' lighting function against fixed function: every "
+                         "scene drawn GL_SMOOTH both ways; exit 1 if a pixel differs by more "
+                         "than 1 LSB")
     ap.add_argument("names", nargs="*")
     a = ap.parse_args()
     out = os.path.join(a.out, "mesa")
@@ -376,6 +448,23 @@ def main():
     files = sorted(glob.glob(os.path.join(a.scenes, "*.json")))
     if not files:
         sys.exit(f"no scenes in {a.scenes} (run conformance/scenes.py first)")
+    if a.selftest:
+        worst = 0
+        for f in files:
+            with open(f) as fh:
+                sc = json.load(fh)
+            if a.names and sc["name"] not in a.names:
+                continue
+            fixed = mesa.render(sc, "fixed").astype(int)
+            vertex = mesa.render(sc, "vertex").astype(int)
+            cov = mesa.ids(sc) != 0
+            d = np.abs(fixed - vertex).max(-1)[cov]
+            worst = max(worst, int(d.max()))
+            print(f"selftest {sc['name']:26} max {d.max()} mean {d.mean():.4f} "
+                  f"> 1 LSB: {(d > 1).sum()}")
+        print(f"selftest: the shaders' lighting function against fixed function: max {worst} "
+              "LSB", file=sys.stderr)
+        sys.exit(0 if worst <= 1 else 1)
     for f in files:
         with open(f) as fh:
             sc = json.load(fh)

@@ -28,6 +28,8 @@ echo "== fixshade (examples/conformance.rs)"
 cargo run --quiet --profile test --example conformance -- --scenes "$OUT/scenes" --out "$OUT"
 
 echo "== Mesa (llvmpipe through OSMesa)"
+# the per-pixel shader's lighting function, evaluated per vertex, against fixed function
+python3 conformance/mesa_render.py --scenes "$OUT/scenes" --out "$OUT" --selftest | tail -1
 python3 conformance/mesa_render.py --scenes "$OUT/scenes" --out "$OUT" "${png[@]}"
 
 echo "== compare"
