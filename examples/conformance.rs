@@ -35,9 +35,13 @@ use fixshade::lighting::{BlinnPhong, Illuminate, Lighting, LocalViewer, Phong as
 use fixshade::material::{Material, MaterialDesc};
 use fixshade::mesh::{EyeTransform, Mat4, ScreenTransform, ScreenVertex, Viewport};
 use fixshade::num::{Scalar, Q14, Q30};
-use fixshade::raster::{draw_triangle, Cull, RasterOptions, SpanShader, SUBPIXEL_BITS};
+use fixshade::raster::{
+    draw_triangle, draw_triangle_perspective, Cull, RasterOptions, SpanShader, SUBPIXEL_BITS,
+};
 use fixshade::reference::{self, ModelDesc, Reference, ViewerDesc, V3};
-use fixshade::shade::{Flat, Gouraud, Linear, Phong, ShadeVertex, Shading};
+use fixshade::shade::{
+    FlatShading, GouraudShading, Linear, PhongShading, ShadeVertex, Shader, Shading,
+};
 use fixshade::target::{DepthBuffer, SliceFramebuffer};
 use fixshade::vector::Vec3;
 use serde_json::{json, Value};
@@ -444,10 +448,27 @@ fn geometry(sc: &Scene, o: &Object) -> Geometry {
     }
 }
 
-fn opts(sc: &Scene, o: &Object, cull: Cull) -> RasterOptions {
+/// One triangle through the rasterizer, perspective-correct in perspective scenes.
+fn raster<S: SpanShader<N, Color = Rgb888>, const N: usize>(
+    persp: bool,
+    fb: &mut SliceFramebuffer<'_, Rgb888>,
+    db: &mut DepthBuffer<'_>,
+    v: &[fixshade::raster::RasterVertex<N>; 3],
+    op: &RasterOptions,
+    s: &mut S,
+) {
+    let r = if persp {
+        draw_triangle_perspective(fb, Some(db), v, op, s)
+    } else {
+        draw_triangle(fb, Some(db), v, op, s)
+    };
+    // memory framebuffers cannot fail
+    let Ok(_) = r;
+}
+
+fn opts(o: &Object, cull: Cull) -> RasterOptions {
     RasterOptions {
         cull: if o.cull { Cull::Back } else { cull },
-        perspective: sc.perspective,
         ..RasterOptions::default()
     }
 }
@@ -496,12 +517,13 @@ fn ids(sc: &Scene, geos: &[Geometry]) -> Vec<u16> {
                 let mut s = Fill(Rgb888::new(k, green, 0));
                 let op = RasterOptions {
                     cull,
-                    ..opts(sc, o, cull)
+                    ..opts(o, cull)
                 };
                 for (t, _) in &tris {
-                    draw_triangle(
+                    raster(
+                        sc.perspective,
                         &mut fb,
-                        Some(&mut db),
+                        &mut db,
                         &t.map(|v| v.to_raster([])),
                         &op,
                         &mut s,
@@ -524,26 +546,50 @@ fn draw_with<S: Scalar, I: Illuminate<Scalar = S>>(
     fb: &mut SliceFramebuffer<'_, Rgb888>,
     db: &mut DepthBuffer<'_>,
     o: &RasterOptions,
+    persp: bool,
 ) {
+    fn each<S: Scalar, D: Shading<S, Color = Rgb888>>(
+        mut s: D,
+        tris: &[[ShadeVertex<S>; 3]],
+        fb: &mut SliceFramebuffer<'_, Rgb888>,
+        db: &mut DepthBuffer<'_>,
+        o: &RasterOptions,
+        persp: bool,
+    ) {
+        for t in tris {
+            let r = if persp {
+                s.draw_perspective(fb, Some(db), t, o)
+            } else {
+                s.draw(fb, Some(db), t, o)
+            };
+            let Ok(_) = r;
+        }
+    }
     match shading {
-        Shade::Flat => {
-            let mut s = Flat::new(lit, Linear);
-            for t in tris {
-                s.draw(fb, Some(db), t, o);
-            }
-        }
-        Shade::Gouraud => {
-            let mut s = Gouraud::new(lit, Linear);
-            for t in tris {
-                s.draw(fb, Some(db), t, o);
-            }
-        }
-        Shade::Phong | Shade::Blinn => {
-            let mut s = Phong::new(lit, Linear);
-            for t in tris {
-                s.draw(fb, Some(db), t, o);
-            }
-        }
+        Shade::Flat => each(
+            Shader::new(FlatShading, lit, Linear),
+            tris,
+            fb,
+            db,
+            o,
+            persp,
+        ),
+        Shade::Gouraud => each(
+            Shader::new(GouraudShading, lit, Linear),
+            tris,
+            fb,
+            db,
+            o,
+            persp,
+        ),
+        Shade::Phong | Shade::Blinn => each(
+            Shader::new(PhongShading, lit, Linear),
+            tris,
+            fb,
+            db,
+            o,
+            persp,
+        ),
     }
 }
 
@@ -602,16 +648,16 @@ fn draw_scene<S: Scalar>(
                 })
             })
             .collect();
-        let op = opts(sc, o, Cull::None);
+        let op = opts(o, Cull::None);
         let blinn = o.shading != Shade::Phong;
         macro_rules! go {
             ($m:ty) => {{
                 let lit = Lighting::<S, _, $m>::new(lights, mat).with_global_ambient(global);
                 if model.local_viewer {
                     let lit = lit.with_viewer(LocalViewer::new([0.0; 3]).unwrap());
-                    draw_with(&lit, o.shading, &tris, fb, db, &op);
+                    draw_with(&lit, o.shading, &tris, fb, db, &op, sc.perspective);
                 } else {
-                    draw_with(&lit, o.shading, &tris, fb, db, &op);
+                    draw_with(&lit, o.shading, &tris, fb, db, &op, sc.perspective);
                 }
             }};
         }
@@ -821,7 +867,7 @@ fn render_reference(sc: &Scene, geos: &[Geometry], rep: &mut Report) -> (Vec<Rgb
             local_viewer: sc.local_viewer,
             blinn: o.shading != Shade::Phong,
         };
-        let op = opts(sc, o, Cull::None);
+        let op = opts(o, Cull::None);
         let sub = f64::from(1u32 << SUBPIXEL_BITS);
         let clamp = |c: V3| c.map(|v| v.clamp(0.0, 1.0));
         for (s, idx) in screen_tris(o, g) {
@@ -859,9 +905,10 @@ fn render_reference(sc: &Scene, geos: &[Geometry], rep: &mut Report) -> (Vec<Rgb
                 out: &mut img,
                 width: w,
             };
-            draw_triangle(
+            raster(
+                sc.perspective,
                 &mut fb,
-                Some(&mut db),
+                &mut db,
                 &s.map(|v| v.to_raster([])),
                 &op,
                 &mut shader,
