@@ -314,21 +314,21 @@ where
         }
         let last = w.last.min(rows.end - 1);
         zp.row = zp.row.wrapping_add(zbase);
-        match (clamp, band.depth.is_some()) {
-            (false, true) => self.rows::<false, true>(&mut w, last, &mut t, &mut zp, band),
-            (true, true) => self.rows::<true, true>(&mut w, last, &mut t, &mut zp, band),
-            (false, false) => self.rows::<false, false>(&mut w, last, &mut t, &mut zp, band),
-            (true, false) => self.rows::<true, false>(&mut w, last, &mut t, &mut zp, band),
+        if clamp {
+            self.rows::<true>(&mut w, last, &mut t, &mut zp, band);
+        } else {
+            self.rows::<false>(&mut w, last, &mut t, &mut zp, band);
         }
         w.more().then(|| w.snapshot())
     }
 
     /// The rows `w.y..=last` of a set-up triangle: the walker's columns, the
     /// depth test of each run (the depth plane `zp` holds absolute values), the
-    /// kernel on the passing pixels. `CLAMP`: values clamped per run; `DEPTH`:
-    /// the band has a depth buffer.
+    /// kernel on the passing pixels (all of them without a depth buffer: a
+    /// branch per row, not a second copy of the loop). `CLAMP`: values clamped
+    /// per run.
     #[inline(always)]
-    fn rows<const CLAMP: bool, const DEPTH: bool>(
+    fn rows<const CLAMP: bool>(
         &self,
         w: &mut Walker,
         last: i32,
@@ -347,13 +347,9 @@ where
                 let n = (hi - lo + 1) as usize;
                 let at = row + lo as usize;
                 if let Some(color) = band.color.get_mut(at..at + n) {
-                    if DEPTH {
+                    if let Some(d) = band.depth.as_deref_mut() {
                         let (z0, dz) = crate::shade::start::<CLAMP>(zp, lo, n);
-                        if let Some(depth) = band
-                            .depth
-                            .as_deref_mut()
-                            .and_then(|d| d.get_mut(at..at + n))
-                        {
+                        if let Some(depth) = d.get_mut(at..at + n) {
                             crate::shade::depth_runs(z0, dz, depth, |k0, k1| {
                                 if let Some(c) = color.get_mut(k0..k1) {
                                     self.kernel.shade::<CLAMP>(t, lo + k0 as i32, y, c);
