@@ -48,7 +48,9 @@ impl<const NEWTON: u8> Q14<NEWTON> {
     /// the general path, so the result is the same for every input.
     #[inline(always)]
     pub fn normalize_near_unit(v: Vec3<Self>) -> Vec3<Self> {
-        let s = (v.x.0 * v.x.0 + v.y.0 * v.y.0 + v.z.0 * v.z.0) as u32; // |v|² in Q28
+        // |v|² in Q28: each square ≤ 2^30 fits an i32, their sum (< 3·2^30) only a u32
+        // (summed as i32 it overflows for components near ±2, i.e. |v| above ≈ 2.8)
+        let s = (v.x.0 * v.x.0) as u32 + (v.y.0 * v.y.0) as u32 + (v.z.0 * v.z.0) as u32;
         if !(1 << 26..1 << 30).contains(&s) {
             return Self::normalize(v);
         }
