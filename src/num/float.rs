@@ -24,10 +24,16 @@ pub struct F32Fast<const NEWTON: u8 = 2>(pub f32);
 
 #[inline(always)]
 fn clamp_f32(v: f32) -> f32 {
-    if v.is_nan() {
+    // explicit comparisons rather than `f32::clamp`, whose `min <= max` assertion
+    // can survive in a size-optimised build
+    if v > F32_LIMIT {
+        F32_LIMIT
+    } else if v < -F32_LIMIT {
+        -F32_LIMIT
+    } else if v.is_nan() {
         0.0
     } else {
-        v.clamp(-F32_LIMIT, F32_LIMIT)
+        v
     }
 }
 
@@ -99,9 +105,11 @@ macro_rules! float_tier {
             }
             #[inline]
             fn to_unorm(self, bits: u32) -> u32 {
-                let max = ((1u32 << bits.clamp(1, 16)) - 1) as f32;
-                // `as` maps NaN to 0; the clamp keeps the result within `bits`.
-                ($get(self).clamp(0.0, 1.0) * max + 0.5) as u32
+                let max = ((1u32 << bits.max(1).min(16)) - 1) as f32;
+                // NaN fails `> 0` and becomes 0; the result stays within `bits`.
+                let x = $get(self);
+                let x = if x > 0.0 { x.min(1.0) } else { 0.0 };
+                (x * max + 0.5) as u32
             }
             #[inline]
             fn normalize(v: Vec3<Self>) -> Vec3<Self> {

@@ -148,8 +148,9 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
     }
     #[inline]
     fn to_unorm(self, bits: u32) -> u32 {
-        let x = self.0.clamp(0, 1 << FRAC) as u32;
-        let max = (1u32 << bits.clamp(1, 16)) - 1;
+        // `max`/`min`, not `clamp`: its `min <= max` assertion can survive at opt-level s
+        let x = self.0.max(0).min(1 << FRAC) as u32;
+        let max = (1u32 << bits.max(1).min(16)) - 1;
         (x * max + (1 << (FRAC - 1))) >> FRAC
     }
     #[inline]
@@ -202,7 +203,7 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
     geo16_ops!();
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
-        Self((g.to_bits().clamp(0, 1 << 16) + 2) >> 2)
+        Self((g.to_bits().max(0).min(1 << 16) + 2) >> 2)
     }
     #[inline]
     fn geo_recip(g: Geo16) -> Self {
@@ -281,7 +282,7 @@ pub(crate) fn geo16_direction(v: Vec3<Geo16>, newton: u8) -> (Vec3<i32>, Geo16) 
                                                                 // |v|² (raw) = s′·2^(64−k): 1/|v|raw = r·2^(−30)·2^((k−64)/2)
                                                                 // unit component (Q30) = c·r·2^((k−64)/2) = c·r ≫ (32 − k/2)
     let sh = 32 - k / 2;
-    let unit = |c: i64| round_shr(c * r, sh).clamp(-(1 << 30), 1 << 30) as i32;
+    let unit = |c: i64| round_shr(c * r, sh).max(-(1 << 30)).min(1 << 30) as i32;
     // |v| (raw Q16) = √s′·2^(32−k/2); √s′ = s′·r (Q30)
     let sqrt_sp = ((t as u64 * r as u64) >> 32) as i64; // Q30
     let len_raw = if k / 2 >= 2 {

@@ -40,7 +40,8 @@ impl<const NEWTON: u8> Q30<NEWTON> {
 
     #[inline(always)]
     fn from_wide(v: i64) -> Self {
-        Self(v.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+        // `max`/`min`, not `clamp`: its `min <= max` assertion can survive at opt-level s
+        Self(v.max(i32::MIN as i64).min(i32::MAX as i64) as i32)
     }
 }
 
@@ -99,8 +100,8 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     }
     #[inline]
     fn to_unorm(self, bits: u32) -> u32 {
-        let x = self.0.clamp(0, 1 << FRAC) as u64;
-        let max = (1u64 << bits.clamp(1, 16)) - 1;
+        let x = self.0.max(0).min(1 << FRAC) as u64;
+        let max = (1u64 << bits.max(1).min(16)) - 1;
         ((x * max + (1 << (FRAC - 1))) >> FRAC) as u32
     }
     #[inline]
@@ -150,7 +151,7 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     geo16_ops!();
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
-        Self(g.to_bits().clamp(0, 1 << 16) << 14)
+        Self(g.to_bits().max(0).min(1 << 16) << 14)
     }
     #[inline]
     fn geo_recip(g: Geo16) -> Self {
