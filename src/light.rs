@@ -475,8 +475,9 @@ impl<S: Scalar> LightSource<S> for SpotLight<S> {
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
         let (l, d) = S::geo_direction(point_sub::<S>(self.pos, *p));
-        // cos φ = s·(−L); spot = cos^e φ inside the cone, 0 outside
-        let cos_phi = S::ZERO.sub(self.axis.dot(l));
+        // cos φ = s·(−L); spot = cos^e φ inside the cone, 0 outside (a cosine that
+        // corrects the lengths of s and L, which cos^e φ amplifies)
+        let cos_phi = S::ZERO.sub(S::cos_normal(self.axis, l));
         let spot = if cos_phi >= self.cos_cutoff && cos_phi > S::ZERO {
             cos_phi.min1().powi(self.exponent)
         } else {

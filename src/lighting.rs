@@ -26,7 +26,13 @@
 //!   maximum while summed and is clamped to [0, 1] when converted to an output colour.
 //! - Normals are expected unit length; [`Lighting::shade`] takes them as they are,
 //!   [`Lighting::shade_normalizing`] normalises first (a zero normal gives the ambient
-//!   and emission terms only).
+//!   and emission terms only). A unit vector rounded to a fixed tier is up to
+//!   5·10⁻⁵ too long or short, which the powers amplify (n·5·10⁻⁵ at the top of a
+//!   highlight): every cosine with the normal ([`Scalar::cos_normal`],
+//!   [`Scalar::reflect_dot`]) corrects the lengths of `N`, `L`, `V` and `H` to
+//!   first order when they are within 2⁻⁵ of unit length (`Q14`, `F32Fast`), and
+//!   Phong's `R = 2(N·L)N − L` is exact at the mirror direction (where `2(N·L)` is 2,
+//!   beyond the fixed tiers' range).
 
 use crate::color::Rgb;
 use crate::error::{finite, ParamError};
@@ -407,7 +413,9 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     ) -> (Option<Rgb<S>>, Rgb<S>) {
         let c = inc.colors;
         let m = &self.material;
-        let nl = n.dot(inc.l);
+        // cosines with the normal correct its length to first order (the powers below
+        // amplify it; see `Scalar::cos_normal`)
+        let nl = S::cos_normal(n, inc.l);
         let mut direct = Rgb::BLACK;
         if nl > S::ZERO {
             // diffuse: kd·Id·(N·L)^b
@@ -420,8 +428,10 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             // specular: ks·Is·f(β)·x^n, x = R·V or N·H
             let x = match M::SPECULAR {
                 Specular::None => S::ZERO,
-                Specular::Phong => n.reflect(inc.l).dot(v),
-                Specular::BlinnPhong => n.dot(c.half.unwrap_or_else(|| inc.l.add(v).normalize())),
+                Specular::Phong => S::reflect_dot(n, inc.l, v),
+                Specular::BlinnPhong => {
+                    S::cos_normal(n, c.half.unwrap_or_else(|| inc.l.add(v).normalize()))
+                }
             };
             if M::SPECULAR != Specular::None && x > S::ZERO {
                 let mut s = x.min1().powi(m.shininess);
@@ -510,7 +520,11 @@ fn transmission<S: Scalar>(n: Vec3<S>, l: Vec3<S>, v: Vec3<S>, eta: S, nl: S) ->
         return S::ZERO;
     }
     let c2 = k.sqrt();
-    // T = η·d + (η·c1 − c2)·(−N) = −η·L + (c2 − η·c1)·N
-    let t = n.scale(c2.sub(eta.mul(c1))).sub(l.scale(eta));
-    t.dot(v).max0().min1()
+    // T = η·d + (η·c1 − c2)·(−N) = −η·L + (c2 − η·c1)·N, so
+    // T·V = (c2 − η·c1)·(N·V) − η·(L·V), with cosines that correct the lengths
+    let tv = c2
+        .sub(eta.mul(c1))
+        .mul(S::cos_normal(n, v))
+        .sub(eta.mul(S::cos_normal(l, v)));
+    tv.max0().min1()
 }

@@ -84,10 +84,18 @@ impl<S: Scalar> Vec3<S> {
     }
 
     /// The ideal reflection of `l` about the unit normal `self`: `R = 2(N·L)N − L`.
+    ///
+    /// Each component is `2(N·L)·N_i − L_i` rounded once (see
+    /// [`Scalar::twice_mul_sub`]): at the mirror direction `2(N·L)` is 2, which the
+    /// fixed tiers cannot hold, but the components of `R` can.
     #[inline(always)]
     pub fn reflect(self, l: Self) -> Self {
         let nl = self.dot(l);
-        self.scale(nl.add(nl)).sub(l)
+        Self::new(
+            nl.twice_mul_sub(self.x, l.x),
+            nl.twice_mul_sub(self.y, l.y),
+            nl.twice_mul_sub(self.z, l.z),
+        )
     }
 }
 

@@ -8,7 +8,8 @@
 mod common;
 
 use common::scenes::{
-    lsb_error, near_discontinuity, reference_u8, sample, tier_u8, Band, Term, TERMS,
+    lsb_error, near_discontinuity, reference_u8, sample, search, tier_u8, Band, Sample, Term,
+    BANDS, TERMS,
 };
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use proptest::prelude::*;
@@ -119,5 +120,75 @@ proptest! {
     #[test]
     fn f32_micromath_two_newton_steps((term, band, s) in case()) {
         check::<F32Fast<2>>(term, band, f32_fast2, &s)?;
+    }
+}
+
+/// The bounds at the worst case, searched rather than sampled: for every tier, term
+/// and exponent band, random samples with half of the lights near the highlight and
+/// half of the normals shorter than 1 (interpolated normals, renormalised as
+/// per-pixel shading does), then hill climbs from the worst of them
+/// (`common::scenes::search`). Uniform sampling rarely lands on the few directions
+/// where the rounding of `N`, `L` and `H` is amplified most; the climbs do.
+/// `cargo run --release --example accuracy` runs the same search with more effort.
+#[test]
+fn worst_case_search() {
+    fn cell<S: Scalar>(term: Term, band: Band, bound: Bound, seed: u64) {
+        let (e, s) = search::<S>(term, band, 1500, 8, 200, seed);
+        assert!(
+            e <= bound(term, band),
+            "{}: {term:?} n-band {band:?}: {e} LSB > {} at {s:?}",
+            S::NAME,
+            bound(term, band)
+        );
+    }
+    for (i, &term) in TERMS.iter().enumerate() {
+        let bands: &[Band] = if specular(term) { &BANDS } else { &[Band::Low] };
+        for &band in bands {
+            let seed = 77 + 10 * i as u64 + band as u64;
+            cell::<Q14<1>>(term, band, q14_1, seed);
+            cell::<Q14<2>>(term, band, q14_2, seed);
+            cell::<Q30<3>>(term, band, one, seed);
+            cell::<f32>(term, band, one, seed);
+            cell::<F32Fast<2>>(term, band, f32_fast2, seed);
+        }
+    }
+}
+
+/// The case of issue 11, item 8: a Phong highlight (n = 64, ks = 1, light specular
+/// 0.9) on an interpolated normal of length 0.989. `Q14<2>` normalised it 7·10⁻⁵
+/// too long (every component rounded up), which `R·V` and the power amplified to 5 LSB
+/// (202 against 197).
+#[test]
+fn phong_highlight_on_an_interpolated_normal() {
+    use common::scenes::ModelKind;
+    use fixshade::light::{LightDesc, LightKind};
+    use fixshade::material::MaterialDesc;
+    use fixshade::reference::ViewerDesc;
+    let s = Sample {
+        lights: vec![LightDesc {
+            kind: LightKind::Directional {
+                towards_light: [0.5298213, 0.5298927, 0.66219574],
+            },
+            ambient: [0.0; 3],
+            diffuse: [0.0; 3],
+            specular: [0.9; 3],
+        }],
+        material: MaterialDesc {
+            ambient: [0.0; 3],
+            diffuse: [0.0; 3],
+            specular: [1.0; 3],
+            shininess: 64.0,
+            ..MaterialDesc::default()
+        },
+        global_ambient: [0.0; 3],
+        viewer: ViewerDesc::Infinite([0.0, 0.0, 1.0]),
+        fog: None,
+        p: [0.0; 3],
+        n: [0.30950525, 0.30927742, 0.8871395],
+        model: ModelKind::Phong,
+    };
+    assert_eq!(reference_u8(&s), [197; 3]);
+    for got in [tier_u8::<Q14<2>>(&s), tier_u8::<Q14<1>>(&s)] {
+        assert!(lsb_error(got, [197; 3]) <= 1, "{got:?}");
     }
 }

@@ -83,6 +83,27 @@ impl<const A: u8> Vec3<Q14<A>> {
     }
 }
 
+/// `a·b` in Q27 (unrounded but for the halving): each product is at most 2^30 in
+/// magnitude, so three halved ones fit an `i32`.
+#[inline(always)]
+fn dot27<const N: u8>(a: Vec3<Q14<N>>, b: Vec3<Q14<N>>) -> i32 {
+    ((a.x.0 * b.x.0) >> 1) + ((a.y.0 * b.y.0) >> 1) + ((a.z.0 * b.z.0) >> 1)
+}
+
+/// `|n|² − 1` in Q28 when it is within ±2^23 (`| |N|² − 1 | < 2⁻⁵`), else 0 (no
+/// length correction).
+#[inline(always)]
+fn len2_dev<const N: u8>(n: Vec3<Q14<N>>) -> i32 {
+    // each square ≤ 2^30, the sum < 3·2^30 fits a u32
+    let s = (n.x.0 * n.x.0) as u32 + (n.y.0 * n.y.0) as u32 + (n.z.0 * n.z.0) as u32;
+    let e = s.wrapping_sub(1 << 28) as i32;
+    if e.unsigned_abs() < 1 << 23 {
+        e
+    } else {
+        0
+    }
+}
+
 #[inline(always)]
 const fn clamp_raw(raw: i32) -> i32 {
     if raw > RAW_MAX {
@@ -145,6 +166,47 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         let y = rsqrt_q14_mantissa(t, NEWTON.max(2)) as i64;
         // x = s′·2^(4−k) (Q28 in 32 bits), 1/√x = y·2^((k−4)/2)
         Self::from_raw(round_shr(self.0 as i64 * y, 16 - k / 2) as i32)
+    }
+    #[inline(always)]
+    fn twice_mul_sub(self, b: Self, c: Self) -> Self {
+        // 2ab in Q14 is a·b / 2^13: |a·b| ≤ 2^30, the rounded quotient (≤ 2^17) minus c
+        // fits an i32
+        Self::from_raw(((self.0 * b.0 + (1 << 12)) >> 13) - c.0)
+    }
+    #[inline(always)]
+    fn cos_normal(n: Vec3<Self>, u: Vec3<Self>) -> Self {
+        let x = dot27(n, u);
+        // N·U/(|N||U|) ≈ x·(1 − e/2), e = (|N|² − 1) + (|U|² − 1) in Q28 (|e| < 2^24),
+        // |x| < 3·2^29: (x ≫ 12 < 2^18.6) times (e ≫ 12 < 2^12) stays below 2^31 and
+        // is in units of 2^24 / 2^29 of x·e/2, hence ≫ 5. Truncations: below 2^-16 of x.
+        let e = len2_dev(n) + len2_dev(u);
+        let corr = ((x >> 12) * (e >> 12)) >> 5;
+        Self::from_raw((x - corr + (1 << 12)) >> 13)
+    }
+    #[inline(always)]
+    fn reflect_dot(n: Vec3<Self>, l: Vec3<Self>, v: Vec3<Self>) -> Self {
+        // R̂·V̂ = (2(N·L)(N·V)/|N|² − L·V)/(|L||V|) with the dot products in Q27, unrounded
+        let (a, b, c) = (dot27(n, l), dot27(n, v), dot27(l, v));
+        const LIM: u32 = (1 << 27) + (1 << 24); // 1.125 in Q27
+        let within = |x: i32| (x.unsigned_abs()) <= LIM;
+        if !(within(a) && within(b) && within(c)) {
+            return n.reflect(l).dot(v);
+        }
+        // P = a·b in Q28 = a·b / 2^26, by 13-bit halves: a = ah·2^13 + al (al ≥ 0).
+        // |ah|, |bh| ≤ 2^14.2: ah·bh < 2^29, each cross product < 2^28; al·bl < 2^26
+        // contributes below 2^-28 and is dropped.
+        let (ah, al, bh, bl) = (a >> 13, a & 0x1FFF, b >> 13, b & 0x1FFF);
+        let p = ah * bh + ((ah * bl + al * bh) >> 13);
+        // 2P/|N|² ≈ 2P(1 − e), e = |N|² − 1 in Q28 (|e| < 2^23): (P ≫ 14 < 2^16) times
+        // (e ≫ 9 < 2^14) is in units of 2^23 / 2^28 of P·e, doubled: ≫ 4.
+        let corr = ((p >> 14) * (len2_dev(n) >> 9)) >> 4;
+        // |2P| < 2^29.4, |2c| < 2^28.2: the sum y fits (|y| < 2^29.8, Q28)
+        let y = 2 * p - corr - 2 * c;
+        // y/(|L||V|) ≈ y·(1 − (eL + eV)/2): (y ≫ 14 < 2^15.8) times (e ≫ 10 < 2^14) is
+        // in units of 2^24 / 2^29 of y·e/2, hence ≫ 5
+        let e = len2_dev(l) + len2_dev(v);
+        let x = y - (((y >> 14) * (e >> 10)) >> 5);
+        Self::from_raw((x + (1 << 13)) >> 14)
     }
     #[inline]
     fn to_unorm(self, bits: u32) -> u32 {

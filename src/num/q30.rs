@@ -80,6 +80,11 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
         // |a·b| ≤ 2^62: fits in i64.
         Self::from_wide(round_shr(self.0 as i64 * rhs.0 as i64, FRAC))
     }
+    #[inline(always)]
+    fn twice_mul_sub(self, b: Self, c: Self) -> Self {
+        // |a·b| ≤ 2^62: 2ab in Q30 is a·b / 2^29 (≤ 2^33), minus c
+        Self::from_wide(round_shr(self.0 as i64 * b.0 as i64, FRAC - 1) - c.0 as i64)
+    }
     #[inline]
     fn div(self, rhs: Self) -> Self {
         if rhs.0 <= 0 {

@@ -6,6 +6,7 @@
 
 #![allow(dead_code)]
 
+use fixshade::color::Rgb;
 use fixshade::light::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{InfiniteViewer, Lighting, LinearFog, LocalViewer, Model};
 use fixshade::material::{Material, MaterialDesc};
@@ -190,12 +191,17 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
         colour(1.0),
         colour(1.0),
         shininess(band),
-        (0.0f64..1.3, 0.0f64..6.3),
+        // the normal: direction, and length (1, or below 1 as interpolated normals are)
+        (
+            0.0f64..1.3,
+            0.0f64..6.3,
+            prop_oneof![Just(1.0f64), 0.6f64..1.0],
+        ),
         (-3.0f32..3.0, -3.0f32..3.0, -3.0f32..3.0),
         (0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0),
     )
         .prop_map(
-            move |(k, lights_raw, ka, kd, ks, n_exp, (nt, np), p, extra)| {
+            move |(k, lights_raw, ka, kd, ks, n_exp, (nt, np, len), p, extra)| {
                 build(
                     term,
                     k,
@@ -204,8 +210,7 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
                     kd,
                     ks,
                     n_exp,
-                    nt,
-                    np,
+                    (nt, np, len),
                     [p.0, p.1, p.2],
                     extra,
                 )
@@ -222,8 +227,7 @@ fn build(
     kd: [f32; 3],
     ks: [f32; 3],
     n_exp: f32,
-    nt: f64,
-    np: f64,
+    (nt, np, len): (f64, f64, f64),
     p: [f32; 3],
     extra: (f64, f64, f64),
 ) -> Sample {
@@ -381,7 +385,9 @@ fn build(
         viewer,
         fog,
         p,
-        n: f32s(n),
+        // an interpolated normal (length below 1) is what per-pixel shading
+        // renormalises; the reference normalises it in f64
+        n: f32s(n.map(|c| c * len)),
         model: term.model(),
     }
 }
@@ -438,17 +444,7 @@ pub fn near_discontinuity(s: &Sample) -> bool {
 
 /// The reference colour of a sample, 8 bits per channel.
 pub fn reference_u8(s: &Sample) -> [u8; 3] {
-    let r = Reference {
-        lights: &s.lights,
-        material: s.material,
-        global_ambient: s.global_ambient,
-        viewer: s.viewer,
-        fog: s.fog,
-        model: model_desc(s.model),
-    };
-    let p = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
-    let n = [s.n[0] as f64, s.n[1] as f64, s.n[2] as f64];
-    r.shade(p, n).map(to_u8)
+    reference_rgb(s).map(to_u8)
 }
 
 type M0 = fixshade::lighting::Lambert;
@@ -469,6 +465,12 @@ fn model_desc(m: ModelKind) -> ModelDesc {
 
 /// The tier's colour of a sample, 8 bits per channel.
 pub fn tier_u8<S: Scalar>(s: &Sample) -> [u8; 3] {
+    let [r, g, b] = tier_rgb::<S>(s).to_unorm(8);
+    [r as u8, g as u8, b as u8]
+}
+
+/// The tier's linear colour of a sample.
+pub fn tier_rgb<S: Scalar>(s: &Sample) -> Rgb<S> {
     match s.model {
         ModelKind::Lambert => eval::<S, M0>(s),
         ModelKind::Brilliance => eval::<S, MB>(s),
@@ -478,7 +480,22 @@ pub fn tier_u8<S: Scalar>(s: &Sample) -> [u8; 3] {
     }
 }
 
-fn eval<S: Scalar, M: Model>(s: &Sample) -> [u8; 3] {
+/// The reference's linear colour of a sample.
+pub fn reference_rgb(s: &Sample) -> [f64; 3] {
+    let r = Reference {
+        lights: &s.lights,
+        material: s.material,
+        global_ambient: s.global_ambient,
+        viewer: s.viewer,
+        fog: s.fog,
+        model: model_desc(s.model),
+    };
+    let p = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
+    let n = [s.n[0] as f64, s.n[1] as f64, s.n[2] as f64];
+    r.shade(p, n)
+}
+
+fn eval<S: Scalar, M: Model>(s: &Sample) -> Rgb<S> {
     let lights: heapless::Vec<AnyLight<S>, 4> =
         s.lights.iter().map(|d| AnyLight::new(d).unwrap()).collect();
     let mat = Material::<S>::new(&s.material).unwrap();
@@ -486,7 +503,7 @@ fn eval<S: Scalar, M: Model>(s: &Sample) -> [u8; 3] {
         .with_global_ambient(fixshade::color::Rgb::from_f32(s.global_ambient));
     let p = point_from_f32::<S>(s.p);
     let n = Vec3::<S>::from_f32(s.n);
-    let c = match (s.viewer, s.fog) {
+    match (s.viewer, s.fog) {
         (ViewerDesc::Infinite(d), None) => lit
             .with_viewer(InfiniteViewer::new(d).unwrap())
             .shade_normalizing(&p, n),
@@ -501,9 +518,7 @@ fn eval<S: Scalar, M: Model>(s: &Sample) -> [u8; 3] {
             .with_viewer(LocalViewer::new(e).unwrap())
             .with_fog(LinearFog::new(f.start, f.end, f.color).unwrap())
             .shade_normalizing(&p, n),
-    };
-    let [r, g, b] = c.to_unorm(8);
-    [r as u8, g as u8, b as u8]
+    }
 }
 
 /// Largest channel difference in 8-bit LSBs.
@@ -542,4 +557,133 @@ pub fn measure<S: Scalar>(term: Term, band: Band, cases: u32, seed: u64) -> (u32
         }
     }
     (max, sum as f64 / cases as f64, worst.unwrap())
+}
+
+/// A small deterministic generator for the worst-case search (xorshift64*).
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    /// Uniform in [0, 1).
+    pub fn f(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The error of a sample before 8-bit quantisation: the largest channel difference
+/// of the clamped linear colours, in 8-bit LSBs. The hill climb follows it (the
+/// quantised error is flat almost everywhere).
+pub fn linear_error<S: Scalar>(s: &Sample) -> f64 {
+    let t = tier_rgb::<S>(s).to_f32();
+    let r = reference_rgb(s);
+    (0..3)
+        .map(|i| ((t[i] as f64).clamp(0.0, 1.0) - r[i].clamp(0.0, 1.0)).abs() * 255.0)
+        .fold(0.0, f64::max)
+}
+
+/// `s` moved a little: the normal's direction (and, for an interpolated normal, its
+/// length), every light's direction from the surface point and its distance, the
+/// exponent within `band`. `amount` is the rotation in radians.
+pub fn perturb(s: &Sample, band: Band, amount: f64, rng: &mut Rng) -> Sample {
+    let mut out = s.clone();
+    let n = [s.n[0] as f64, s.n[1] as f64, s.n[2] as f64];
+    let len = dot(n, n).sqrt();
+    let dir = around(norm(n), amount * rng.f(), rng.f() * std::f64::consts::TAU);
+    let len = if len > 0.9999 && rng.f() < 0.5 {
+        len
+    } else {
+        (len * (1.0 + amount * (rng.f() - 0.5))).clamp(0.6, 1.0)
+    };
+    out.n = f32s(dir.map(|c| c * len));
+    let pd = s.p.map(|c| c as f64);
+    for l in &mut out.lights {
+        let rotate = |v: [f64; 3], rng: &mut Rng| {
+            let d = dot(v, v).sqrt();
+            let u = around(norm(v), amount * rng.f(), rng.f() * std::f64::consts::TAU);
+            let d = d * (1.0 + amount * (rng.f() - 0.5));
+            u.map(|c| c * d)
+        };
+        match &mut l.kind {
+            LightKind::Directional { towards_light } => {
+                *towards_light = f32s(rotate(towards_light.map(|c| c as f64), rng));
+            }
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+                let rel = [0, 1, 2].map(|i| position[i] as f64 - pd[i]);
+                let rel = rotate(rel, rng);
+                *position = f32s([0, 1, 2].map(|i| pd[i] + rel[i]));
+            }
+        }
+    }
+    let (lo, hi) = band.range();
+    if rng.f() < 0.2 {
+        let n = s.material.shininess + if rng.f() < 0.5 { -1.0 } else { 1.0 };
+        out.material.shininess = n.clamp(lo as f32, hi as f32);
+    }
+    out
+}
+
+/// A search for the largest error of tier `S` on `term` and `band`: `cases` random
+/// samples (the generator above, which puts half of the lights near the highlight),
+/// then `climbs` hill climbs of `steps` steps from the worst of them. A step moves
+/// the sample by a random amount between 10⁻⁴ and 10⁻¹ radians (see [`perturb`]) and
+/// keeps it when the unquantised error does not decrease. Deterministic for a seed.
+/// Returns the largest quantised error met and its sample.
+pub fn search<S: Scalar>(
+    term: Term,
+    band: Band,
+    cases: u32,
+    climbs: usize,
+    steps: u32,
+    seed: u64,
+) -> (u32, Sample) {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut seed_bytes = [0u8; 32];
+    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let mut runner = TestRunner::new_with_rng(
+        Config::default(),
+        TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes),
+    );
+    let strat = sample(term, band);
+    let mut pool: Vec<(f64, Sample)> = Vec::new();
+    let mut best: Option<(u32, Sample)> = None;
+    fn note<S: Scalar>(s: &Sample, best: &mut Option<(u32, Sample)>) {
+        let e = lsb_error(tier_u8::<S>(s), reference_u8(s));
+        if best.as_ref().is_none_or(|b| e > b.0) {
+            *best = Some((e, s.clone()));
+        }
+    }
+    let mut done = 0;
+    while done < cases {
+        let s = strat.new_tree(&mut runner).unwrap().current();
+        if near_discontinuity(&s) {
+            continue;
+        }
+        done += 1;
+        note::<S>(&s, &mut best);
+        pool.push((linear_error::<S>(&s), s));
+    }
+    pool.sort_by(|a, b| b.0.total_cmp(&a.0));
+    pool.truncate(climbs);
+    let mut rng = Rng::new(seed);
+    for (mut err, mut s) in pool {
+        for _ in 0..steps {
+            let amount = 10f64.powf(-1.0 - 3.0 * rng.f());
+            let t = perturb(&s, band, amount, &mut rng);
+            if near_discontinuity(&t) {
+                continue;
+            }
+            let e = linear_error::<S>(&t);
+            if e >= err {
+                note::<S>(&t, &mut best);
+                (err, s) = (e, t);
+            }
+        }
+    }
+    best.unwrap()
 }
