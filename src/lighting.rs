@@ -207,10 +207,23 @@ impl<S: Scalar> FogModel<S> for NoFog {
 /// Linear depth cueing (seed 004's atmospheric attenuation): the diffuse and
 /// specular light fades towards `colour` between `start` and `end`:
 /// `f = clamp((end − d)/(end − start), 0, 1)`.
+///
+/// # Representation and extremes
+///
+/// The ramp is stored per tier ([`Scalar::ramp`]) so that any finite `start < end`
+/// works: ranges of `f32::MAX` and more (`start = −f32::MAX, end = f32::MAX` is
+/// half fog near 0), ends far beyond the geometry range (`0…200 000` fades over the
+/// whole range of the fixed tiers' distances), ranges down to one `f32` step (a step
+/// at `end`). The fixed tiers hold the slope `1/(end − start)` as a mantissa and an
+/// exponent rather than in Q16.16, and evaluate it from the point of the geometry
+/// range nearest to `end`; `f` is within 2⁻¹³ (`Q14`) or 10⁻⁶ (the others) of the
+/// exact ramp at the tier's distance `d`. What remains is the distance's own
+/// rounding (2⁻¹⁶ units for the fixed tiers, 2⁻²⁴ relative for `f32`), which the
+/// ramp scales by `1/(end − start)`. A NaN distance (only from non-finite positions
+/// given directly as `Vec3`) is full fog.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearFog<S: Scalar> {
-    end: S::Geo,
-    inv_range: S::Geo,
+    ramp: S::Ramp,
     color: Rgb<S>,
 }
 
@@ -223,8 +236,7 @@ impl<S: Scalar> LinearFog<S> {
             return Err(ParamError::FogRange);
         }
         Ok(Self {
-            end: S::geo_from_f32(e),
-            inv_range: S::geo_from_f32(1.0 / (e - s)),
+            ramp: S::ramp(s, e),
             color: Rgb::try_from_f32("fog colour", color)?,
         })
     }
@@ -234,8 +246,7 @@ impl<S: Scalar> FogModel<S> for LinearFog<S> {
     const NEEDS_DISTANCE: bool = true;
     #[inline(always)]
     fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S> {
-        let f = S::geo_to_unit(S::geo_mul(S::geo_sub(self.end, d), self.inv_range));
-        self.color.lerp(direct, f)
+        self.color.lerp(direct, S::ramp_at(&self.ramp, d))
     }
 }
 

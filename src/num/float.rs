@@ -4,6 +4,61 @@
 use super::Scalar;
 use crate::vector::Vec3;
 
+/// The linear fog ramp of the float tiers (see [`Scalar::ramp`]):
+/// `clamp((end − d)·scale·inv, 0, 1)` with `end` as given and
+/// `scale·inv = 1/(end − start)` formed without overflow: a range beyond `f32::MAX`
+/// is halved first, and a range below 2⁻¹⁰⁰ (whose inverse may exceed `f32::MAX`)
+/// is scaled by `scale = 2¹⁰⁰` (otherwise 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampF32 {
+    end: f32,
+    scale: f32,
+    inv: f32,
+}
+
+impl RampF32 {
+    fn new(start: f32, end: f32) -> Self {
+        const TINY: f32 = 7.888_609e-31; // 2^-100
+        const HUGE: f32 = 1.267_650_6e30; // 2^100
+        let r = end - start;
+        let (scale, inv) = if !r.is_finite() {
+            (1.0, 0.5 / (end * 0.5 - start * 0.5))
+        } else if r < TINY {
+            (HUGE, 1.0 / (r * HUGE))
+        } else {
+            (1.0, 1.0 / r)
+        };
+        Self { end, scale, inv }
+    }
+
+    #[inline(always)]
+    fn at(&self, d: f32) -> f32 {
+        // (end − d) is finite for |d| ≤ F32_LIMIT and `scale` may take it to ±∞, which
+        // clamps; an infinite or NaN distance (a position given directly as `Vec3`)
+        // gives 1 or 0, never NaN
+        let x = (self.end - d) * self.scale * self.inv;
+        if x > 0.0 {
+            x.min(1.0)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// `1/(a + b·d + c·d²)` in `f32`: the distance is made finite and non-negative first
+/// (NaN to 0, ∞ to `f32::MAX`), so that no product is `0·∞`; an infinite sum gives 0.
+#[inline(always)]
+fn inv_quadratic(k: &[f32; 3], d: f32) -> Option<f32> {
+    let d = if d > 0.0 { d.min(f32::MAX) } else { 0.0 };
+    let [a, b, c] = *k;
+    let q = a + d * (b + c * d);
+    if q > 1.0 / F32_LIMIT {
+        Some(1.0 / q)
+    } else {
+        None
+    }
+}
+
 /// The range of the float tiers: conversions from `f32` clamp to ±`F32_LIMIT`, so
 /// that the products of the lighting equation (at most four factors) stay finite.
 pub const F32_LIMIT: f32 = 1.0e9;
@@ -76,6 +131,7 @@ macro_rules! float_tier {
     ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $correct:expr) => {
         impl<$($gen)*> Scalar for $ty {
             type Geo = f32;
+            type Ramp = RampF32;
             const ZERO: Self = $wrap(0.0);
             const ONE: Self = $wrap(1.0);
             const MAX: Self = $wrap(F32_LIMIT);
@@ -227,6 +283,20 @@ macro_rules! float_tier {
                 } else {
                     <Self as Scalar>::MAX
                 }
+            }
+            #[inline]
+            fn geo_inv_quadratic(k: &[f32; 3], d: f32) -> Self {
+                match inv_quadratic(k, d) {
+                    Some(f) => $wrap(f),
+                    None => <Self as Scalar>::MAX,
+                }
+            }
+            fn ramp(start: f32, end: f32) -> RampF32 {
+                RampF32::new(start, end)
+            }
+            #[inline]
+            fn ramp_at(r: &RampF32, d: f32) -> Self {
+                $wrap(r.at(d))
             }
             #[inline]
             fn geo_direction(v: Vec3<f32>) -> (Vec3<Self>, f32) {

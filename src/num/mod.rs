@@ -27,12 +27,16 @@
 #![allow(clippy::manual_clamp)]
 
 mod float;
+mod geo;
 mod q14;
 mod q30;
 pub(crate) mod rsqrt;
 
-pub use float::{F32Fast, F32_LIMIT};
+pub use float::{F32Fast, RampF32, F32_LIMIT};
+pub use geo::{GeoScalar, InvQuadratic16};
+pub use q14::RampQ14;
 pub use q14::Q14;
+pub use q30::RampQ30;
 pub use q30::Q30;
 
 use crate::vector::Vec3;
@@ -63,7 +67,10 @@ pub type Geo16 = fixed::types::I16F16;
 /// All operations saturate at the tier's range and never panic.
 pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync + 'static {
     /// The scalar for positions and distances (more range, less precision).
-    type Geo: Copy + Debug + PartialEq + Default + Send + Sync + 'static;
+    type Geo: GeoScalar;
+    /// The linear fog ramp `clamp((end − d)/(end − start), 0, 1)` in the form this
+    /// tier evaluates (see [`Scalar::ramp`]).
+    type Ramp: Copy + Debug + PartialEq + Send + Sync + 'static;
 
     /// Zero.
     const ZERO: Self;
@@ -233,6 +240,26 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     /// The unit vector along `v` and the length of `v`. A zero vector gives the zero
     /// vector and length zero. Lengths beyond the geometry range saturate.
     fn geo_direction(v: Vec3<Self::Geo>) -> (Vec3<Self>, Self::Geo);
+
+    /// The attenuation `1/(a + b·d + c·d²)` of the coefficients `k` (see
+    /// [`GeoScalar::inv_quadratic`]) at distance `d`; a negative (or NaN) distance
+    /// counts as 0. Saturates at [`Scalar::MAX`] where `a + b·d + c·d²` is below
+    /// `1/MAX` (0.5 for the fixed tiers, 10⁻⁹ for the float tiers).
+    ///
+    /// Accuracy, for every finite non-negative `a, b, c` and every distance of the
+    /// geometry range: `Q14` within 2⁻¹³ relative (16-bit mantissas) plus its final
+    /// rounding (2⁻¹⁵), `Q30` and the float tiers within 10⁻⁶ relative
+    /// (`tests/stability_distance.rs` sweeps every binade of both).
+    fn geo_inv_quadratic(k: &<Self::Geo as GeoScalar>::InvQuadratic, d: Self::Geo) -> Self;
+
+    /// The ramp `clamp((end − d)/(end − start), 0, 1)` for finite `start < end`
+    /// (validated by the caller). Either end may lie beyond the geometry range, and
+    /// the range may be anything from the smallest `f32` step to `2·f32::MAX`.
+    fn ramp(start: f32, end: f32) -> Self::Ramp;
+
+    /// The value of ramp `r` at distance `d`, within 2⁻¹³ (`Q14`) or 10⁻⁶ (the
+    /// others) of the exact ramp at that distance (a NaN distance gives 0).
+    fn ramp_at(r: &Self::Ramp, d: Self::Geo) -> Self;
 }
 
 #[cfg(test)]

@@ -183,6 +183,7 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
                 0.0f64..1.0,
                 0.0f64..1.0,
                 0.0f64..1.0,
+                (0.0f64..1.0, 0.0f64..1.0),
                 colour(1.0),
             ),
             4,
@@ -199,9 +200,10 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
         ),
         (-3.0f32..3.0, -3.0f32..3.0, -3.0f32..3.0),
         (0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0),
+        (0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0),
     )
         .prop_map(
-            move |(k, lights_raw, ka, kd, ks, n_exp, (nt, np, len), p, extra)| {
+            move |(k, lights_raw, ka, kd, ks, n_exp, (nt, np, len), p, extra, wide)| {
                 build(
                     term,
                     k,
@@ -213,16 +215,21 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
                     (nt, np, len),
                     [p.0, p.1, p.2],
                     extra,
+                    wide,
                 )
             },
         )
 }
 
+/// The random numbers of one light: kind, direction (2), distance, attenuation (2),
+/// colour.
+type LightRaw = (f64, f64, f64, f64, (f64, f64), [f32; 3]);
+
 #[allow(clippy::too_many_arguments)]
 fn build(
     term: Term,
     k: usize,
-    lights_raw: &[(f64, f64, f64, f64, [f32; 3])],
+    lights_raw: &[LightRaw],
     ka: [f32; 3],
     kd: [f32; 3],
     ks: [f32; 3],
@@ -230,7 +237,23 @@ fn build(
     (nt, np, len): (f64, f64, f64),
     p: [f32; 3],
     extra: (f64, f64, f64),
+    w: (f64, f64, f64),
 ) -> Sample {
+    // Half of the samples with distances, attenuation or fog span the whole legal
+    // range: positions up to ±12 288 units, lights up to 13 300 units away,
+    // attenuation coefficients from 0 to whatever makes each term reach 3 at that
+    // distance (c down to 10⁻⁸), fog ranges from a few units to 10³⁸ and to
+    // ±f32::MAX, placed around the point's viewing distance.
+    let ranged = matches!(
+        term,
+        Term::PointAttenuation | Term::Spot | Term::Fog | Term::LocalViewer | Term::Everything
+    );
+    let wide = ranged && w.0 < 0.5;
+    let p = if wide {
+        p.map(|c| c * (w.1 * 12.0).exp2() as f32)
+    } else {
+        p
+    };
     let local = matches!(term, Term::LocalViewer | Term::Everything) && extra.0 < 0.7;
     let eye = [0.5f32, -0.3, 8.0];
     let viewer = if local {
@@ -255,7 +278,7 @@ fn build(
     );
     let scale = 0.9 / k as f32;
     let mut lights = Vec::new();
-    for (i, &(a, b, c, d, col)) in lights_raw.iter().take(k).enumerate() {
+    for (i, &(a, b, c, d, (e, f), col)) in lights_raw.iter().take(k).enumerate() {
         let col = col.map(|x| x * scale);
         // direction to the light: near the specular direction half of the time, else anywhere
         // in the hemisphere around N (or behind it for transmission)
@@ -285,13 +308,32 @@ fn build(
         } else {
             around(n, b * 1.6, c * std::f64::consts::TAU)
         };
-        let dist = 0.5 + d * 15.0;
+        let dist = if wide {
+            (-1.0 + 14.7 * d).exp2()
+        } else {
+            0.5 + d * 15.0
+        };
         let pos = f32s([
             pd[0] + l[0] * dist,
             pd[1] + l[1] * dist,
             pd[2] + l[2] * dist,
         ]);
-        let att = [1.0, (b * 0.3) as f32, (c * 0.05) as f32];
+        let att = if wide {
+            // a = 0 (pure 1/(b·d + c·d²)) a quarter of the time, b·d and c·d² up to 3
+            // each (either may be 0); a + b·d + c·d² ≥ 0.6 keeps the factor within the
+            // fixed tiers' range (below 2)
+            let a = if e < 0.25 { 0.0 } else { 0.5 + e };
+            let tb = if f < 0.2 { 0.0 } else { 3.0 * f };
+            let tc = if (e * 13.0).fract() < 0.2 {
+                0.0
+            } else {
+                3.0 * (e * 7.0).fract()
+            };
+            let tc = if a + tb + tc < 0.6 { tc + 0.6 } else { tc };
+            [a as f32, (tb / dist) as f32, (tc / (dist * dist)) as f32]
+        } else {
+            [1.0, (b * 0.3) as f32, (c * 0.05) as f32]
+        };
         let kind_pick = if term == Term::Everything {
             (i as f64 * 0.37 + a) % 1.0
         } else {
@@ -373,10 +415,43 @@ fn build(
         }
         _ => {}
     }
-    let fog = matches!(term, Term::Fog | Term::Everything).then(|| FogDesc {
-        start: 2.0 + extra.2 as f32,
-        end: 9.0 + extra.1 as f32 * 4.0,
-        color: [0.5, 0.55, 0.6],
+    let fog = matches!(term, Term::Fog | Term::Everything).then(|| {
+        if wide {
+            // the viewing distance of the point, as the reference computes it
+            let d = match viewer {
+                ViewerDesc::Infinite(_) => -dot(pd, v),
+                ViewerDesc::Local(e) => {
+                    let t = [0, 1, 2].map(|i| e[i] as f64 - pd[i]);
+                    dot(t, t).sqrt()
+                }
+            };
+            if w.2 > 0.95 {
+                FogDesc {
+                    start: -f32::MAX,
+                    end: f32::MAX,
+                    color: [0.5, 0.55, 0.6],
+                }
+            } else {
+                // range R from where the distance's own rounding (2^-16 units in the
+                // fixed tiers, 2^-24 relative in f32) stays below 2^-10 of it, to 10^38;
+                // d at fraction f0 ∈ [−0.3, 1.3] of the ramp
+                let r_min = 0.05 + d.abs() * 2f64.powi(-11);
+                let r = r_min * ((126.0 - r_min.log2()) * w.2 / 0.95).exp2();
+                let f0 = -0.3 + 1.6 * extra.1;
+                let end = d + f0 * r;
+                FogDesc {
+                    start: (end - r) as f32,
+                    end: end as f32,
+                    color: [0.5, 0.55, 0.6],
+                }
+            }
+        } else {
+            FogDesc {
+                start: 2.0 + extra.2 as f32,
+                end: 9.0 + extra.1 as f32 * 4.0,
+                color: [0.5, 0.55, 0.6],
+            }
+        }
     });
     Sample {
         lights,
