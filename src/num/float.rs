@@ -127,6 +127,23 @@ fn len2_dev(v: [f32; 3]) -> f32 {
     }
 }
 
+/// A cosine of the float tiers limited to [−1, 1], and 0 for NaN: an infinite or
+/// NaN vector handed to `Lighting::shade` directly (the float tiers' `Vec3` holds
+/// any `f32`) then contributes no light instead of NaN channels (comparisons, not
+/// `f32::min`/`max`, which are library calls on a Cortex-M4F).
+#[inline(always)]
+fn cosine(x: f32) -> f32 {
+    if x > 1.0 {
+        1.0
+    } else if x >= -1.0 {
+        x
+    } else if x < -1.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
 macro_rules! float_tier {
     ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $correct:expr) => {
         impl<$($gen)*> Scalar for $ty {
@@ -166,9 +183,9 @@ macro_rules! float_tier {
                 let (n, u) = (n.to_f32(), u.to_f32());
                 let x = dot(n, u);
                 if $correct {
-                    $wrap(x - 0.5 * x * (len2_dev(n) + len2_dev(u)))
+                    $wrap(cosine(x - 0.5 * x * (len2_dev(n) + len2_dev(u))))
                 } else {
-                    $wrap(x)
+                    $wrap(cosine(x))
                 }
             }
             #[inline(always)]
@@ -178,9 +195,9 @@ macro_rules! float_tier {
                 let k = 2.0 * dot(n, l) * dot(n, v);
                 let y = if $correct { k - k * len2_dev(n) } else { k } - dot(l, v);
                 if $correct {
-                    $wrap(y - 0.5 * y * (len2_dev(l) + len2_dev(v)))
+                    $wrap(cosine(y - 0.5 * y * (len2_dev(l) + len2_dev(v))))
                 } else {
-                    $wrap(y)
+                    $wrap(cosine(y))
                 }
             }
             #[inline]
