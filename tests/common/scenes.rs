@@ -483,13 +483,48 @@ fn spot(pos: [f32; 3], l: [f64; 3], extra: (f64, f64, f64), att: [f32; 3]) -> Li
     }
 }
 
+/// Whether the accuracy bounds exclude the sample: near a discontinuity, or outside
+/// the fixed tiers' range.
+pub fn excluded(s: &Sample) -> bool {
+    near_discontinuity(s) || beyond_range(s)
+}
+
+/// Whether an attenuation factor of the sample exceeds 2 (`a + b·d + c·d² < ½`):
+/// the fixed tiers' values end just below 2, so such a factor saturates there (see
+/// `Attenuation`); the generator keeps the sum above 0.6, but a search may move a
+/// light closer.
+pub fn beyond_range(s: &Sample) -> bool {
+    let pd = s.p.map(|c| c as f64);
+    s.lights.iter().any(|l| {
+        let (pos, k) = match l.kind {
+            LightKind::Directional { .. } => return false,
+            LightKind::Point {
+                position,
+                attenuation,
+            } => (position, attenuation),
+            LightKind::Spot {
+                position,
+                attenuation,
+                ..
+            } => (position, attenuation),
+        };
+        let t = [0, 1, 2].map(|i| pos[i] as f64 - pd[i]);
+        let d = dot(t, t).sqrt();
+        (k[0] as f64 + k[1] as f64 * d + k[2] as f64 * d * d) < 0.5
+    })
+}
+
 /// Whether the sample sits within 10⁻³ of a discontinuity of the equation, where
 /// any rounding may switch a whole term on or off: `N·L = 0` (the specular term
-/// exists only for `N·L > 0`) or a spot cone's edge. The accuracy bounds exclude
-/// these samples; `tests/lighting_extremes.rs` covers them for panics and range.
+/// exists only for `N·L > 0`), a spot cone's edge, or the edge of total internal
+/// reflection (transmission: `cos² θt = 1 − η²·sin² θi` near 0, where the refracted
+/// light jumps from grazing to none). The accuracy bounds exclude these samples;
+/// `tests/lighting_extremes.rs` covers them for panics and range.
 pub fn near_discontinuity(s: &Sample) -> bool {
     let pd = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
     let n = norm([s.n[0] as f64, s.n[1] as f64, s.n[2] as f64]);
+    let transmits = s.model == ModelKind::Full && s.material.transmission != [0.0; 3];
+    let eta = 1.0 / s.material.refractive_index as f64;
     s.lights.iter().any(|l| {
         let (dir, cone) = match l.kind {
             LightKind::Directional { towards_light } => {
@@ -513,7 +548,12 @@ pub fn near_discontinuity(s: &Sample) -> bool {
                 )
             }
         };
-        dot(n, dir).abs() < 1.0e-3 || cone.is_some_and(|c| c < 1.0e-3)
+        let nl = dot(n, dir);
+        let tir_edge = transmits && nl < 0.0 && {
+            let k = 1.0 - eta * eta * (1.0 - nl * nl);
+            k.abs() < 1.0e-3
+        };
+        nl.abs() < 1.0e-3 || cone.is_some_and(|c| c < 1.0e-3) || tir_edge
     })
 }
 
@@ -620,7 +660,7 @@ pub fn measure<S: Scalar>(term: Term, band: Band, cases: u32, seed: u64) -> (u32
     let mut done = 0;
     while done < cases {
         let s = strat.new_tree(&mut runner).unwrap().current();
-        if near_discontinuity(&s) {
+        if excluded(&s) {
             continue;
         }
         done += 1;
@@ -736,7 +776,7 @@ pub fn search<S: Scalar>(
     let mut done = 0;
     while done < cases {
         let s = strat.new_tree(&mut runner).unwrap().current();
-        if near_discontinuity(&s) {
+        if excluded(&s) {
             continue;
         }
         done += 1;
@@ -750,7 +790,7 @@ pub fn search<S: Scalar>(
         for _ in 0..steps {
             let amount = 10f64.powf(-1.0 - 3.0 * rng.f());
             let t = perturb(&s, band, amount, &mut rng);
-            if near_discontinuity(&t) {
+            if excluded(&t) {
                 continue;
             }
             let e = linear_error::<S>(&t);
