@@ -394,6 +394,11 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     }
 
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
+    ///
+    /// Never NaN or infinite, whatever a float tier's `Vec3` holds: a normal with an
+    /// infinite or NaN component lights nothing (only the ambient and emission terms
+    /// remain), infinite or NaN positions give zero light directions and distances
+    /// (and full fog for a NaN viewing distance).
     #[inline(always)]
     pub fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
         let (v, dist) = self.viewer.view(p);
@@ -424,11 +429,20 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     ) -> (Option<Rgb<S>>, Rgb<S>) {
         let c = inc.colors;
         let m = &self.material;
-        // cosines with the normal correct its length to first order (the powers below
-        // amplify it; see `Scalar::cos_normal`)
-        let nl = S::cos_normal(n, inc.l);
+        // N·L: with the lengths corrected where a power (brilliance) or the refraction
+        // amplifies their rounding (see `Scalar::cos_normal`); the plain dot product
+        // elsewhere (the diffuse term is linear in it: 5·10⁻⁵ is 0.013 LSB)
+        let nl = if M::BRILLIANCE || M::TRANSMISSION {
+            S::cos_normal(n, inc.l)
+        } else {
+            n.dot(inc.l)
+        };
         let mut direct = Rgb::BLACK;
-        if nl > S::ZERO {
+        // A float tier's normal with an infinite component (only a `Vec3` built directly
+        // holds one) makes N·L infinite or NaN: outside (0, MAX] and [−MAX, 0) it
+        // lights nothing, so no channel becomes infinite or NaN. (Free for the fixed
+        // tiers, whose values never exceed MAX.)
+        if nl > S::ZERO && nl <= S::MAX {
             // diffuse: kd·Id·(N·L)^b
             let d = if M::BRILLIANCE {
                 nl.min1().powi(m.brilliance as u16)
@@ -455,7 +469,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
                 }
                 direct = direct.add_scaled(c.specular, s);
             }
-        } else if M::TRANSMISSION && nl < S::ZERO {
+        } else if M::TRANSMISSION && nl < S::ZERO && nl >= S::ZERO.sub(S::MAX) {
             direct = c
                 .transmission
                 .scale(transmission(n, inc.l, v, m.eta, nl).powi(m.transmission_exponent));

@@ -43,10 +43,10 @@ impl<S: Scalar> Vec3<S> {
         [self.x.to_f32(), self.y.to_f32(), self.z.to_f32()]
     }
 
-    /// `a·b = ax·bx + ay·by + az·bz`, saturating.
+    /// `a·b = ax·bx + ay·by + az·bz`, saturating ([`Scalar::dot3`]).
     #[inline(always)]
     pub fn dot(self, o: Self) -> S {
-        self.x.mul(o.x).add(self.y.mul(o.y)).add(self.z.mul(o.z))
+        S::dot3(self, o)
     }
 
     /// `a + b`, saturating per component.

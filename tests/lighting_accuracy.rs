@@ -49,10 +49,18 @@ fn q14_1(t: Term, b: Band) -> u32 {
     q14_2(t, b)
 }
 
-/// Q30, f32 and f32 with micromath's seed and two Newton steps: 1 LSB for every
-/// term and n up to 1024.
+/// Q30 and f32: 1 LSB for every term and n up to 1024.
 fn one(_: Term, _: Band) -> u32 {
     1
+}
+
+/// f32 with micromath's seed and two Newton steps: 1 LSB but for n above 256, where
+/// its normals' 4.7·10⁻⁶ off unit length (which Phong's R·V doubles) is amplified.
+fn f32_fast2(t: Term, b: Band) -> u32 {
+    match (specular(t), b) {
+        (true, Band::High) => 4,
+        _ => 1,
+    }
 }
 
 fn check<S: Scalar>(
@@ -116,7 +124,7 @@ proptest! {
 
     #[test]
     fn f32_micromath_two_newton_steps((term, band, s) in case()) {
-        check::<F32Fast<2>>(term, band, one, &s)?;
+        check::<F32Fast<2>>(term, band, f32_fast2, &s)?;
     }
 }
 
@@ -146,7 +154,43 @@ fn worst_case_search() {
             cell::<Q14<2>>(term, band, q14_2, seed);
             cell::<Q30<3>>(term, band, one, seed);
             cell::<f32>(term, band, one, seed);
-            cell::<F32Fast<2>>(term, band, one, seed);
+            cell::<F32Fast<2>>(term, band, f32_fast2, seed);
+        }
+    }
+}
+
+/// The same search with about 30 times the effort (four seeds, 20 000 samples and 48
+/// climbs of 1500 steps per cell): the bounds above are what it finds. About four
+/// minutes; prints the worst case per tier and cell:
+/// `cargo test --release --test lighting_accuracy -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn worst_case_search_heavy() {
+    fn cell<S: Scalar>(term: Term, band: Band, bound: Bound) -> u32 {
+        let worst = (0..4u64)
+            .map(|k| search::<S>(term, band, 20_000, 48, 1500, 4242 + 31 * k).0)
+            .max()
+            .unwrap_or(0);
+        assert!(
+            worst <= bound(term, band),
+            "{}: {term:?} {band:?}: {worst}",
+            S::NAME
+        );
+        worst
+    }
+    for term in TERMS {
+        let bands: &[Band] = if specular(term) { &BANDS } else { &[Band::Low] };
+        for &band in bands {
+            println!(
+                "{:?} {:?}: Q14<1> {} | Q14<2> {} | Q30<3> {} | f32 {} | F32Fast<2> {}",
+                term,
+                band,
+                cell::<Q14<1>>(term, band, q14_1),
+                cell::<Q14<2>>(term, band, q14_2),
+                cell::<Q30<3>>(term, band, one),
+                cell::<f32>(term, band, one),
+                cell::<F32Fast<2>>(term, band, f32_fast2),
+            );
         }
     }
 }

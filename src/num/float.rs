@@ -37,11 +37,7 @@ impl RampF32 {
         // clamps; an infinite or NaN distance (a position given directly as `Vec3`)
         // gives 1 or 0, never NaN
         let x = (self.end - d) * self.scale * self.inv;
-        if x > 0.0 {
-            x.min(1.0)
-        } else {
-            0.0
-        }
+        unit(x)
     }
 }
 
@@ -49,7 +45,14 @@ impl RampF32 {
 /// (NaN to 0, ∞ to `f32::MAX`), so that no product is `0·∞`; an infinite sum gives 0.
 #[inline(always)]
 fn inv_quadratic(k: &[f32; 3], d: f32) -> Option<f32> {
-    let d = if d > 0.0 { d.min(f32::MAX) } else { 0.0 };
+    // comparisons, not `f32::min`/`max` (library calls on a Cortex-M4F)
+    let d = if d > f32::MAX {
+        f32::MAX
+    } else if d > 0.0 {
+        d
+    } else {
+        0.0
+    };
     let [a, b, c] = *k;
     let q = a + d * (b + c * d);
     if q > 1.0 / F32_LIMIT {
@@ -109,43 +112,24 @@ fn rsqrt_micromath<const N: u8>(x: f32) -> f32 {
     y
 }
 
+/// `x` limited to [0, 1], NaN to 0 (comparisons: `f32::clamp` has a panicking
+/// assertion and `f32::min` is a library call on a Cortex-M4F).
 #[inline(always)]
-fn dot(a: [f32; 3], b: [f32; 3]) -> f32 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// `|v|² − 1` when it is within ±2⁻⁵ (then `1/|v| ≈ 1 − e/2` to 4·10⁻⁴, and to 10⁻¹⁰
-/// for the 4.7·10⁻⁶ of a normalisation with two Newton steps), else 0: the
-/// first-order length correction of `Scalar::cos_normal` (NaN gives 0).
-#[inline(always)]
-fn len2_dev(v: [f32; 3]) -> f32 {
-    let e = dot(v, v) - 1.0;
-    if e < 1.0 / 32.0 && e > -1.0 / 32.0 {
-        e
-    } else {
-        0.0
+fn unit(x: f32) -> f32 {
+    // two independent conditional moves (as `f32::clamp` compiles), not a chain of
+    // branches
+    let mut x = x;
+    if !(x > 0.0) {
+        x = 0.0;
     }
-}
-
-/// A cosine of the float tiers limited to [−1, 1], and 0 for NaN: an infinite or
-/// NaN vector handed to `Lighting::shade` directly (the float tiers' `Vec3` holds
-/// any `f32`) then contributes no light instead of NaN channels (comparisons, not
-/// `f32::min`/`max`, which are library calls on a Cortex-M4F).
-#[inline(always)]
-fn cosine(x: f32) -> f32 {
     if x > 1.0 {
-        1.0
-    } else if x >= -1.0 {
-        x
-    } else if x < -1.0 {
-        -1.0
-    } else {
-        0.0
+        x = 1.0;
     }
+    x
 }
 
 macro_rules! float_tier {
-    ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $correct:expr) => {
+    ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $refine:expr) => {
         impl<$($gen)*> Scalar for $ty {
             type Geo = f32;
             type Ramp = RampF32;
@@ -178,28 +162,8 @@ macro_rules! float_tier {
             fn twice_mul_sub(self, b: Self, c: Self) -> Self {
                 $wrap(2.0 * $get(self) * $get(b) - $get(c))
             }
-            #[inline(always)]
-            fn cos_normal(n: Vec3<Self>, u: Vec3<Self>) -> Self {
-                let (n, u) = (n.to_f32(), u.to_f32());
-                let x = dot(n, u);
-                if $correct {
-                    $wrap(cosine(x - 0.5 * x * (len2_dev(n) + len2_dev(u))))
-                } else {
-                    $wrap(cosine(x))
-                }
-            }
-            #[inline(always)]
-            fn reflect_dot(n: Vec3<Self>, l: Vec3<Self>, v: Vec3<Self>) -> Self {
-                let (n, l, v) = (n.to_f32(), l.to_f32(), v.to_f32());
-                // 2(N·L)(N·V)/|N|² − L·V, over |L||V|
-                let k = 2.0 * dot(n, l) * dot(n, v);
-                let y = if $correct { k - k * len2_dev(n) } else { k } - dot(l, v);
-                if $correct {
-                    $wrap(cosine(y - 0.5 * y * (len2_dev(l) + len2_dev(v))))
-                } else {
-                    $wrap(cosine(y))
-                }
-            }
+
+
             #[inline]
             fn div(self, rhs: Self) -> Self {
                 let (a, b) = ($get(self), $get(rhs));
@@ -224,9 +188,7 @@ macro_rules! float_tier {
             fn to_unorm(self, bits: u32) -> u32 {
                 let max = ((1u32 << bits.max(1).min(16)) - 1) as f32;
                 // NaN fails `> 0` and becomes 0; the result stays within `bits`.
-                let x = $get(self);
-                let x = if x > 0.0 { x.min(1.0) } else { 0.0 };
-                (x * max + 0.5) as u32
+                (unit($get(self)) * max + 0.5) as u32
             }
             #[inline]
             fn normalize(v: Vec3<Self>) -> Vec3<Self> {
@@ -291,7 +253,7 @@ macro_rules! float_tier {
             }
             #[inline(always)]
             fn geo_to_unit(g: f32) -> Self {
-                $wrap(if g > 0.0 { g.min(1.0) } else { 0.0 })
+                $wrap(unit(g))
             }
             #[inline]
             fn geo_recip(g: f32) -> Self {
@@ -326,9 +288,8 @@ macro_rules! float_tier {
                 // The fog ramp scales a distance error by 1/(end − start): with an
                 // approximate r (relative error e), one step d·(3 − d·r)/2 takes the
                 // length's error to e² (2·10⁻¹¹ with two Newton steps), for four
-                // operations per light. The direction's error is corrected by the
-                // cosines (`cos_normal`).
-                let d = if $correct { d * (1.5 - 0.5 * d * r) } else { d };
+                // operations per light or local viewer.
+                let d = if $refine { d * (1.5 - 0.5 * d * r) } else { d };
                 (Vec3::new($wrap(v.x * r), $wrap(v.y * r), $wrap(v.z * r)), d)
             }
         }
@@ -344,7 +305,7 @@ fn get_f32(v: f32) -> f32 {
     v
 }
 
-// `f32` normalises to within 10⁻⁷: its cosines need no length correction.
+// `f32`'s lengths are exact to 10⁻⁷: no refinement of distances.
 float_tier!([] f32, "f32", wrap_f32, get_f32, rsqrt_exact, false);
 float_tier!(
     [const N: u8] F32Fast<N>,

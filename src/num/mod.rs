@@ -99,6 +99,14 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     /// `√self`; zero for `self ≤ 0`.
     fn sqrt(self) -> Self;
 
+    /// `a·b = ax·bx + ay·by + az·bz`, saturating ([`Vec3::dot`]). The default rounds
+    /// each product; `Q14` sums the three exact products and rounds once (more
+    /// accurate, and fewer instructions).
+    #[inline(always)]
+    fn dot3(a: Vec3<Self>, b: Vec3<Self>) -> Self {
+        a.x.mul(b.x).add(a.y.mul(b.y)).add(a.z.mul(b.z))
+    }
+
     /// `2·self·b − c`, rounded once and saturated only at the end: a component of
     /// the reflection `2(N·L)N − L`, whose partial product `2(N·L)·N` reaches 2 for
     /// unit vectors (the fixed tiers' range ends just below 2) while the result stays
@@ -119,7 +127,10 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     /// corrects each length to first order when its square is within 2⁻⁵ of 1
     /// (`N·U·(1 − (|N|² − 1)/2 − (|U|² − 1)/2)`: the residual is below 10⁻⁸ for
     /// normalised vectors, 4·10⁻⁴ at the window's edge); a length outside the window
-    /// is taken as it is.
+    /// is taken as it is. The other tiers hold a normalised vector to 10⁻⁸ (`Q30`),
+    /// 10⁻⁷ (`f32`) or their inverse square root's error (`F32Fast<N>`: 4.7·10⁻⁶ with
+    /// two Newton steps, which is what limits its highlights at high exponents) and
+    /// use the default.
     #[inline(always)]
     fn cos_normal(n: Vec3<Self>, u: Vec3<Self>) -> Self {
         n.dot(u)

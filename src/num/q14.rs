@@ -97,9 +97,11 @@ fn dot27<const N: u8>(a: Vec3<Q14<N>>, b: Vec3<Q14<N>>) -> i32 {
 fn len2_dev<const N: u8>(n: Vec3<Q14<N>>) -> i32 {
     // each square ≤ 2^30, the sum < 3·2^30 fits a u32
     let s = (n.x.0 * n.x.0) as u32 + (n.y.0 * n.y.0) as u32 + (n.z.0 * n.z.0) as u32;
-    let e = s.wrapping_sub(1 << 28) as i32;
-    if e.unsigned_abs() < 1 << 23 {
-        e
+    // e = s − 2^28 reinterpreted; within the window iff e + 2^23 < 2^24 (unsigned):
+    // one addition and one comparison
+    let e = s.wrapping_sub(1 << 28);
+    if e.wrapping_add(1 << 23) < 1 << 24 {
+        e as i32
     } else {
         0
     }
@@ -182,6 +184,11 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         let y = rsqrt_q14_mantissa(t, NEWTON.max(2)) as i64;
         // x = s′·2^(4−k) (Q28 in 32 bits), 1/√x = y·2^((k−4)/2)
         Self::from_raw(round_shr(self.0 as i64 * y, 16 - k / 2) as i32)
+    }
+    #[inline(always)]
+    fn dot3(a: Vec3<Self>, b: Vec3<Self>) -> Self {
+        // |Σ| < 3·2^29 in Q27: rounded once to Q14, then saturated
+        Self::from_raw((dot27(a, b) + (1 << 12)) >> 13)
     }
     #[inline(always)]
     fn twice_mul_sub(self, b: Self, c: Self) -> Self {
