@@ -28,11 +28,14 @@
 //!   [`Lighting::shade_normalizing`] normalises first (a zero normal gives the ambient
 //!   and emission terms only). A unit vector rounded to a fixed tier is up to
 //!   5·10⁻⁵ too long or short, which the powers amplify (n·5·10⁻⁵ at the top of a
-//!   highlight): every cosine with the normal ([`Scalar::cos_normal`],
+//!   highlight): every cosine that a power raises ([`Scalar::cos_normal`],
 //!   [`Scalar::reflect_dot`]) corrects the lengths of `N`, `L`, `V` and `H` to
-//!   first order when they are within 2⁻⁵ of unit length (`Q14`, `F32Fast`), and
-//!   Phong's `R = 2(N·L)N − L` is exact at the mirror direction (where `2(N·L)` is 2,
+//!   first order in `Q14` when they are within 2⁻⁵ of unit length, and Phong's
+//!   `R = 2(N·L)N − L` is exact at the mirror direction (where `2(N·L)` is 2,
 //!   beyond the fixed tiers' range).
+//! - A float tier's normal with an infinite or NaN component (only a `Vec3` built
+//!   directly holds one) lights nothing; infinite or NaN positions give zero light
+//!   directions and distances: no channel is ever NaN or infinite.
 
 use crate::color::Rgb;
 use crate::error::{finite, ParamError};
