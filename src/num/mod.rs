@@ -13,7 +13,10 @@
 //!
 //! Geometry (positions, distances for attenuation and fog) needs range rather than
 //! precision, so every tier names a separate [`Scalar::Geo`] type: the fixed tiers
-//! use [`Geo16`] (Q16.16, ±32768 scene units), the float tiers use `f32`.
+//! use [`Geo16`] (Q16.16, ±32768 scene units), the float tiers use `f32`. The
+//! parameters of the distance functions (attenuation coefficients, fog ranges) are
+//! not geometry: they keep the relative precision of their `f32` values over the
+//! whole legal range ([`GeoScalar`], [`Scalar::geo_inv_quadratic`], [`Scalar::ramp`]).
 //!
 //! # Overflow behaviour
 //!
