@@ -322,9 +322,9 @@ const REGIONS: [u32; 6] = [0, 16, 256, 4096, 16384, 65536];
 #[derive(Clone, Debug)]
 pub struct GammaTable<const N: usize> {
     table: [u8; N],
-    /// Per region: the cell shift `s` and the index offset (wrapping), so that the
-    /// index of input `v` is `(v >> s) + offset`.
-    seg: [(u32, u32); 5],
+    /// Per region, packed in one word: the index offset `o` (signed, above bit 5) and
+    /// the cell shift `s` (bits 0..5), so that the index of input `v` is `(v >> s) + o`.
+    seg: [i32; 5],
 }
 
 impl<const N: usize> GammaTable<N> {
@@ -355,15 +355,16 @@ impl<const N: usize> GammaTable<N> {
             }
             return Ok(Self {
                 table,
-                seg: [(s, 0); 5],
+                seg: [s as i32; 5],
             });
         };
-        let mut seg = [(0u32, 0u32); 5];
+        let mut seg = [0i32; 5];
         let mut base = 0usize;
         for r in 0..5 {
             let (lo, hi, s) = (REGIONS[r], REGIONS[r + 1], shifts[r]);
             let (first, last) = (lo >> s, (hi - 1) >> s);
-            seg[r] = (s, (base as u32).wrapping_sub(first));
+            // |base − first| ≤ 2^16: the packed word cannot overflow
+            seg[r] = ((base as i32 - first as i32) << 5) | s as i32;
             for c in first..=last {
                 let (a, b) = ((c << s).max(lo), ((c + 1) << s).min(hi) - 1);
                 if let Some(t) = table.get_mut(base + (c - first) as usize) {
@@ -422,7 +423,7 @@ impl<const N: usize> GammaTable<N> {
     #[inline(always)]
     pub fn apply_unorm16(&self, v: u32) -> u8 {
         let v = v.min(65535);
-        let (s, o) = if v < REGIONS[3] {
+        let w = if v < REGIONS[3] {
             if v < REGIONS[2] {
                 if v < REGIONS[1] {
                     self.seg[0]
@@ -437,10 +438,10 @@ impl<const N: usize> GammaTable<N> {
         } else {
             self.seg[4]
         };
-        // in range by construction; the mask (N is a power of two) removes the bound
-        // check
-        let i = (v >> (s & 31)).wrapping_add(o) as usize;
-        self.table[i & (N - 1)]
+        // (v >> s) + o is in range by construction; the mask (N is a power of two)
+        // removes the bound check
+        let i = (v >> (w & 31)) as i32 + (w >> 5);
+        self.table[i as usize & (N - 1)]
     }
 
     /// The 8-bit encoded value of a linear value (clamped to [0, 1]), quantised to
