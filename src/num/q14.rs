@@ -246,14 +246,13 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
             return Vec3::new(Self::ZERO, Self::ZERO, Self::ZERO);
         }
         let (t, k) = split_u32(s);
-        let y = rsqrt_q14_mantissa(t, NEWTON) as i64;
-        // |v|² = s′·2^(4−k), 1/|v| = y·2^((k−4)/2): c/|v| = c·y ≫ (16 − k/2)
+        let y = rsqrt_q14_mantissa(t, NEWTON) as i32;
+        // |v|² = s′·2^(4−k), 1/|v| = y·2^((k−4)/2): c/|v| = c·y ≫ (16 − k/2),
+        // sh in 1..=16; |c| ≤ 2^15 and y ≤ 2^15, so c·y and the rounding fit
+        // an i32 (no 64-bit multiply on a Cortex-M0)
         let sh = 16 - k / 2;
-        Vec3::new(
-            Self::from_raw(round_shr(v.x.0 as i64 * y, sh) as i32),
-            Self::from_raw(round_shr(v.y.0 as i64 * y, sh) as i32),
-            Self::from_raw(round_shr(v.z.0 as i64 * y, sh) as i32),
-        )
+        let r = |c: i32| Self::from_raw((c * y + (1 << (sh - 1))) >> sh);
+        Vec3::new(r(v.x.0), r(v.y.0), r(v.z.0))
     }
 
     #[inline(always)]
