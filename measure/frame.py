@@ -782,7 +782,7 @@ def table(res: dict) -> None:
                   f"  {','.join(d['soft_float_frame']) or '-'} / {','.join(d['wide_reachable']) or '-'}")
     any_sec = next(s for s in res if s != "host")
     ent0 = next(iter(res[any_sec].values()))
-    print(f"mesh (SPHERE, flash): {ent0['mesh_bytes']} B; transform built once outside the frame: "
+    print(f"mesh (SPHERE, flash): {ent0['mesh_bytes']} B; camera converted once (f32, init; the frames build their transform in integers): "
           + ", ".join(f"{s} {next(iter(p.values()))['transform_instr']} instr" for s, p in res.items() if s != "host"))
     print("columns: stack = peak bytes below the initial SP; ram = frame buffers as allocated (bins at"
           " bins_len, 64 resume records); ram min = bins and records at the frame's exact need; code = flash"

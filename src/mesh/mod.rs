@@ -50,6 +50,7 @@ mod screen;
 mod sphere;
 
 pub use clip::{clip_near, ClipVertex};
+pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE};
 pub use error::MeshError;
 pub use matrix::Mat4;

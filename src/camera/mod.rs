@@ -10,6 +10,10 @@
 //! 16 × 16-bit products per element (one `MULS` each on a Cortex-M0), no
 //! 64-bit multiply and no floating point.
 
+mod fixed;
+
+pub use fixed::{Angle, FixedCamera, Pose};
+
 use crate::mesh::{Mat4, MeshError, Viewport};
 use crate::raster::SUBPIXEL_BITS;
 use core::marker::PhantomData;
