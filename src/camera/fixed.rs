@@ -308,8 +308,8 @@ fn row_at(lin: &[i64; 3], t: i64, e: i32, mfrac: i32, frac: i32) -> Row {
     }
 }
 
-/// A camera converted for integer per-frame transforms (see the
-/// [module](self) docs).
+/// A camera converted for integer per-frame transforms: built once from a
+/// [`Camera`] in `f32`, then [`FixedCamera::mesh_transform`] every frame.
 ///
 /// ```
 /// use fixshade::camera::{Angle, Camera, FixedCamera, Pose};
@@ -416,7 +416,8 @@ impl<P: Projection> FixedCamera<P> {
     }
 
     /// The transform of a mesh with pose `model` whose positions carry `frac`
-    /// fraction bits, in integers (see the [module](self) docs).
+    /// fraction bits, in integers: 32-bit multiplications only (exact 64-bit
+    /// products from 16-bit ones), no soft float, no division.
     ///
     /// # Errors
     ///
