@@ -371,6 +371,9 @@ where
     /// behind the near plane): clipped in full precision (in clip space to the
     /// near plane and the guard band, then to the window), the pieces drawn for
     /// this band; clipped and set up again in every band it continues into.
+    /// Never inlined: its polygons stay off the common path's stack.
+    #[inline(never)]
+    #[cold]
     fn clipped(
         &self,
         tri: u16,
