@@ -46,6 +46,7 @@ mod compact;
 mod error;
 mod normals;
 mod sphere;
+mod torus_knot;
 mod transform;
 
 pub use clip::{clip_near, ClipVertex};
@@ -53,6 +54,7 @@ pub use compact::{Mesh, MeshData, NORMAL_ONE};
 pub use error::MeshError;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
+pub use torus_knot::{torus_knot_counts, TorusKnot};
 pub use transform::{
     EyeTransform, FixedMat4, Mat4, ScreenTransform, ScreenVertex, Viewport, INV_W_ONE,
 };
