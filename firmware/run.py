@@ -7,6 +7,7 @@ reference, and prints the resources table of the README.
     python3 firmware/run.py --check         # CI: also fail on any mismatch; last line "N passed, N failed"
     python3 firmware/run.py --cores m0 --configs flat,blinn_phong
     python3 firmware/run.py --no-build      # the images as they are (firmware/target/images/)
+    python3 firmware/run.py --profile release-z --cores m0   # the same at opt-level "z"
 
 Needs: qemu-system-arm (Debian: apt-get install qemu-system-arm), the rustup
 targets thumbv6m-none-eabi and thumbv7em-none-eabihf, pyelftools.
@@ -42,15 +43,20 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-IMAGES = HERE / "target" / "images"
+# cargo runs in firmware/: a relative CARGO_TARGET_DIR is relative to it
+TARGET_DIR = HERE / os.environ.get("CARGO_TARGET_DIR", "target")
+IMAGES = TARGET_DIR / "images"
 CONFIGS = ["lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat"]
 CORES = {
     # core: (rust target, QEMU machine, instructions per SysTick tick, RAM bytes,
     #        clock for frames per second, what that clock is)
-    "m0": ("thumbv6m-none-eabi", "microbit", 62.5, 16 * 1024, 133e6, "133 MHz (RP2040)"),
-    "m4f": ("thumbv7em-none-eabihf", "mps2-an386", 40.0, 4 * 1024 * 1024, 168e6, "168 MHz (STM32F407)"),
+    "m0": ("thumbv6m-none-eabi", "microbit", 62.5, 16 * 1024, 133e6, "133 MHz"),
+    "m4f": ("thumbv7em-none-eabihf", "mps2-an386", 40.0, 4 * 1024 * 1024, 168e6, "168 MHz"),
 }
 QEMU_TIMEOUT = 120
+# function names (mangled) counted as "fixshade + scene code": fixshade, this
+# firmware's scene functions (fixshade_qemu) and fixshade's own dependencies
+OURS = ["fixshade", "4libm", "9micromath", "5fixed", "8heapless"]
 
 
 def cargo(args, env=None):
@@ -62,12 +68,12 @@ def cargo(args, env=None):
     return r.stdout
 
 
-def build(core, config, env=None, name=None):
+def build(core, config, profile="release", env=None, name=None):
     target = CORES[core][0]
-    cargo(["build", "-q", "-p", "fixshade-qemu", "--release", "--target", target, "--features", config], env)
+    cargo(["build", "-q", "-p", "fixshade-qemu", "--profile", profile, "--target", target, "--features", config], env)
     IMAGES.mkdir(parents=True, exist_ok=True)
-    dst = IMAGES / f"{name or core + '_' + config}.elf"
-    shutil.copyfile(HERE / "target" / target / "release" / "showcase", dst)
+    dst = IMAGES / f"{name or core + '_' + config + '_' + profile}.elf"
+    shutil.copyfile(TARGET_DIR / target / profile / "showcase", dst)
     return dst
 
 
@@ -100,7 +106,7 @@ def elf_sizes(path):
             if z == 0:
                 continue
             if s["st_info"]["type"] == "STT_FUNC" and text_lo <= a < text_hi:
-                if "fixshade" in n:
+                if any(k in n for k in OURS):
                     code["fixshade"] += z
                 elif "compiler_builtins" in n or n.startswith("__aeabi"):
                     code["builtins"] += z
@@ -132,7 +138,8 @@ def main():
     ap.add_argument("--cores", default="m0,m4f")
     ap.add_argument("--configs", default=",".join(CONFIGS))
     ap.add_argument("--no-build", action="store_true")
-    ap.add_argument("--json", default=str(HERE / "target" / "resources.json"))
+    ap.add_argument("--profile", default="release", help="cargo profile: release (opt-level 3) or release-z")
+    ap.add_argument("--json", help="where to write the figures (default firmware/target/resources[-PROFILE].json)")
     args = ap.parse_args()
     cores = args.cores.split(",")
     configs = args.configs.split(",")
@@ -153,9 +160,9 @@ def main():
     for core in cores:
         target, machine, per_tick, ram, clock, _ = CORES[core]
         for config in configs:
-            elf = IMAGES / f"{core}_{config}.elf"
+            elf = IMAGES / f"{core}_{config}_{args.profile}.elf"
             if not args.no_build:
-                elf = build(core, config)
+                elf = build(core, config, args.profile)
             code, out, secs = qemu(core, elf)
             line = next((l for l in out.splitlines() if l.startswith("RESULT ")), None)
             what = f"{core} {config} ({machine})"
@@ -169,7 +176,8 @@ def main():
                   f"{what}: {tick:.3f} instructions per tick, not {per_tick}: is -icount shift=0 in effect?")
             check(r["stack_peak"] < r["stack_size"], f"{what}: stack {r['stack_peak']} of {r['stack_size']}")
             r.update(elf_sizes(elf))
-            r.update(core=core, machine=machine, qemu_seconds=round(secs, 2), fps=clock / r["instructions"])
+            r.update(core=core, machine=machine, profile=args.profile, qemu_seconds=round(secs, 2),
+                     fps=clock / r["instructions"])
             check(r["ram_static"] + r["stack_size"] <= ram, f"{what}: RAM {r['ram_static']} + stack over {ram}")
             rows.append(r)
             print(f"{what}: {r['checksum']} (host {want}), {r['instructions']} instructions/frame, "
@@ -178,16 +186,18 @@ def main():
     if args.check:
         # a stack overflow must fail loudly: 2 KiB is far too small for a frame
         for core in cores:
-            elf = build(core, "lambert_gouraud", env={"FIXSHADE_STACK": "2048"}, name=f"{core}_overflow")
+            elf = build(core, "lambert_gouraud", args.profile, {"FIXSHADE_STACK": "2048"}, f"{core}_overflow")
             code, out, _ = qemu(core, elf)
             check(code == 1 and "stack overflow" in out,
                   f"{core}: a 2 KiB stack must exit 1 with 'stack overflow'; exit {code}, output:\n{out.strip()}")
             print(f"{core} with a 2 KiB stack: exit {code}: {out.strip()}", flush=True)
             # rebuild the regular image so that the next cargo build is a no-op
-            build(core, "lambert_gouraud")
+            build(core, "lambert_gouraud", args.profile)
 
-    Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-    Path(args.json).write_text(json.dumps(rows, indent=1) + "\n")
+    suffix = "" if args.profile == "release" else "-" + args.profile
+    out = Path(args.json or TARGET_DIR / f"resources{suffix}.json")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(rows, indent=1) + "\n")
     print_table(rows)
     print(f"{passed} passed, {failed} failed")
     if args.check and failed:
@@ -200,13 +210,17 @@ def kib(b):
 
 def print_table(rows):
     print()
-    print("| core (QEMU board) | configuration | rows | instructions/frame | fps at | flash KiB: total | fixshade code | mesh "
-          "| static RAM KiB | peak stack B (of reserved) | checksum |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    print("| core (QEMU board), opt-level | configuration | band rows | instructions / frame | frames/s (clock) "
+          "| flash KiB | fixshade + scene code | compiler builtins | runtime | mesh "
+          "| static RAM KiB (frame buffers) | peak stack B (reserved) | checksum |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for r in rows:
-        print(f"| {r['core'].upper()} ({r['machine']}) | {r['config']} | {r['rows']} | {r['instructions']:,} "
+        opt = "z" if r["profile"] == "release-z" else "3"
+        print(f"| {r['core'].upper()} ({r['machine']}), {opt} | {r['config']} | {r['rows']} | {r['instructions']:,} "
               f"| {r['fps']:.1f} @ {CORES[r['core']][5]} | {kib(r['flash'])} | {kib(r['code_fixshade'])} "
-              f"| {kib(r['mesh'])} | {kib(r['ram_static'])} | {r['stack_peak']:,} ({r['stack_size']:,}) | {r['checksum']} |")
+              f"| {kib(r['code_builtins'])} | {kib(r['code_runtime'])} | {kib(r['mesh'])} "
+              f"| {kib(r['ram_static'])} ({kib(r['ram_buffers'])}) | {r['stack_peak']:,} ({r['stack_size']:,}) "
+              f"| {r['checksum']} |")
 
 
 if __name__ == "__main__":

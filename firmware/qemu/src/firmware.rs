@@ -147,11 +147,7 @@ fn main() -> ! {
     };
 
     // once: the mesh transform and the lighting (f32 parameters)
-    let (scene, setup_ticks) = timer.ticks(|| {
-        let t = fixshade_qemu::transform()?;
-        let l = config::lighting()?;
-        Ok::<_, Fail>((t, l))
-    });
+    let (scene, setup_ticks) = timer.ticks(config::setup);
     let (transform, lighting) = scene.unwrap_or_else(|e| fail(format_args!("scene set-up: {e:?}")));
 
     let mut sums = [0u32; FRAMES];

@@ -148,6 +148,12 @@ macro_rules! configs {
                 pub fn lighting() -> Result<Light, Fail> {
                     $lighting.map_err(|_| Fail::Lighting)
                 }
+                /// The transform and the lighting (once, before the frames;
+                /// not inlined, so that its code counts as the scene's).
+                #[inline(never)]
+                pub fn setup() -> Result<(MeshTransform<Orthographic>, Light), Fail> {
+                    Ok((transform()?, lighting()?))
+                }
                 /// One frame: the shader, then [`draw`].
                 pub fn frame<D: DrawTarget<Color = Rgb565>>(
                     t: &MeshTransform<Orthographic>,
