@@ -8,7 +8,7 @@
 use crate::color::Rgb;
 use crate::error::{direction, finite, non_negative, ParamError};
 use crate::material::Material;
-use crate::num::Scalar;
+use crate::num::{GeoScalar, Scalar};
 use crate::vector::{point_from_f32, point_sub, Point3, Vec3};
 
 /// The colours a light emits into each term (OpenGL's `GL_AMBIENT`, `GL_DIFFUSE`,
@@ -291,17 +291,33 @@ impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
 /// quadratic attenuation). `a = 1, b = c = 0` is no attenuation; pure `1/d²` is
 /// the physical case.
 ///
-/// At extremes: `d = 0` gives `1/a` (saturating at the tier's maximum when
-/// `a = 0`); very far lights give factors that round to 0; distances beyond the
-/// geometry range (±32768 for the fixed tiers) saturate.
+/// # Representation
+///
+/// The coefficients keep the relative precision of the `f32` they are given as, in
+/// the form the geometry type stores them ([`GeoScalar::inv_quadratic`]): `f32` for
+/// the float tiers; for the fixed tiers (Q16.16 distances) the exact 24-bit
+/// mantissa and exponent of each (a 16-bit mantissa for `Q14`), multiplied with the
+/// normalised distance in 32-bit (`Q14`) or 64-bit (`Q30`) integer arithmetic. So
+/// `c = 10⁻⁶` at `d = 300` counts (it was 0 in Q16.16), for every legal coefficient
+/// and every distance of the geometry range (see [`Scalar::geo_inv_quadratic`] for
+/// the error: far below 1 LSB of 8-bit output).
+///
+/// # Extremes
+///
+/// - `d = 0` gives `1/a`; a factor beyond the tier's range saturates: the fixed
+///   tiers hold factors below 2 (`a + b·d + c·d² ≥ ½`), the float tiers up to 10⁹.
+///   With `a = 0` (pure `1/d²`) the factor therefore saturates close to the light.
+/// - Very far lights give factors that round to 0; lengths beyond the geometry range
+///   (32768 units for the fixed tiers) saturate there.
+/// - Negative distances (only reachable through [`Attenuation::factor`]) count as 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Attenuation<G> {
-    k: [G; 3],
+pub struct Attenuation<G: GeoScalar> {
+    k: G::InvQuadratic,
     /// `b = c = 0`: the factor is the constant `1/a`, folded into the colours.
     constant: bool,
 }
 
-impl<G> Attenuation<G> {
+impl<G: GeoScalar> Attenuation<G> {
     /// Validated coefficients: finite, non-negative, not all zero.
     pub fn new<S: Scalar<Geo = G>>(a: f32, b: f32, c: f32) -> Result<Self, ParamError> {
         let a = non_negative("attenuation constant", a)?;
@@ -311,7 +327,7 @@ impl<G> Attenuation<G> {
             return Err(ParamError::AttenuationAllZero);
         }
         Ok(Self {
-            k: [S::geo_from_f32(a), S::geo_from_f32(b), S::geo_from_f32(c)],
+            k: G::inv_quadratic(a, b, c),
             constant: b == 0.0 && c == 0.0,
         })
     }
@@ -319,27 +335,16 @@ impl<G> Attenuation<G> {
     /// No attenuation (`a = 1, b = c = 0`).
     pub fn none<S: Scalar<Geo = G>>() -> Self {
         Self {
-            k: [
-                S::geo_from_f32(1.0),
-                S::geo_from_f32(0.0),
-                S::geo_from_f32(0.0),
-            ],
+            k: G::inv_quadratic(1.0, 0.0, 0.0),
             constant: true,
         }
     }
 
-    /// The attenuation factor at distance `d`.
+    /// The attenuation factor `1/(a + b·d + c·d²)` at distance `d`
+    /// ([`Scalar::geo_inv_quadratic`]).
     #[inline(always)]
-    pub fn factor<S: Scalar<Geo = G>>(&self, d: G) -> S
-    where
-        G: Copy,
-    {
-        // 1/(a + d·(b + c·d))
-        let [a, b, c] = self.k;
-        S::geo_recip(S::geo_add(
-            a,
-            S::geo_mul(d, S::geo_add(b, S::geo_mul(c, d))),
-        ))
+    pub fn factor<S: Scalar<Geo = G>>(&self, d: G) -> S {
+        S::geo_inv_quadratic(&self.k, d)
     }
 }
 
@@ -475,8 +480,9 @@ impl<S: Scalar> LightSource<S> for SpotLight<S> {
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
         let (l, d) = S::geo_direction(point_sub::<S>(self.pos, *p));
-        // cos φ = s·(−L); spot = cos^e φ inside the cone, 0 outside
-        let cos_phi = S::ZERO.sub(self.axis.dot(l));
+        // cos φ = s·(−L); spot = cos^e φ inside the cone, 0 outside (a cosine that
+        // corrects the lengths of s and L, which cos^e φ amplifies)
+        let cos_phi = S::ZERO.sub(S::cos_normal(self.axis, l));
         let spot = if cos_phi >= self.cos_cutoff && cos_phi > S::ZERO {
             cos_phi.min1().powi(self.exponent)
         } else {

@@ -26,7 +26,16 @@
 //!   maximum while summed and is clamped to [0, 1] when converted to an output colour.
 //! - Normals are expected unit length; [`Lighting::shade`] takes them as they are,
 //!   [`Lighting::shade_normalizing`] normalises first (a zero normal gives the ambient
-//!   and emission terms only).
+//!   and emission terms only). A unit vector rounded to a fixed tier is up to
+//!   5·10⁻⁵ too long or short, which the powers amplify (n·5·10⁻⁵ at the top of a
+//!   highlight): every cosine that a power raises ([`Scalar::cos_normal`],
+//!   [`Scalar::reflect_dot`]) corrects the lengths of `N`, `L`, `V` and `H` to
+//!   first order in `Q14` when they are within 2⁻⁵ of unit length, and Phong's
+//!   `R = 2(N·L)N − L` is exact at the mirror direction (where `2(N·L)` is 2,
+//!   beyond the fixed tiers' range).
+//! - A float tier's normal with an infinite or NaN component (only a `Vec3` built
+//!   directly holds one) lights nothing; infinite or NaN positions give zero light
+//!   directions and distances: no channel is ever NaN or infinite.
 
 use crate::color::Rgb;
 use crate::error::{finite, ParamError};
@@ -201,10 +210,23 @@ impl<S: Scalar> FogModel<S> for NoFog {
 /// Linear depth cueing (seed 004's atmospheric attenuation): the diffuse and
 /// specular light fades towards `colour` between `start` and `end`:
 /// `f = clamp((end − d)/(end − start), 0, 1)`.
+///
+/// # Representation and extremes
+///
+/// The ramp is stored per tier ([`Scalar::ramp`]) so that any finite `start < end`
+/// works: ranges of `f32::MAX` and more (`start = −f32::MAX, end = f32::MAX` is
+/// half fog near 0), ends far beyond the geometry range (`0…200 000` fades over the
+/// whole range of the fixed tiers' distances), ranges down to one `f32` step (a step
+/// at `end`). The fixed tiers hold the slope `1/(end − start)` as a mantissa and an
+/// exponent rather than in Q16.16, and evaluate it from the point of the geometry
+/// range nearest to `end`; `f` is within 2⁻¹³ (`Q14`) or 10⁻⁶ (the others) of the
+/// exact ramp at the tier's distance `d`. What remains is the distance's own
+/// rounding (2⁻¹⁶ units for the fixed tiers, 2⁻²⁴ relative for `f32`), which the
+/// ramp scales by `1/(end − start)`. A NaN distance (only from non-finite positions
+/// given directly as `Vec3`) is full fog.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearFog<S: Scalar> {
-    end: S::Geo,
-    inv_range: S::Geo,
+    ramp: S::Ramp,
     color: Rgb<S>,
 }
 
@@ -217,8 +239,7 @@ impl<S: Scalar> LinearFog<S> {
             return Err(ParamError::FogRange);
         }
         Ok(Self {
-            end: S::geo_from_f32(e),
-            inv_range: S::geo_from_f32(1.0 / (e - s)),
+            ramp: S::ramp(s, e),
             color: Rgb::try_from_f32("fog colour", color)?,
         })
     }
@@ -228,8 +249,7 @@ impl<S: Scalar> FogModel<S> for LinearFog<S> {
     const NEEDS_DISTANCE: bool = true;
     #[inline(always)]
     fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S> {
-        let f = S::geo_to_unit(S::geo_mul(S::geo_sub(self.end, d), self.inv_range));
-        self.color.lerp(direct, f)
+        self.color.lerp(direct, S::ramp_at(&self.ramp, d))
     }
 }
 
@@ -377,6 +397,11 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     }
 
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
+    ///
+    /// Never NaN or infinite, whatever a float tier's `Vec3` holds: a normal with an
+    /// infinite or NaN component lights nothing (only the ambient and emission terms
+    /// remain), infinite or NaN positions give zero light directions and distances
+    /// (and full fog for a NaN viewing distance).
     #[inline(always)]
     pub fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
         let (v, dist) = self.viewer.view(p);
@@ -407,9 +432,20 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     ) -> (Option<Rgb<S>>, Rgb<S>) {
         let c = inc.colors;
         let m = &self.material;
-        let nl = n.dot(inc.l);
+        // N·L: with the lengths corrected where a power (brilliance) or the refraction
+        // amplifies their rounding (see `Scalar::cos_normal`); the plain dot product
+        // elsewhere (the diffuse term is linear in it: 5·10⁻⁵ is 0.013 LSB)
+        let nl = if M::BRILLIANCE || M::TRANSMISSION {
+            S::cos_normal(n, inc.l)
+        } else {
+            n.dot(inc.l)
+        };
         let mut direct = Rgb::BLACK;
-        if nl > S::ZERO {
+        // A float tier's normal with an infinite component (only a `Vec3` built directly
+        // holds one) makes N·L infinite or NaN: outside (0, MAX] and [−MAX, 0) it
+        // lights nothing, so no channel becomes infinite or NaN. (Free for the fixed
+        // tiers, whose values never exceed MAX.)
+        if nl > S::ZERO && nl <= S::MAX {
             // diffuse: kd·Id·(N·L)^b
             let d = if M::BRILLIANCE {
                 nl.min1().powi(m.brilliance as u16)
@@ -420,8 +456,10 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             // specular: ks·Is·f(β)·x^n, x = R·V or N·H
             let x = match M::SPECULAR {
                 Specular::None => S::ZERO,
-                Specular::Phong => n.reflect(inc.l).dot(v),
-                Specular::BlinnPhong => n.dot(c.half.unwrap_or_else(|| inc.l.add(v).normalize())),
+                Specular::Phong => S::reflect_dot(n, inc.l, v),
+                Specular::BlinnPhong => {
+                    S::cos_normal(n, c.half.unwrap_or_else(|| inc.l.add(v).normalize()))
+                }
             };
             if M::SPECULAR != Specular::None && x > S::ZERO {
                 let mut s = x.min1().powi(m.shininess);
@@ -434,7 +472,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
                 }
                 direct = direct.add_scaled(c.specular, s);
             }
-        } else if M::TRANSMISSION && nl < S::ZERO {
+        } else if M::TRANSMISSION && nl < S::ZERO && nl >= S::ZERO.sub(S::MAX) {
             direct = c
                 .transmission
                 .scale(transmission(n, inc.l, v, m.eta, nl).powi(m.transmission_exponent));
@@ -510,7 +548,11 @@ fn transmission<S: Scalar>(n: Vec3<S>, l: Vec3<S>, v: Vec3<S>, eta: S, nl: S) ->
         return S::ZERO;
     }
     let c2 = k.sqrt();
-    // T = η·d + (η·c1 − c2)·(−N) = −η·L + (c2 − η·c1)·N
-    let t = n.scale(c2.sub(eta.mul(c1))).sub(l.scale(eta));
-    t.dot(v).max0().min1()
+    // T = η·d + (η·c1 − c2)·(−N) = −η·L + (c2 − η·c1)·N, so
+    // T·V = (c2 − η·c1)·(N·V) − η·(L·V), with cosines that correct the lengths
+    let tv = c2
+        .sub(eta.mul(c1))
+        .mul(S::cos_normal(n, v))
+        .sub(eta.mul(S::cos_normal(l, v)));
+    tv.max0().min1()
 }

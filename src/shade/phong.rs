@@ -17,7 +17,12 @@ impl<I: Illuminate, C> ModeState<I, C> for PhongShading {
     type State = PhongOrigin<I::Scalar>;
     fn state(_: &I) -> Self::State {
         PhongOrigin {
-            origin: crate::vector::point_from_f32::<I::Scalar>([0.0; 3]),
+            // the origin (zero: no soft float per frame)
+            origin: crate::vector::Vec3::new(
+                Default::default(),
+                Default::default(),
+                Default::default(),
+            ),
             shift: 0,
         }
     }
@@ -236,8 +241,7 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
             }
         }
         let psh: [u32; 3] = core::array::from_fn(|i| ATTR_FRAC - t.p[i].sa.min(ATTR_FRAC));
-        let mut x = x;
-        for c in color.iter_mut() {
+        for (x, c) in (x..).zip(color.iter_mut()) {
             // Q14 normal with ATTR_FRAC bits → the tier's attribute (Q26)
             let n = S::normalize_interpolated(Vec3::new(
                 S::from_attr(a[0] >> 2),
@@ -264,7 +268,6 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
                 // the values after the last pixel are not used: wrapping is harmless
                 *a = a.wrapping_add(d);
             }
-            x += 1;
         }
     }
 }
