@@ -23,8 +23,10 @@ opt-level 3 with LTO):
     (one instruction = 1 ns of virtual time), so the count is exact to one
     tick (62.5 instructions on the microbit, 40 on the mps2) and
     deterministic; the checker requires 62.5 / 40 instructions per tick;
-  * stack: the painted stack's low-water mark (cortex-m-rt `paint-stack`),
-    bytes below the top after start-up, set-up and both frames;
+  * stack: the painted stack's low-water mark (cortex-m-rt `paint-stack`):
+    the image's peak (bytes below the top after start-up, set-up and both
+    frames) and the frame's own (below the SP at the call of the frame
+    function: the stack is painted again before the frames);
   * flash and RAM: section and symbol sizes of the ELF (pyelftools).
 The stack sits below the statics (build.rs writes memory.x): an overflow
 faults and the image exits with status 1. `--check` proves it: it builds the
@@ -174,14 +176,15 @@ def main():
             tick = r["calib_instructions"] / r["calib_ticks"]
             check(abs(tick - per_tick) < 0.01 * per_tick,
                   f"{what}: {tick:.3f} instructions per tick, not {per_tick}: is -icount shift=0 in effect?")
-            check(r["stack_peak"] < r["stack_size"], f"{what}: stack {r['stack_peak']} of {r['stack_size']}")
+            check(0 < r["stack_frame"] < r["stack_peak"] < r["stack_size"],
+                  f"{what}: stack: frame {r['stack_frame']}, peak {r['stack_peak']} of {r['stack_size']}")
             r.update(elf_sizes(elf))
             r.update(core=core, machine=machine, profile=args.profile, qemu_seconds=round(secs, 2),
                      fps=clock / r["instructions"])
             check(r["ram_static"] + r["stack_size"] <= ram, f"{what}: RAM {r['ram_static']} + stack over {ram}")
             rows.append(r)
             print(f"{what}: {r['checksum']} (host {want}), {r['instructions']} instructions/frame, "
-                  f"stack {r['stack_peak']} B, {secs:.1f} s", flush=True)
+                  f"stack {r['stack_frame']} B (frame), {r['stack_peak']} B (image), {secs:.1f} s", flush=True)
 
     if args.check:
         # a stack overflow must fail loudly: 2 KiB is far too small for a frame
@@ -212,14 +215,15 @@ def print_table(rows):
     print()
     print("| core (QEMU board), opt-level | configuration | band rows | instructions / frame | frames/s (clock) "
           "| flash KiB | fixshade + scene code | compiler builtins | runtime | mesh "
-          "| static RAM KiB (frame buffers) | peak stack B (reserved) | checksum |")
+          "| static RAM KiB (frame buffers) | stack B: frame, image peak (reserved) | checksum |")
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
     for r in rows:
         opt = "z" if r["profile"] == "release-z" else "3"
         print(f"| {r['core'].upper()} ({r['machine']}), {opt} | {r['config']} | {r['rows']} | {r['instructions']:,} "
               f"| {r['fps']:.1f} @ {CORES[r['core']][5]} | {kib(r['flash'])} | {kib(r['code_fixshade'])} "
               f"| {kib(r['code_builtins'])} | {kib(r['code_runtime'])} | {kib(r['mesh'])} "
-              f"| {kib(r['ram_static'])} ({kib(r['ram_buffers'])}) | {r['stack_peak']:,} ({r['stack_size']:,}) "
+              f"| {kib(r['ram_static'])} ({kib(r['ram_buffers'])}) "
+              f"| {r['stack_frame']:,}, {r['stack_peak']:,} ({r['stack_size']:,}) "
               f"| {r['checksum']} |")
 
 

@@ -3,7 +3,7 @@
 
 use core::arch::{asm, global_asm};
 use core::fmt::Write;
-use core::mem::zeroed;
+use core::mem::{zeroed, MaybeUninit};
 use core::ptr::{addr_of, addr_of_mut};
 
 use cortex_m::peripheral::syst::SystClkSource;
@@ -12,9 +12,10 @@ use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::{debug, hio};
 use embedded_graphics_core::geometry::Size;
 use embedded_graphics_core::pixelcolor::Rgb565;
+use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::render::{CachedVertex, Carry};
 use fixshade::target::Checksum;
-use fixshade_qemu::{bins, Buffers, CARRY, NV, W};
+use fixshade_qemu::{bins, Buffers, Fail, CARRY, NV, W};
 
 mod board {
     include!(concat!(env!("OUT_DIR"), "/board.rs"));
@@ -79,6 +80,28 @@ fn stack_use() -> (usize, usize) {
     (top - p, p - bottom)
 }
 
+/// The current stack pointer.
+#[inline(always)]
+fn sp() -> usize {
+    let sp: usize;
+    // SAFETY: reads a register.
+    unsafe { asm!("mov {}, sp", out(reg) sp, options(nomem, nostack, preserves_flags)) };
+    sp
+}
+
+/// Paints the stack again from its bottom up to just below this function's
+/// own frame (no interrupt is enabled that could push below the SP).
+#[inline(never)]
+fn repaint() {
+    let limit = sp() - 16;
+    let mut p = addr_of!(_stack_end) as usize;
+    while p < limit {
+        // SAFETY: unused stack below the current SP.
+        unsafe { core::ptr::write_volatile(p as *mut u32, PAINT) };
+        p += 4;
+    }
+}
+
 /// SysTick as a 24-bit down-counter of processor clock ticks.
 struct Timer(SYST);
 
@@ -130,26 +153,86 @@ fn exit(ok: bool) -> ! {
 }
 
 /// Prints `FAIL <board> <config>: <why>` and exits with status 1.
+#[cold]
+#[inline(never)]
 fn fail(why: core::fmt::Arguments<'_>) -> ! {
     let _ = writeln!(out(), "FAIL {BOARD} {}: {why}", config::NAME);
     exit(false)
 }
+
+/// What one image measured.
+struct Report {
+    checksum: u32,
+    instructions: u64,
+    ticks: u32,
+    setup_instructions: u64,
+    calib_ticks: u32,
+    stack_peak: usize,
+    stack_frame: usize,
+    stack_setup: usize,
+    carry_needed: usize,
+}
+
+/// Prints the `RESULT {json}` line (not inlined: its formatting state is on
+/// the stack only while it prints, after the frames).
+#[inline(never)]
+fn report(r: &Report) {
+    let _ = writeln!(
+        out(),
+        "RESULT {{\"board\": \"{BOARD}\", \"core\": \"{CORE}\", \"config\": \"{}\", \"rows\": {ROWS}, \
+         \"checksum\": \"{:#010x}\", \"pixels\": {}, \"frames\": {FRAMES}, \
+         \"instructions\": {}, \"ticks\": {}, \"setup_instructions\": {}, \
+         \"calib_instructions\": {}, \"calib_ticks\": {}, \"stack_peak\": {}, \
+         \"stack_frame\": {}, \"stack_setup\": {}, \"stack_size\": {STACK}, \"carry_needed\": {}}}",
+        config::NAME,
+        r.checksum,
+        W * W,
+        r.instructions,
+        r.ticks,
+        r.setup_instructions,
+        2 * CALIB,
+        r.calib_ticks,
+        r.stack_peak,
+        r.stack_frame,
+        r.stack_setup,
+        r.carry_needed,
+    );
+}
+
+/// The transform and the lighting, built once (kept in a static: `main`'s
+/// frame stays small, so the image's stack is mostly the renderer's).
+static mut SCENE: MaybeUninit<(MeshTransform<Orthographic>, config::Light)> = MaybeUninit::uninit();
+
+/// Builds [`SCENE`] (once).
+#[inline(never)]
+fn init_scene() -> Result<(&'static MeshTransform<Orthographic>, &'static config::Light), Fail> {
+    let scene = config::setup()?;
+    // SAFETY: called once, before anything reads SCENE.
+    let (t, l) = unsafe { (*addr_of_mut!(SCENE)).write(scene) };
+    Ok((t, l))
+}
+
+/// Instructions of the calibration loop: `2 · CALIB`.
+const CALIB: u32 = 1 << 20;
 
 #[entry]
 fn main() -> ! {
     let cp = cortex_m::Peripherals::take().unwrap_or_else(|| fail(format_args!("peripherals")));
     let mut timer = Timer::new(cp.SYST);
     // instructions per tick, from a loop of known length
-    const CALIB: u32 = 1 << 20;
     let ((), calib_ticks) = timer.ticks(|| spin(CALIB));
     let instr = |ticks: u32| {
         (u64::from(ticks) * u64::from(2 * CALIB)).div_ceil(u64::from(calib_ticks.max(1)))
     };
 
     // once: the mesh transform and the lighting (f32 parameters)
-    let (scene, setup_ticks) = timer.ticks(config::setup);
+    let (scene, setup_ticks) = timer.ticks(init_scene);
     let (transform, lighting) = scene.unwrap_or_else(|e| fail(format_args!("scene set-up: {e:?}")));
 
+    // the stack used so far (start-up, set-up), then the frames' own
+    let (setup_peak, _) = stack_use();
+    repaint();
+    let mut frame_sp = 0;
     let mut sums = [0u32; FRAMES];
     let mut ticks = [0u32; FRAMES];
     let mut carry_needed = 0;
@@ -165,7 +248,10 @@ fn main() -> ! {
                 depth: &mut *addr_of_mut!(DEPTH),
             }
         };
-        let (r, t) = timer.ticks(|| config::frame(&transform, &lighting, ROWS, b, &mut display));
+        let (r, t) = timer.ticks(|| {
+            frame_sp = sp();
+            config::frame(transform, lighting, ROWS, b, &mut display)
+        });
         match r {
             Ok(n) => carry_needed = n,
             Err(e) => fail(format_args!("frame {k}: {e:?}")),
@@ -180,8 +266,11 @@ fn main() -> ! {
         sums[k] = display.value();
         ticks[k] = t;
     }
-    // the peak of everything so far: start-up, set-up, frames
-    let (stack_peak, headroom) = stack_use();
+    // the peak of everything so far (start-up, set-up, frames), and the
+    // frame's own: below the SP at the call of `config::frame`
+    let (frames_peak, headroom) = stack_use();
+    let stack_peak = setup_peak.max(frames_peak);
+    let stack_frame = frames_peak - (addr_of!(_stack_start) as usize - frame_sp);
     if headroom == 0 {
         fail(format_args!("the stack reached its bottom ({STACK} bytes)"));
     }
@@ -190,21 +279,17 @@ fn main() -> ! {
             "frames differ: checksums {sums:x?}, ticks {ticks:?}"
         ));
     }
-    let _ = writeln!(
-        out(),
-        "RESULT {{\"board\": \"{BOARD}\", \"core\": \"{CORE}\", \"config\": \"{}\", \"rows\": {ROWS}, \
-         \"checksum\": \"{:#010x}\", \"pixels\": {}, \"frames\": {FRAMES}, \
-         \"instructions\": {}, \"ticks\": {}, \"setup_instructions\": {}, \
-         \"calib_instructions\": {}, \"calib_ticks\": {calib_ticks}, \
-         \"stack_peak\": {stack_peak}, \"stack_size\": {STACK}, \"carry_needed\": {carry_needed}}}",
-        config::NAME,
-        sums[0],
-        W * W,
-        instr(ticks[0]),
-        ticks[0],
-        instr(setup_ticks),
-        2 * CALIB,
-    );
+    report(&Report {
+        checksum: sums[0],
+        instructions: instr(ticks[0]),
+        ticks: ticks[0],
+        setup_instructions: instr(setup_ticks),
+        calib_ticks,
+        stack_peak,
+        stack_frame,
+        stack_setup: setup_peak,
+        carry_needed,
+    });
     // printing may go deeper than the frame: check again before success
     if stack_use().1 == 0 {
         fail(format_args!("the stack reached its bottom while printing"));

@@ -154,7 +154,9 @@ macro_rules! configs {
                 pub fn setup() -> Result<(MeshTransform<Orthographic>, Light), Fail> {
                     Ok((transform()?, lighting()?))
                 }
-                /// One frame: the shader, then [`draw`].
+                /// One frame: the shader, then [`draw`] (not inlined: the
+                /// firmware measures its stack from the call).
+                #[inline(never)]
                 pub fn frame<D: DrawTarget<Color = Rgb565>>(
                     t: &MeshTransform<Orthographic>,
                     lighting: &Light,
