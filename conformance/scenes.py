@@ -548,9 +548,6 @@ def scenes():
         [white(1.0, position=[1.5, 1.0, 3.0, 1.0])],
         camera=persp_camera(128, 128),
         lm=light_model(local_viewer=True),
-        known_issue={t: "perspective-correct attributes are exact only at the ends of "
-                        "16-pixel sub-spans (raster::PERSPECTIVE_SPAN): 0.1 % of the pixels "
-                        "are 2 LSB off" for t in ("f32", "q30")},
     ))
     s.append(scene(
         "local_viewer_gouraud",
