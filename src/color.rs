@@ -1,7 +1,7 @@
 //! Linear RGB in a tier's format and its conversion to embedded-graphics colours,
 //! with optional table-driven gamma and ordered dithering.
 
-use crate::error::{non_negative3, ParamError};
+use crate::error::{finite, non_negative3, ParamError};
 use crate::num::Scalar;
 use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888};
 
@@ -57,6 +57,15 @@ impl<S: Scalar> Rgb<S> {
         non_negative3(name, c).map(Self::from_f32)
     }
 
+    /// Converts `f32` channels of any sign (OpenGL's colours may be negative),
+    /// rejecting NaN and infinities. Values beyond the tier's range saturate.
+    pub fn try_from_f32_signed(name: &'static str, c: [f32; 3]) -> Result<Self, ParamError> {
+        for v in c {
+            finite(name, v)?;
+        }
+        Ok(Self::from_f32(c))
+    }
+
     /// The channels as `f32`.
     #[inline]
     pub fn to_f32(self) -> [f32; 3] {
@@ -67,6 +76,20 @@ impl<S: Scalar> Rgb<S> {
     #[inline(always)]
     pub fn add(self, o: Self) -> Self {
         Self::new(self.r.add(o.r), self.g.add(o.g), self.b.add(o.b))
+    }
+
+    /// Channel-wise difference, saturating.
+    #[inline(always)]
+    pub fn sub(self, o: Self) -> Self {
+        Self::new(self.r.sub(o.r), self.g.sub(o.g), self.b.sub(o.b))
+    }
+
+    /// Each channel limited to [0, 1] (what an output colour holds; OpenGL clamps
+    /// its primary and secondary colours so).
+    #[inline(always)]
+    pub fn clamp01(self) -> Self {
+        let c = |v: S| v.max0().min1();
+        Self::new(c(self.r), c(self.g), c(self.b))
     }
 
     /// Channel-wise product, saturating.

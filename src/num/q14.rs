@@ -232,6 +232,10 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         Self::from_raw((x + (1 << 13)) >> 14)
     }
     #[inline]
+    fn pow_frac(self, f: u16) -> Self {
+        Self(super::pow::pow_frac_q14(self.0, f))
+    }
+    #[inline]
     fn to_unorm(self, bits: u32) -> u32 {
         // `max`/`min`, not `clamp`: its `min <= max` assertion can survive at opt-level s
         let x = self.0.max(0).min(1 << FRAC) as u32;

@@ -118,6 +118,10 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
         Self::from_wide(round_shr(self.0 as i64 * y, 32 - k / 2))
     }
     #[inline]
+    fn pow_frac(self, f: u16) -> Self {
+        Self(super::pow::pow_frac_q30(self.0, f))
+    }
+    #[inline]
     fn to_unorm(self, bits: u32) -> u32 {
         let x = self.0.max(0).min(1 << FRAC) as u64;
         let max = (1u64 << bits.max(1).min(16)) - 1;

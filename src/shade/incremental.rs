@@ -85,12 +85,12 @@ struct PowTable {
 }
 
 impl PowTable {
-    fn new(n: u16) -> Self {
+    fn new(n: f32) -> Self {
         // f32 (libm's powf is exact to an ulp) so that the fast path links no f64
-        let x0 = if n == 0 {
+        let x0 = if n == 0.0 {
             0.0
         } else {
-            libm::powf(4096.0, -1.0 / n as f32)
+            libm::powf(4096.0, -1.0 / n)
         };
         let x0q = libm::floorf(x0 * 16384.0) as i32;
         let width = (16384 - x0q).max(1);
@@ -98,7 +98,7 @@ impl PowTable {
         for (i, v) in t.iter_mut().enumerate() {
             let x = (x0q as f32 + width as f32 * i.min(POW_SEGMENTS) as f32 / POW_SEGMENTS as f32)
                 / 16384.0;
-            *v = libm::roundf(libm::powf(x, n as f32) * 16384.0) as i32;
+            *v = libm::roundf(libm::powf(x, n) * 16384.0) as i32;
         }
         Self {
             x0: x0q,
@@ -149,7 +149,7 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
         IncrementalState {
             lights,
             base: channel_units::<C, NW>(lighting.base()).map(|v| v + 128),
-            pow: PowTable::new(lighting.material().shininess),
+            pow: PowTable::new(lighting.material().shininess.to_f32()),
         }
     }
 }
