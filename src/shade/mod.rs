@@ -49,6 +49,7 @@ mod flat;
 mod gouraud;
 mod incremental;
 mod phong;
+mod segment;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
 pub use incremental::{DirectionalLighting, IncrementalModel};
