@@ -52,7 +52,7 @@ mod phong;
 mod segment;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
-pub use incremental::{DirectionalLighting, IncrementalModel};
+pub use incremental::{DirectionalLighting, IncrementalLighting, IncrementalModel, IncrementalTier};
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;

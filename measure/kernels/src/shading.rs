@@ -208,26 +208,27 @@ unsafe fn span_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out
     n
 }
 
-/// `IncrementalPhong` over the same span (Q14, one directional light).
+/// `IncrementalPhong` over the same span (one directional light, tier `S`).
 #[inline(always)]
-unsafe fn span_phong_inc<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u16) -> u32 {
-    let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
+unsafe fn span_phong_inc<S: Scalar, M: IncrementalModel>(n: u32, out: *mut u16) -> u32
+where
+    for<'a> Shader<'a, IncrementalPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>: SpanShader<5, Color = Rgb565>,
+    IncrementalPhongShading: fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
+{
+    let lit = lighting::<S, _, M>([dir::<S>()]);
     let mut sh = Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading, &lit, Linear);
-    let [v0, v1] = span_ends::<Q14<NW>>();
+    let [v0, v1] = span_ends::<S>();
     let n = black_box(n);
-    // the attributes `Shading::draw` gives the rasterizer: N, N·L, N·H
-    let attrs = |v: &ShadeVertex<Q14<NW>>| {
+    // the attributes `Shading::draw` gives the rasterizer: N, N·L, N·H (Phong: N·V)
+    let l = lit.lights()[0].direction().to_f32();
+    let h = if M::SPECULAR == fixshade::lighting::Specular::Phong {
+        [0.0, 0.0, 1.0]
+    } else {
+        lit.lights()[0].prepared().half.map(|h| h.to_f32()).unwrap_or(l)
+    };
+    let attrs = |v: &ShadeVertex<S>| {
         let a = normal_attrs(v);
-        let (l, h) = (
-            lit.lights()[0].direction(),
-            lit.lights()[0].prepared().half.unwrap_or(l_dir(&lit)),
-        );
-        let dot = |d: fixshade::vector::Vec3<Q14<NW>>| {
-            ((a[0] as i64 * d.x.raw() as i64
-                + a[1] as i64 * d.y.raw() as i64
-                + a[2] as i64 * d.z.raw() as i64)
-                >> 14) as i32
-        };
+        let dot = |d: [f32; 3]| (a[0] as f32 * d[0] + a[1] as f32 * d[1] + a[2] as f32 * d[2]) as i32;
         [a[0], a[1], a[2], dot(l), dot(h)]
     };
     let (start, step) = ramp(attrs(&v0), attrs(&v1), n);
@@ -240,12 +241,6 @@ unsafe fn span_phong_inc<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u1
         pixels(out, n as usize),
     );
     n
-}
-
-fn l_dir<const NW: u8, M: Model>(
-    lit: &Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; 1], M>,
-) -> fixshade::vector::Vec3<Q14<NW>> {
-    lit.lights()[0].direction()
 }
 
 // ---- triangle kernels ------------------------------------------------------------
@@ -351,24 +346,29 @@ unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(
 }
 
 #[inline(always)]
-unsafe fn tri_phong_inc<const NW: u8, M: IncrementalModel>(scale: u32, out: *mut u16) -> u32 {
-    let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
+unsafe fn tri_phong_inc<S: Scalar, M: IncrementalModel>(scale: u32, out: *mut u16) -> u32
+where
+    for<'a> Shader<'a, IncrementalPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>: Kernel<Color = Rgb565>,
+    for<'a> <Shader<'a, IncrementalPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565> as Kernel>::Vertex: fixshade::render::Lerp,
+    IncrementalPhongShading: fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
+{
+    let lit = lighting::<S, _, M>([dir::<S>()]);
     draw(Shader::new(IncrementalPhongShading, &lit, Linear), scale, out)
 }
 
-/// `span_<tier>_phong_inc_<set>` / `tri_…`: incremental Phong kernels (Q14 tiers,
-/// directional light sets only).
+/// `span_<tier>_phong_inc_<set>` / `tri_…`: incremental Phong kernels (directional
+/// light sets only).
 macro_rules! incremental {
-    ($($tier:ident = $nw:literal, $set:ident = $M:ty;)*) => {
+    ($($tier:ident = $S:ty, $set:ident = $M:ty;)*) => {
         $(
             const _: () = {
                 #[export_name = concat!("span_", stringify!($tier), "_phong_inc_", stringify!($set))]
                 pub unsafe extern "C" fn span(n: u32, out: *mut u16) -> u32 {
-                    span_phong_inc::<$nw, $M>(n, out)
+                    span_phong_inc::<$S, $M>(n, out)
                 }
                 #[export_name = concat!("tri_", stringify!($tier), "_phong_inc_", stringify!($set))]
                 pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
-                    tri_phong_inc::<$nw, $M>(scale, out)
+                    tri_phong_inc::<$S, $M>(scale, out)
                 }
                 #[used]
                 static KEEP_INC: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
@@ -378,10 +378,18 @@ macro_rules! incremental {
 }
 
 incremental! {
-    q14_1 = 1, dir_diffuse = Lambert;
-    q14_1 = 1, dir_blinn = BlinnPhong;
-    q14_2 = 2, dir_diffuse = Lambert;
-    q14_2 = 2, dir_blinn = BlinnPhong;
+    q14_1 = Q14<1>, dir_diffuse = Lambert;
+    q14_1 = Q14<1>, dir_blinn = BlinnPhong;
+    q14_1 = Q14<1>, dir_phong = Phong;
+    q14_2 = Q14<2>, dir_diffuse = Lambert;
+    q14_2 = Q14<2>, dir_blinn = BlinnPhong;
+    q14_2 = Q14<2>, dir_phong = Phong;
+    f32 = f32, dir_diffuse = Lambert;
+    f32 = f32, dir_blinn = BlinnPhong;
+    f32 = f32, dir_phong = Phong;
+    f32fast = F32Fast<2>, dir_diffuse = Lambert;
+    f32fast = F32Fast<2>, dir_blinn = BlinnPhong;
+    f32fast = F32Fast<2>, dir_phong = Phong;
 }
 
 // ---- generation -------------------------------------------------------------------
