@@ -66,7 +66,11 @@ fn measure<S: Scalar>(key: &'static str, rows: &mut Vec<Row>) {
 
 /// Draws one object of a directional-light scene with `IncrementalPhongShading`
 /// in tier `S`; returns the shaded pixels.
-fn draw_inc<S: fixshade::shade::IncrementalTier, M: fixshade::lighting::Model, C: fixshade::color::OutputColor + Default>(
+fn draw_inc<
+    S: fixshade::shade::IncrementalTier,
+    M: fixshade::lighting::Model,
+    C: fixshade::color::OutputColor + Default,
+>(
     scene: &render::Scene,
     prepared: &[[render::Vert; 3]],
     pixels: &mut [C],
@@ -149,7 +153,13 @@ fn measure_inc<S: fixshade::shade::IncrementalTier>(key: &'static str, rows: &mu
             }
         }
         let mut rgb888 = vec![Rgb888::default(); n];
-        draw::<S, Rgb888>(lights, &scene, &prepared[0], &mut rgb888, &mut vec![u16::MAX; n]);
+        draw::<S, Rgb888>(
+            lights,
+            &scene,
+            &prepared[0],
+            &mut rgb888,
+            &mut vec![u16::MAX; n],
+        );
         let mut rgb565 = vec![Rgb565::default(); n];
         let mut times = Vec::with_capacity(RUNS);
         let mut shaded = 0;

@@ -548,9 +548,6 @@ def scenes():
         [white(1.0, position=[1.5, 1.0, 3.0, 1.0])],
         camera=persp_camera(128, 128),
         lm=light_model(local_viewer=True),
-        known_issue={t: "perspective-correct attributes are exact only at the ends of "
-                        "16-pixel sub-spans (raster::PERSPECTIVE_SPAN): 0.1 % of the pixels "
-                        "are 2 LSB off" for t in ("f32", "q30")},
     ))
     s.append(scene(
         "local_viewer_gouraud",
@@ -647,14 +644,12 @@ def scenes():
     ))
 
     # --- the rows of issue 12's table --------------------------------------
-    fixed = ("q30", "q14")
     s.append(scene(
         "light_color_ge2",
         "light colours 2.5 and 3 (GL allows any value) on a dark material",
         ["light GL_DIFFUSE ≥ 2", "light GL_SPECULAR ≥ 2"],
         [sph(plastic([0.3, 0.2, 0.15], 40.0, ks=0.25, ka=0.1, kd=1.0), "blinn", big)],
         [light(diffuse=[2.5, 2.5, 2.5, 1], specular=[3.0, 2.0, 2.0, 1], position=KEY)],
-        expect_fail=fail("light colours ≥ 2 saturate in the fixed tiers' range [−2, 2)", fixed),
     ))
     s.append(scene(
         "const_atten_quarter",
@@ -662,8 +657,6 @@ def scenes():
         ["GL_CONSTANT_ATTENUATION < 1"],
         [sph(plastic(GOLD, 20.0), "gouraud", big)],
         [white(0.2, position=[-1.0, 1.5, 3.0, 1.0], constant_attenuation=0.25)],
-        expect_fail=fail("an attenuation factor 1/0.25 = 4 saturates at 2 in the fixed tiers",
-                         fixed),
     ))
     s.append(scene(
         "shininess_fractional",
@@ -673,7 +666,6 @@ def scenes():
          for n, m in zip([1.5, 12.8, 27.8974], row(3, 192, 64, 0.75))],
         [white(1.0, position=KEY)],
         w=192, h=64,
-        expect_fail=fail("Material::new rounds GL_SHININESS to an integer"),
     ))
     s.append(scene(
         "spot_exponent_fractional",
@@ -683,7 +675,6 @@ def scenes():
              translate([0.0, 0.0, -1.0]))],
         [white(1.0, position=[0.0, 0.0, 2.0, 1.0], spot_direction=[0.0, 0.0, -1.0],
                spot_cutoff=60.0, spot_exponent=2.5)],
-        expect_fail=fail("SpotLight::new rounds GL_SPOT_EXPONENT to an integer"),
     ))
     s.append(scene(
         "negative_colors",
@@ -695,8 +686,6 @@ def scenes():
         [white(1.0, position=KEY),
          light(diffuse=[-0.4, 0.0, -0.2, 1], position=[0.6, -0.2, 0.8, 0.0])],
         lm=light_model(ambient=[0.5, 0.5, 0.5]),
-        expect_fail=fail("LightColors::new and Material::new reject negative colours",
-                         ("f32", "q30", "q14")),
     ))
     s.append(scene(
         "normalize_off",
@@ -706,7 +695,6 @@ def scenes():
         [obj(with_normal_length(SPHERE, 0.7), plastic(RED, 8.0), "gouraud", big)],
         [white(1.0, position=KEY)],
         normalize=False,
-        expect_fail=fail("ShadeVertex::new and EyeTransform::normal always normalise normals"),
     ))
     bowl = uv_sphere(10, 24, theta_max=math.pi / 2)
     s.append(scene(
@@ -719,8 +707,6 @@ def scenes():
              back=plastic(BLUE, 20.0), cull=False)],
         [white(1.0, position=[0.3, 0.6, 0.75, 0.0])],
         lm=light_model(two_side=True),
-        expect_fail=fail("no two-sided lighting: back faces are lit with the front material "
-                         "and the unflipped normal"),
     ))
     s.append(scene(
         "color_material",
@@ -734,7 +720,6 @@ def scenes():
          for m, mode in zip(row(2, 192, 96, 1.1), ["ambient_and_diffuse", "specular"])],
         [white(1.0, position=KEY)],
         w=192, h=96,
-        expect_fail=fail("no per-vertex material colours (GL_COLOR_MATERIAL)"),
     ))
     s.append(scene(
         "separate_specular",
@@ -745,7 +730,6 @@ def scenes():
              "gouraud", big)],
         [white(1.0, position=[0.0, 0.2, 1.0, 0.0])],
         lm=light_model(color_control="separate", ambient=[0.4, 0.4, 0.4]),
-        expect_fail=fail("no separate specular colour: Gouraud interpolates one clamped sum"),
     ))
     s.append(scene(
         "flat_provoking",
@@ -754,8 +738,6 @@ def scenes():
         ["GL_FLAT provoking vertex", "GL_POSITION w=1"],
         [sph(plastic(GREEN, 16.0), "flat", big)],
         [white(1.0, position=[-1.0, 1.0, 2.0, 1.0])],
-        expect_fail=fail("Flat lights the centroid with the averaged normal, GL the last "
-                         "vertex of the triangle"),
     ))
     return s
 

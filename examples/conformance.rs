@@ -11,17 +11,21 @@
 //! Writes `<out>/fixshade/<scene>.<tier>.rgb` (raw RGB8, row 0 at the top),
 //! `<out>/fixshade/<scene>.id` (raw little-endian u16 per pixel: object index + 1,
 //! plus 256 for a back face, 0 for the background) and
-//! `<out>/fixshade/manifest.json` (per scene and tier: `ok` or `unsupported`, with
-//! the reasons, and warnings about parameters the library changes silently).
+//! `<out>/fixshade/manifest.json` (per scene and tier: `ok`, or `unsupported` with
+//! the reasons: a typed error of the library or a feature it lacks).
 //!
 //! The path per object is what firmware does: `ScreenTransform` (projection ·
 //! view · model, fixed point, 4 sub-pixel bits) for screen positions,
-//! `EyeTransform` (view · model) for eye-space positions and normals, lights and
-//! materials from `gl::GlLight`/`GlMaterial`/`GlLightModel`, a `Lighting` with
-//! Blinn-Phong (OpenGL's model) or Phong specular, an infinite or local viewer,
-//! and `Flat`/`Gouraud`/`Phong` shading into an Rgb888 `SliceFramebuffer` with a
-//! `DepthBuffer`. What the library cannot express is rendered as well as it can
-//! and reported as unsupported.
+//! `EyeTransform` (view · model) for eye-space positions and normals
+//! (`gl::eye_normal` with `GL_NORMALIZE` off), the lighting from the GL state in
+//! one call (`gl::GlScene::lighting`, lights transformed by the view with
+//! `GlLight::transformed`), Blinn-Phong (OpenGL's model) or Phong specular, an
+//! infinite or local viewer, two-sided lighting as two passes (front faces with
+//! the front lighting, back faces with `GlScene::back_lighting`), and
+//! `GL_FLAT` (`Shader::draw_provoking`/`draw_color`), `GL_SMOOTH`
+//! (`Shading::draw`, or `Shader::draw_vertex_colors` for colour material and
+//! separate specular) and per-pixel (`PhongShading`, `SeparateSpecular`) shading
+//! into an Rgb888 `SliceFramebuffer` with a `DepthBuffer`.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -29,16 +33,22 @@ use std::time::Instant;
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use fixshade::color::Rgb;
-use fixshade::gl::{GlLight, GlLightModel, GlMaterial};
+use fixshade::gl::{
+    eye_normal, ColorMaterialMode, GlColorMaterial, GlFace, GlLight, GlLightModel, GlMaterial,
+    GlNormals, GlScene,
+};
 use fixshade::light::{AnyLight, LightDesc};
-use fixshade::lighting::{BlinnPhong, Illuminate, Lighting, LocalViewer, Phong as PhongModel};
-use fixshade::material::{Material, MaterialDesc};
+use fixshade::lighting::{
+    BlinnPhong, ColorMaterial, Illuminate, InfiniteViewer, LocalViewer, Model, Phong as PhongModel,
+    SeparateSpecular,
+};
+use fixshade::material::MaterialDesc;
 use fixshade::mesh::{EyeTransform, Mat4, ScreenTransform, ScreenVertex, Viewport};
 use fixshade::num::{Scalar, Q14, Q30};
 use fixshade::raster::{
     draw_triangle, draw_triangle_perspective, Cull, RasterOptions, SpanShader, SUBPIXEL_BITS,
 };
-use fixshade::reference::{self, ModelDesc, Reference, ViewerDesc, V3};
+use fixshade::reference::{self, ModelDesc, Reference, VertexOptions, ViewerDesc, V3};
 use fixshade::shade::{
     FlatShading, GouraudShading, Linear, PhongShading, ShadeVertex, Shader, Shading,
 };
@@ -69,7 +79,8 @@ struct GlMat {
 struct Object {
     positions: Vec<[f32; 3]>,
     normals: Vec<[f32; 3]>,
-    has_colors: bool,
+    colors: Vec<[f32; 4]>,
+    color_material: Option<GlColorMaterial>,
     triangles: Vec<[usize; 3]>,
     model: Mat4,
     front: GlMat,
@@ -131,6 +142,37 @@ fn gl_mat(v: &Value) -> GlMat {
     }
 }
 
+fn gl_material(m: &GlMat) -> GlMaterial {
+    GlMaterial {
+        ambient: m.ambient,
+        diffuse: m.diffuse,
+        specular: m.specular,
+        emission: m.emission,
+        shininess: m.shininess,
+    }
+}
+
+fn color_material(v: &Value) -> Option<GlColorMaterial> {
+    if v.is_null() {
+        return None;
+    }
+    Some(GlColorMaterial {
+        face: match v["face"].as_str().unwrap() {
+            "front" => GlFace::Front,
+            "back" => GlFace::Back,
+            _ => GlFace::FrontAndBack,
+        },
+        mode: match v["mode"].as_str().unwrap() {
+            "emission" => ColorMaterialMode::Emission,
+            "ambient" => ColorMaterialMode::Ambient,
+            "diffuse" => ColorMaterialMode::Diffuse,
+            "specular" => ColorMaterialMode::Specular,
+            "ambient_and_diffuse" => ColorMaterialMode::AmbientAndDiffuse,
+            m => panic!("unknown colour material mode {m}"),
+        },
+    })
+}
+
 fn parse(v: &Value) -> Scene {
     let cam = &v["camera"];
     let lm = &v["light_model"];
@@ -160,7 +202,8 @@ fn parse(v: &Value) -> Scene {
             Object {
                 positions: list(&m["positions"]),
                 normals: list(&m["normals"]),
-                has_colors: m.get("colors").is_some(),
+                colors: m.get("colors").map(list).unwrap_or_default(),
+                color_material: color_material(&o["color_material"]),
                 triangles: m["triangles"]
                     .as_array()
                     .unwrap()
@@ -181,11 +224,6 @@ fn parse(v: &Value) -> Scene {
             }
         })
         .collect::<Vec<_>>();
-    let color_material = v["objects"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .any(|o| !o["color_material"].is_null());
     let sc = Scene {
         name: v["name"].as_str().unwrap().to_string(),
         width: v["width"].as_u64().unwrap() as u32,
@@ -202,17 +240,19 @@ fn parse(v: &Value) -> Scene {
         lights,
         objects,
     };
-    assert!(
-        !color_material || sc.objects.iter().any(|o| o.has_colors),
-        "colour material without colours"
-    );
+    for o in &sc.objects {
+        assert!(
+            o.color_material.is_none() || o.colors.len() == o.positions.len(),
+            "colour material without colours"
+        );
+    }
     sc
 }
 
 // ------------------------------------------------------------------ GL state → fixshade
 
-/// What the library cannot express (the scene is rendered without it) and what it
-/// changes silently (rendered as the library does).
+/// What the library cannot express (the object is drawn as well as it can be, or
+/// not at all) and typed errors it returns.
 #[derive(Default, Debug)]
 struct Report {
     unsupported: Vec<String>,
@@ -225,204 +265,43 @@ impl Report {
             self.unsupported.push(s);
         }
     }
-    fn warn(&mut self, s: String) {
-        if !self.warnings.contains(&s) {
-            self.warnings.push(s);
-        }
+}
+
+/// The lights as OpenGL stores them after `glLightfv` with `view` as the modelview.
+fn eye_lights(sc: &Scene) -> Vec<GlLight> {
+    sc.lights.iter().map(|l| l.transformed(&sc.view)).collect()
+}
+
+fn light_model(sc: &Scene) -> GlLightModel {
+    GlLightModel {
+        ambient: sc.ambient,
+        local_viewer: sc.local_viewer,
+        two_side: sc.two_side,
+        separate_specular: sc.separate_specular,
     }
 }
 
-fn mul4(m: &Mat4, v: [f32; 4]) -> [f32; 4] {
-    core::array::from_fn(|r| {
-        (0..4)
-            .map(|c| f64::from(m.m[r][c]) * f64::from(v[c]))
-            .sum::<f64>() as f32
-    })
-}
-
-fn mul3(m: &Mat4, v: [f32; 3]) -> [f32; 3] {
-    core::array::from_fn(|r| {
-        (0..3)
-            .map(|c| f64::from(m.m[r][c]) * f64::from(v[c]))
-            .sum::<f64>() as f32
-    })
-}
-
-/// The light as OpenGL stores it after `glLightfv` with `view` as the modelview:
-/// `GL_POSITION` transformed by the matrix, `GL_SPOT_DIRECTION` by its upper 3×3.
-fn eye_light(view: &Mat4, l: &GlLight) -> GlLight {
-    GlLight {
-        position: mul4(view, l.position),
-        spot_direction: mul3(view, l.spot_direction),
-        ..*l
+/// The GL state of one object's draw call.
+fn gl_scene<'a>(sc: &Scene, o: &Object, lights: &'a [GlLight]) -> GlScene<'a> {
+    GlScene {
+        lights,
+        front: gl_material(&o.front),
+        back: gl_material(&o.back),
+        model: light_model(sc),
+        color_material: o.color_material,
     }
 }
 
-fn clamp_neg4(c: [f32; 4]) -> [f32; 4] {
-    c.map(|v| v.max(0.0))
-}
-
-/// The light description of a GL light, negative colours clamped to 0 when the
-/// library rejects them.
-fn light_desc(i: usize, l: &GlLight, rep: &mut Report) -> LightDesc {
-    let mut d = l.to_desc().expect("GL-valid light parameters");
-    for (name, c) in [
-        ("GL_AMBIENT", l.ambient),
-        ("GL_DIFFUSE", l.diffuse),
-        ("GL_SPECULAR", l.specular),
-    ] {
-        if c[..3].iter().any(|&v| v < 0.0) {
-            rep.unsupported(format!(
-                "light {i} {name} {:?} is negative: LightColors::new rejects it (drawn as 0)",
-                &c[..3]
-            ));
-        }
-    }
-    d.ambient = d.ambient.map(|v| v.max(0.0));
-    d.diffuse = d.diffuse.map(|v| v.max(0.0));
-    d.specular = d.specular.map(|v| v.max(0.0));
-    if l.position[3] != 0.0 && l.spot_cutoff != 180.0 && l.spot_exponent.fract() != 0.0 {
-        rep.warn(format!(
-            "light {i} GL_SPOT_EXPONENT {} is rounded to {} by SpotLight::new",
-            l.spot_exponent,
-            l.spot_exponent.round()
-        ));
-    }
-    d
-}
-
-fn material_desc(m: &GlMat, rep: &mut Report) -> MaterialDesc {
-    for (name, c) in [
-        ("GL_AMBIENT", m.ambient),
-        ("GL_DIFFUSE", m.diffuse),
-        ("GL_SPECULAR", m.specular),
-        ("GL_EMISSION", m.emission),
-    ] {
-        if c[..3].iter().any(|&v| v < 0.0) {
-            rep.unsupported(format!(
-                "material {name} {:?} is negative: Material::new rejects it (drawn as 0)",
-                &c[..3]
-            ));
-        }
-    }
-    if m.shininess.fract() != 0.0 {
-        rep.warn(format!(
-            "GL_SHININESS {} is rounded to {} by Material::new",
-            m.shininess,
-            m.shininess.round()
-        ));
-    }
-    GlMaterial {
-        ambient: clamp_neg4(m.ambient),
-        diffuse: clamp_neg4(m.diffuse),
-        specular: clamp_neg4(m.specular),
-        emission: clamp_neg4(m.emission),
-        shininess: m.shininess,
-    }
-    .to_desc()
-    .expect("a valid material")
-}
-
-/// Scene-level GL features the library has no way to express.
-fn scene_report(sc: &Scene) -> Report {
-    let mut rep = Report::default();
-    if sc.two_side && sc.objects.iter().any(|o| !o.cull) {
-        rep.unsupported(
-            "GL_LIGHT_MODEL_TWO_SIDE: no two-sided lighting (back faces are lit with the front \
-             material and the unflipped normal)"
-                .into(),
-        );
-    }
-    let differs = |a: &GlMat, b: &GlMat| {
-        (a.ambient, a.diffuse, a.specular, a.emission, a.shininess)
-            != (b.ambient, b.diffuse, b.specular, b.emission, b.shininess)
-    };
-    if sc
-        .objects
-        .iter()
-        .any(|o| !o.cull && differs(&o.front, &o.back))
-    {
-        rep.unsupported("GL_BACK material: one material per object (drawn with GL_FRONT's)".into());
-    }
-    if sc.separate_specular && sc.objects.iter().any(|o| o.shading == Shade::Gouraud) {
-        rep.unsupported(
-            "GL_SEPARATE_SPECULAR_COLOR: Gouraud interpolates one clamped colour, not a primary \
-             and a secondary colour"
-                .into(),
-        );
-    }
-    if sc.objects.iter().any(|o| o.has_colors) {
-        rep.unsupported(
-            "GL_COLOR_MATERIAL: no per-vertex material colours (drawn with the glMaterial values)"
-                .into(),
-        );
-    }
-    if !sc.normalize {
-        let non_unit = sc.objects.iter().any(|o| {
-            let nm = o.model.normal_matrix();
-            let det = {
-                let m = o.model.m;
-                m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-                    - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-                    + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-            };
-            o.normals.iter().any(|n| {
-                // |M⁻ᵀ n| = |cof(M) n| / |det M|
-                let t: [f32; 3] = core::array::from_fn(|r| (0..3).map(|c| nm[r][c] * n[c]).sum());
-                let len = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt() / det.abs();
-                (len - 1.0).abs() > 1e-3
-            })
-        });
-        if non_unit {
-            rep.unsupported(
-                "GL_NORMALIZE disabled with non-unit normals: ShadeVertex::new and \
-                 EyeTransform::normal always normalise"
-                    .into(),
-            );
-        }
-    }
-    let position_dependent = sc.local_viewer || sc.lights.iter().any(|l| l.position[3] != 0.0);
-    let smooth_normals = |o: &Object| {
-        o.triangles
-            .iter()
-            .any(|t| t.iter().any(|&i| o.normals[i] != o.normals[t[0]]))
-    };
-    if sc
-        .objects
-        .iter()
-        .any(|o| o.shading == Shade::Flat && (position_dependent || smooth_normals(o)))
-    {
-        rep.warn(
-            "GL_FLAT takes the colour of each triangle's last vertex; Flat lights the centroid \
-             with the averaged normal (equal only for face normals, directional lights and an \
-             infinite viewer)"
-                .into(),
-        );
-    }
-    rep
-}
-
-/// Warnings about values that leave a fixed tier's range [−2, 2).
-fn range_warnings(sc: &Scene, rep: &mut Report) {
-    for (i, l) in sc.lights.iter().enumerate() {
-        for (name, c) in [
-            ("GL_AMBIENT", l.ambient),
-            ("GL_DIFFUSE", l.diffuse),
-            ("GL_SPECULAR", l.specular),
-        ] {
-            if c[..3].iter().any(|&v| v >= 2.0) {
-                rep.warn(format!(
-                    "light {i} {name} {:?} saturates at 2 in this tier",
-                    &c[..3]
-                ));
-            }
-        }
-        if l.position[3] != 0.0 && 1.0 / l.constant_attenuation >= 2.0 {
-            rep.warn(format!(
-                "light {i}: the attenuation factor reaches 1/{} ≥ 2 and saturates in this tier",
-                l.constant_attenuation
-            ));
-        }
+/// The passes of an object: (cull, back faces lit as back faces). Two-sided
+/// lighting draws front faces with the front lighting and back faces with the
+/// back lighting; otherwise one pass lights every face as a front face.
+fn passes(sc: &Scene, o: &Object) -> Vec<(Cull, bool)> {
+    if o.cull {
+        vec![(Cull::Back, false)]
+    } else if sc.two_side {
+        vec![(Cull::Back, false), (Cull::Front, true)]
+    } else {
+        vec![(Cull::None, false)]
     }
 }
 
@@ -464,13 +343,6 @@ fn raster<S: SpanShader<N, Color = Rgb888>, const N: usize>(
     };
     // memory framebuffers cannot fail
     let Ok(_) = r;
-}
-
-fn opts(o: &Object, cull: Cull) -> RasterOptions {
-    RasterOptions {
-        cull: if o.cull { Cull::Back } else { cull },
-        ..RasterOptions::default()
-    }
 }
 
 /// The screen triangles of an object (triangles with a vertex behind the near
@@ -517,7 +389,7 @@ fn ids(sc: &Scene, geos: &[Geometry]) -> Vec<u16> {
                 let mut s = Fill(Rgb888::new(k, green, 0));
                 let op = RasterOptions {
                     cull,
-                    ..opts(o, cull)
+                    ..RasterOptions::default()
                 };
                 for (t, _) in &tris {
                     raster(
@@ -539,57 +411,110 @@ fn ids(sc: &Scene, geos: &[Geometry]) -> Vec<u16> {
 
 // ------------------------------------------------------------------ the tiers
 
-fn draw_with<S: Scalar, I: Illuminate<Scalar = S>>(
+/// One triangle to shade: its vertices and, with colour material, their colours.
+type Tri<S> = ([ShadeVertex<S>; 3], Option<[Rgb<S>; 3]>);
+
+/// The colour OpenGL's per-vertex lighting gives `v`: the primary and secondary
+/// colours clamped and summed once (`GL_SINGLE_COLOR`) or apart
+/// (`GL_SEPARATE_SPECULAR_COLOR`, in [0, 2]: interpolated, clamped per pixel).
+fn vertex_color<S: Scalar, I: Illuminate<Scalar = S>>(
+    lit: &I,
+    v: &ShadeVertex<S>,
+    color: Option<Rgb<S>>,
+    separate: bool,
+) -> Rgb<S> {
+    let parts = lit.shade_parts(&v.position, v.normal, color);
+    if separate {
+        parts.separate()
+    } else {
+        parts.sum().clamp01()
+    }
+}
+
+/// Draws `tris` with lighting `lit` in the object's shading mode.
+#[allow(clippy::too_many_arguments)]
+fn draw_with<S: Scalar, I: Illuminate<Scalar = S> + Clone>(
     lit: &I,
     shading: Shade,
-    tris: &[[ShadeVertex<S>; 3]],
+    tris: &[Tri<S>],
+    separate: bool,
     fb: &mut SliceFramebuffer<'_, Rgb888>,
     db: &mut DepthBuffer<'_>,
-    o: &RasterOptions,
+    op: &RasterOptions,
     persp: bool,
+    rep: &mut Report,
 ) {
     fn each<S: Scalar, D: Shading<S, Color = Rgb888>>(
         mut s: D,
-        tris: &[[ShadeVertex<S>; 3]],
+        tris: &[Tri<S>],
         fb: &mut SliceFramebuffer<'_, Rgb888>,
         db: &mut DepthBuffer<'_>,
-        o: &RasterOptions,
+        op: &RasterOptions,
         persp: bool,
     ) {
-        for t in tris {
+        for (t, _) in tris {
             let r = if persp {
-                s.draw_perspective(fb, Some(db), t, o)
+                s.draw_perspective(fb, Some(db), t, op)
             } else {
-                s.draw(fb, Some(db), t, o)
+                s.draw(fb, Some(db), t, op)
             };
             let Ok(_) = r;
         }
     }
+    let colored = tris.iter().any(|t| t.1.is_some());
     match shading {
-        Shade::Flat => each(
-            Shader::new(FlatShading, lit, Linear),
-            tris,
-            fb,
-            db,
-            o,
-            persp,
-        ),
+        // GL_FLAT: the colour lit at the provoking (last) vertex
+        Shade::Flat => {
+            let mut s = Shader::new(FlatShading, lit, Linear);
+            for (t, c) in tris {
+                let col = vertex_color(lit, &t[2], c.map(|c| c[2]), separate);
+                let Ok(_) = s.draw_color(fb, Some(db), t, col, op, persp);
+            }
+        }
+        Shade::Gouraud if colored || separate => {
+            let mut s = Shader::new(GouraudShading, lit, Linear);
+            for (t, c) in tris {
+                let cols = [0, 1, 2].map(|k| vertex_color(lit, &t[k], c.map(|c| c[k]), separate));
+                let Ok(_) = s.draw_vertex_colors(fb, Some(db), t, &cols, op, persp);
+            }
+        }
         Shade::Gouraud => each(
             Shader::new(GouraudShading, lit, Linear),
             tris,
             fb,
             db,
-            o,
+            op,
             persp,
         ),
-        Shade::Phong | Shade::Blinn => each(
-            Shader::new(PhongShading, lit, Linear),
-            tris,
-            fb,
-            db,
-            o,
-            persp,
-        ),
+        Shade::Phong | Shade::Blinn => {
+            if colored {
+                rep.unsupported(
+                    "GL_COLOR_MATERIAL with per-pixel shading: PhongShading interpolates no \
+                     vertex colours (drawn without them)"
+                        .into(),
+                );
+            }
+            if separate {
+                let sep = SeparateSpecular(lit.clone());
+                each(
+                    Shader::new(PhongShading, &sep, Linear),
+                    tris,
+                    fb,
+                    db,
+                    op,
+                    persp,
+                )
+            } else {
+                each(
+                    Shader::new(PhongShading, lit, Linear),
+                    tris,
+                    fb,
+                    db,
+                    op,
+                    persp,
+                )
+            }
+        }
     }
 }
 
@@ -600,80 +525,110 @@ fn render_tier<S: Scalar>(sc: &Scene, geos: &[Geometry], rep: &mut Report) -> Ve
     let mut depth = vec![u16::MAX; (w * h) as usize];
     let mut fb = SliceFramebuffer::new(&mut px, w, h).unwrap();
     let mut db = DepthBuffer::new(&mut depth, w).unwrap();
-    draw_scene::<S>(sc, geos, rep, &mut fb, &mut db);
+    let lights = eye_lights(sc);
+    for (o, g) in sc.objects.iter().zip(geos) {
+        let scene = gl_scene(sc, o, &lights);
+        macro_rules! go {
+            ($m:ty, $v:ty) => {
+                draw_object::<S, $m, $v>(sc, o, g, &scene, rep, &mut fb, &mut db)
+            };
+        }
+        match (o.shading == Shade::Phong, sc.local_viewer) {
+            (false, false) => go!(BlinnPhong, InfiniteViewer<S>),
+            (false, true) => go!(BlinnPhong, LocalViewer<S>),
+            (true, false) => go!(PhongModel, InfiniteViewer<S>),
+            (true, true) => go!(PhongModel, LocalViewer<S>),
+        }
+    }
     px
 }
 
-/// Draws every object of a scene in tier `S`.
-fn draw_scene<S: Scalar>(
+/// Up to 8 lights of any kind.
+type GlLights<S> = heapless::Vec<AnyLight<S>, 8>;
+
+/// Draws one object in tier `S` with reflection model `M` and viewer `V`.
+fn draw_object<S: Scalar, M: Model, V: fixshade::gl::GlViewer<S> + Clone>(
     sc: &Scene,
-    geos: &[Geometry],
+    o: &Object,
+    g: &Geometry,
+    scene: &GlScene<'_>,
     rep: &mut Report,
     fb: &mut SliceFramebuffer<'_, Rgb888>,
     db: &mut DepthBuffer<'_>,
 ) {
-    let descs: Vec<LightDesc> = sc
-        .lights
-        .iter()
-        .enumerate()
-        .map(|(i, l)| light_desc(i, &eye_light(&sc.view, l), rep))
-        .collect();
-    let model = GlLightModel {
-        ambient: sc.ambient,
-        local_viewer: sc.local_viewer,
-    };
-    let global = model.ambient_rgb::<S>().unwrap_or_else(|e| {
-        rep.unsupported(format!(
-            "GL_LIGHT_MODEL_AMBIENT {:?}: {e} (drawn as 0)",
-            &sc.ambient[..3]
-        ));
-        Rgb::from_f32(sc.ambient.map(|v| v.max(0.0))[..3].try_into().unwrap())
-    });
-    for (o, g) in sc.objects.iter().zip(geos) {
-        let lights: heapless::Vec<AnyLight<S>, 8> = descs
-            .iter()
-            .map(|d| AnyLight::new(d).expect("a valid light"))
-            .collect();
-        let mat = Material::<S>::new(&material_desc(&o.front, rep)).expect("a valid material");
-        let et = EyeTransform::new(&g.mv).unwrap();
-        let tris: Vec<[ShadeVertex<S>; 3]> = screen_tris(o, g)
-            .iter()
-            .map(|(s, idx)| {
-                core::array::from_fn(|k| ShadeVertex {
-                    screen: [s[k].x, s[k].y],
-                    z: s[k].z,
-                    inv_w: s[k].inv_w,
-                    position: et.point_f32::<S>(o.positions[idx[k]]),
-                    normal: et.normal::<S>(Vec3::from_f32(o.normals[idx[k]])),
-                })
-            })
-            .collect();
-        let op = opts(o, Cull::None);
-        let blinn = o.shading != Shade::Phong;
-        macro_rules! go {
-            ($m:ty) => {{
-                let lit = Lighting::<S, _, $m>::new(lights, mat).with_global_ambient(global);
-                if model.local_viewer {
-                    let lit = lit.with_viewer(LocalViewer::new([0.0; 3]).unwrap());
-                    draw_with(&lit, o.shading, &tris, fb, db, &op, sc.perspective);
-                } else {
-                    draw_with(&lit, o.shading, &tris, fb, db, &op, sc.perspective);
-                }
-            }};
-        }
-        if blinn {
-            go!(BlinnPhong)
+    let et = EyeTransform::new(&g.mv).unwrap();
+    let normal = |i: usize| {
+        if sc.normalize {
+            et.normal::<S>(Vec3::from_f32(o.normals[i]))
         } else {
-            go!(PhongModel)
+            // GL_NORMALIZE off: M⁻ᵀ·n with its length
+            Vec3::from_f32(eye_normal(&g.mv, o.normals[i], GlNormals::AsGiven))
+        }
+    };
+    let color = |i: usize| {
+        o.color_material
+            .map(|_| Rgb::from_f32([o.colors[i][0], o.colors[i][1], o.colors[i][2]]))
+    };
+    let tris: Vec<Tri<S>> = screen_tris(o, g)
+        .iter()
+        .map(|(s, idx)| {
+            let v = core::array::from_fn(|k| ShadeVertex {
+                screen: [s[k].x, s[k].y],
+                z: s[k].z,
+                inv_w: s[k].inv_w,
+                position: et.point_f32::<S>(o.positions[idx[k]]),
+                normal: normal(idx[k]),
+            });
+            let c = o.color_material.map(|_| idx.map(|i| color(i).unwrap()));
+            (v, c)
+        })
+        .collect();
+    let separate = sc.separate_specular;
+    for (cull, back) in passes(sc, o) {
+        let op = RasterOptions {
+            cull,
+            ..RasterOptions::default()
+        };
+        if back {
+            match scene.back_lighting::<S, GlLights<S>, M, V>() {
+                Ok(lit) => draw_with(
+                    &lit,
+                    o.shading,
+                    &tris,
+                    separate,
+                    fb,
+                    db,
+                    &op,
+                    sc.perspective,
+                    rep,
+                ),
+                Err(e) => rep.unsupported(format!("GlScene::back_lighting: {e}")),
+            }
+        } else {
+            match scene.lighting::<S, GlLights<S>, M, V>() {
+                Ok(lit) => draw_with(
+                    &lit,
+                    o.shading,
+                    &tris,
+                    separate,
+                    fb,
+                    db,
+                    &op,
+                    sc.perspective,
+                    rep,
+                ),
+                Err(e) => rep.unsupported(format!("GlScene::lighting: {e}")),
+            }
         }
     }
 }
 
 /// The `f64` reference model on the same coverage: per-pixel barycentric
 /// coordinates at the pixel centre (perspective-correct for perspective scenes),
-/// eye-space positions and normals in `f64`. Flat lights the centroid with the
-/// averaged normal, Gouraud interpolates clamped vertex colours, Phong interpolates
-/// position and normal.
+/// eye-space positions and normals in `f64`. `GL_FLAT` takes the colour lit at the
+/// last vertex, Gouraud interpolates the clamped vertex colours (primary and
+/// secondary clamped apart with separate specular), per-pixel shading interpolates
+/// position and normal (renormalised, as the GLSL shader does).
 struct RefShader<'a> {
     r: &'a Reference<'a>,
     disc: Disc<'a>,
@@ -681,6 +636,9 @@ struct RefShader<'a> {
     tri_near: bool,
     disc_out: &'a mut [u8],
     shading: Shade,
+    /// Back faces of two-sided lighting: the normal negated.
+    back: bool,
+    separate: bool,
     screen: [[f64; 2]; 3],
     inv_w: [f64; 3],
     pos: [V3; 3],
@@ -693,6 +651,19 @@ struct RefShader<'a> {
 
 fn lerp3(l: [f64; 3], a: &[V3; 3]) -> V3 {
     core::array::from_fn(|c| l[0] * a[0][c] + l[1] * a[1][c] + l[2] * a[2][c])
+}
+
+/// OpenGL's colour of primary and secondary parts: summed and clamped, or clamped
+/// apart and summed (`GL_SEPARATE_SPECULAR_COLOR`).
+fn combine((p, s): (V3, V3), separate: bool) -> V3 {
+    let c = |v: f64| v.clamp(0.0, 1.0);
+    core::array::from_fn(|i| {
+        if separate {
+            c(p[i]) + c(s[i])
+        } else {
+            c(p[i] + s[i])
+        }
+    })
 }
 
 impl SpanShader<0> for RefShader<'_> {
@@ -722,7 +693,10 @@ impl SpanShader<0> for RefShader<'_> {
                 Shade::Gouraud => (lerp3(l, &self.vcol), self.tri_near),
                 Shade::Phong | Shade::Blinn => {
                     let (p, n) = (lerp3(l, &self.pos), lerp3(l, &self.nrm));
-                    (self.r.shade(p, n), self.disc.near(p, n))
+                    let n = reference::normalize(n);
+                    let n = if self.back { n.map(|c| -c) } else { n };
+                    let parts = self.r.shade_parts(p, n, &VertexOptions::default());
+                    (combine(parts, self.separate), self.disc.near(p, n))
                 }
             };
             let idx = (y as u32 * self.width + (x as u32 + k as u32)) as usize;
@@ -792,9 +766,9 @@ impl Disc<'_> {
                 dot(core::array::from_fn(|c| 2.0 * nl * n[c] - l[c]), v)
             };
             let ks = (0..3)
-                .map(|c| f64::from(ld.specular[c]) * f64::from(self.material.specular[c]))
+                .map(|c| (f64::from(ld.specular[c]) * f64::from(self.material.specular[c])).abs())
                 .fold(0.0, f64::max);
-            x > 0.0 && ks * x.powf(f64::from(self.material.shininess.round())) > 0.5 / 255.0
+            x > 0.0 && ks * x.powf(f64::from(self.material.shininess)) > 0.5 / 255.0
         })
     }
 }
@@ -804,7 +778,7 @@ fn mul4_64(m: &Mat4, v: [f64; 4]) -> [f64; 4] {
 }
 
 /// The reference image and the pixels lit near a discontinuity (see [`Disc`]).
-fn render_reference(sc: &Scene, geos: &[Geometry], rep: &mut Report) -> (Vec<Rgb888>, Vec<u8>) {
+fn render_reference(sc: &Scene, geos: &[Geometry], _rep: &mut Report) -> (Vec<Rgb888>, Vec<u8>) {
     let (w, h) = (sc.width, sc.height);
     let mut img: Vec<Option<V3>> = vec![None; (w * h) as usize];
     let mut disc_img = vec![0u8; (w * h) as usize];
@@ -812,107 +786,130 @@ fn render_reference(sc: &Scene, geos: &[Geometry], rep: &mut Report) -> (Vec<Rgb
     let mut depth = vec![u16::MAX; (w * h) as usize];
     let mut fb = SliceFramebuffer::new(&mut dummy, w, h).unwrap();
     let mut db = DepthBuffer::new(&mut depth, w).unwrap();
-    // the reference takes any f32 colour (no validation): negative values stay
-    let descs: Vec<LightDesc> = sc
-        .lights
-        .iter()
-        .map(|l| eye_light(&sc.view, l).to_desc().unwrap())
-        .collect();
+    // the reference takes any f32 colour (no validation)
+    let lights = eye_lights(sc);
+    let descs: Vec<LightDesc> = lights.iter().map(|l| l.to_desc().unwrap()).collect();
     for (o, g) in sc.objects.iter().zip(geos) {
-        let m = &o.front;
-        if m.shininess.fract() != 0.0 {
-            rep.warn(format!(
-                "GL_SHININESS {} is rounded to {} by the reference",
-                m.shininess,
-                m.shininess.round()
-            ));
-        }
-        let material = GlMaterial {
-            ambient: m.ambient,
-            diffuse: m.diffuse,
-            specular: m.specular,
-            emission: m.emission,
-            shininess: m.shininess,
-        }
-        .to_desc()
-        .unwrap();
-        let r = Reference {
-            lights: &descs,
-            material,
-            global_ambient: [sc.ambient[0], sc.ambient[1], sc.ambient[2]],
-            viewer: if sc.local_viewer {
-                ViewerDesc::Local([0.0; 3])
-            } else {
-                ViewerDesc::Infinite([0.0, 0.0, 1.0])
-            },
-            fog: None,
-            model: if o.shading == Shade::Phong {
-                ModelDesc::of::<PhongModel>()
-            } else {
-                ModelDesc::of::<BlinnPhong>()
-            },
-        };
+        let scene = gl_scene(sc, o, &lights);
         let nm = g.mv.normal_matrix();
+        // |det M₃|: normal_matrix is |det M₃|·M⁻ᵀ
+        let det = {
+            let m: [[f64; 3]; 3] =
+                core::array::from_fn(|r| core::array::from_fn(|c| f64::from(g.mv.m[r][c])));
+            (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+                + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]))
+                .abs()
+        };
         let eye = |i: usize| -> (V3, V3, f64) {
             let p = o.positions[i].map(f64::from);
             let e = mul4_64(&g.mv, [p[0], p[1], p[2], 1.0]);
             let n = o.normals[i].map(f64::from);
             let ne: V3 = core::array::from_fn(|r| (0..3).map(|c| f64::from(nm[r][c]) * n[c]).sum());
+            let ne = if sc.normalize {
+                reference::normalize(ne)
+            } else {
+                ne.map(|c| c / det)
+            };
             let clip = mul4_64(&g.mvp, [p[0], p[1], p[2], 1.0]);
-            ([e[0], e[1], e[2]], reference::normalize(ne), clip[3])
+            ([e[0], e[1], e[2]], ne, clip[3])
         };
-        let disc = Disc {
-            lights: &descs,
-            material: &material,
-            local_viewer: sc.local_viewer,
-            blinn: o.shading != Shade::Phong,
-        };
-        let op = opts(o, Cull::None);
         let sub = f64::from(1u32 << SUBPIXEL_BITS);
-        let clamp = |c: V3| c.map(|v| v.clamp(0.0, 1.0));
-        for (s, idx) in screen_tris(o, g) {
-            let v = idx.map(eye);
-            let pos = v.map(|t| t.0);
-            let nrm = v.map(|t| t.1);
-            let flat = {
-                let n = reference::normalize(core::array::from_fn(|c| {
-                    nrm[0][c] + nrm[1][c] + nrm[2][c]
-                }));
-                let centroid = core::array::from_fn(|c| (pos[0][c] + pos[1][c] + pos[2][c]) / 3.0);
-                (r.shade(centroid, n), disc.near(centroid, n))
-            };
-            let tri_near = match o.shading {
-                Shade::Flat => flat.1,
-                _ => (0..3).any(|k| disc.near(pos[k], nrm[k])),
-            };
-            let flat = flat.0;
-            let mut shader = RefShader {
-                r: &r,
-                disc,
-                tri_near,
-                disc_out: &mut disc_img,
-                shading: o.shading,
-                screen: s.map(|v| [f64::from(v.x) / sub, f64::from(v.y) / sub]),
-                inv_w: if sc.perspective {
-                    v.map(|t| 1.0 / t.2)
+        for (cull, back) in passes(sc, o) {
+            let m = if back { &o.back } else { &o.front };
+            let material = gl_material(m).to_desc().unwrap();
+            let face = if back { GlFace::Back } else { GlFace::Front };
+            let cm = scene.color_material_on(face);
+            let r = Reference {
+                lights: &descs,
+                material,
+                global_ambient: [sc.ambient[0], sc.ambient[1], sc.ambient[2]],
+                viewer: if sc.local_viewer {
+                    ViewerDesc::Local([0.0; 3])
                 } else {
-                    [1.0; 3]
+                    ViewerDesc::Infinite([0.0, 0.0, 1.0])
                 },
-                pos,
-                nrm,
-                flat,
-                vcol: [0, 1, 2].map(|k| clamp(r.shade(pos[k], nrm[k]))),
-                out: &mut img,
-                width: w,
+                fog: None,
+                model: if o.shading == Shade::Phong {
+                    ModelDesc::of::<PhongModel>()
+                } else {
+                    ModelDesc::of::<BlinnPhong>()
+                },
             };
-            raster(
-                sc.perspective,
-                &mut fb,
-                &mut db,
-                &s.map(|v| v.to_raster([])),
-                &op,
-                &mut shader,
-            );
+            let disc = Disc {
+                lights: &descs,
+                material: &r.material,
+                local_viewer: sc.local_viewer,
+                blinn: o.shading != Shade::Phong,
+            };
+            let op = RasterOptions {
+                cull,
+                ..RasterOptions::default()
+            };
+            for (s, idx) in screen_tris(o, g) {
+                let v = idx.map(eye);
+                let pos = v.map(|t| t.0);
+                let nrm = v.map(|t| t.1);
+                // the normal lit at a vertex (negated for back faces)
+                let lit_n = |k: usize| {
+                    if back {
+                        nrm[k].map(|c| -c)
+                    } else {
+                        nrm[k]
+                    }
+                };
+                let vopts = |k: usize| VertexOptions {
+                    normalize: sc.normalize,
+                    color_material: if o.color_material.is_some() {
+                        cm
+                    } else {
+                        ColorMaterial::Off
+                    },
+                    color: o
+                        .colors
+                        .get(idx[k])
+                        .map_or([1.0; 3], |c| [c[0], c[1], c[2]]),
+                };
+                let vcol = [0, 1, 2].map(|k| {
+                    combine(
+                        r.shade_parts(pos[k], lit_n(k), &vopts(k)),
+                        sc.separate_specular,
+                    )
+                });
+                let tri_near = match o.shading {
+                    Shade::Flat => disc.near(pos[2], lit_n(2)),
+                    _ => (0..3).any(|k| disc.near(pos[k], lit_n(k))),
+                };
+                let mut shader = RefShader {
+                    r: &r,
+                    disc,
+                    tri_near,
+                    disc_out: &mut disc_img,
+                    shading: o.shading,
+                    back,
+                    separate: sc.separate_specular,
+                    screen: s.map(|v| [f64::from(v.x) / sub, f64::from(v.y) / sub]),
+                    inv_w: if sc.perspective {
+                        v.map(|t| 1.0 / t.2)
+                    } else {
+                        [1.0; 3]
+                    },
+                    pos,
+                    nrm,
+                    flat: vcol[2],
+                    vcol,
+                    out: &mut img,
+                    width: w,
+                };
+                raster(
+                    sc.perspective,
+                    &mut fb,
+                    &mut db,
+                    &s.map(|v| v.to_raster([])),
+                    &op,
+                    &mut shader,
+                );
+            }
         }
     }
     let px = img
@@ -975,18 +972,12 @@ fn main() {
         std::fs::write(dir.join(format!("{}.id", sc.name)), bytes).unwrap();
         let mut tiers = BTreeMap::new();
         for tier in ["f32", "q30", "q14", "ref"] {
-            let mut rep = scene_report(&sc);
+            let mut rep = Report::default();
             let t = Instant::now();
             let px = match tier {
                 "f32" => render_tier::<f32>(&sc, &geos, &mut rep),
-                "q30" => {
-                    range_warnings(&sc, &mut rep);
-                    render_tier::<Q30<3>>(&sc, &geos, &mut rep)
-                }
-                "q14" => {
-                    range_warnings(&sc, &mut rep);
-                    render_tier::<Q14<2>>(&sc, &geos, &mut rep)
-                }
+                "q30" => render_tier::<Q30<3>>(&sc, &geos, &mut rep),
+                "q14" => render_tier::<Q14<2>>(&sc, &geos, &mut rep),
                 _ => {
                     let (px, disc) = render_reference(&sc, &geos, &mut rep);
                     std::fs::write(dir.join(format!("{}.disc", sc.name)), disc).unwrap();

@@ -782,7 +782,7 @@ def table(res: dict) -> None:
                   f"  {','.join(d['soft_float_frame']) or '-'} / {','.join(d['wide_reachable']) or '-'}")
     any_sec = next(s for s in res if s != "host")
     ent0 = next(iter(res[any_sec].values()))
-    print(f"mesh (SPHERE, flash): {ent0['mesh_bytes']} B; transform built once outside the frame: "
+    print(f"mesh (SPHERE, flash): {ent0['mesh_bytes']} B; camera converted once (f32, init; the frames build their transform in integers): "
           + ", ".join(f"{s} {next(iter(p.values()))['transform_instr']} instr" for s, p in res.items() if s != "host"))
     print("columns: stack = peak bytes below the initial SP; ram = frame buffers as allocated (bins at"
           " bins_len, 64 resume records); ram min = bins and records at the frame's exact need; code = flash"
@@ -802,6 +802,63 @@ def table(res: dict) -> None:
                 c = d["code_bytes_lib"]
                 line += f"; fixshade code {c} {'ok' if c <= 12288 else 'OVER'} (≤ 12288)"
             print(line)
+
+
+# Issue 8's per-configuration targets (instructions per lit pixel, whole frame, O3).
+PX_TARGETS = {"lambert_gouraud": (40, 25), "blinn_gouraud": (45, 30), "blinn_phong_inc": (150, 100),
+              "blinn_phong": (450, 260)}
+README = HERE.parent / "README.md"
+TRADEOFF = HERE.parent / "docs" / "tradeoff.md"
+MARK = ("<!-- frame-table:start (python3 measure/frame.py rewrites this block) -->", "<!-- frame-table:end -->")
+
+
+def frame_markdown(doc: dict) -> str:
+    """The whole-frame table of `measure/out/frame.json` (README and docs/tradeoff.md)."""
+    m0, m4, z = doc.get("m0", {}), doc.get("m4f", {}), doc.get("m0_z", {})
+    rows = []
+    for c in CONFIGS:
+        b = c + "_band8"
+        f = lambda d, e, k="instr_per_lit_px": (f"{d[e][k]:.0f}" if isinstance(d.get(e, {}).get(k), float)
+                                               else str(d.get(e, {}).get(k, "—")))
+        tgt = PX_TARGETS.get(c)
+        mhz = 133e6
+        fps = (f"{mhz / m0[b]['instructions']:.1f}" if b in m0 else "—")
+        rows.append([f"`{c}`", f(m0, c), f(m0, b), f(m4, c), f(m4, b),
+                     f"≤ {tgt[0]} / ≤ {tgt[1]}" if tgt else "—",
+                     f(m0, b, "stack_bytes"), f(z, b, "stack_bytes"),
+                     str(m0[b]["ram_min_bytes"]) if b in m0 else "—",
+                     f(m0, b, "code_bytes_lib"), f(z, b, "code_bytes_lib"), fps])
+    head = ["configuration", "M0 full", "M0 8-row", "M4F full", "M4F 8-row", "target M0 / M4F",
+            "M0 stack B (O3)", "M0 stack B (z)", "M0 buffers B", "M0 code B (O3)", "M0 code B (z)",
+            "fps, 133 MHz M0"]
+    out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    out += ["| " + " | ".join(r) + " |" for r in rows]
+    ent = next(iter(m0.values()), {})
+    out.append("")
+    out.append(
+        "Instructions per lit pixel of one whole frame of the standard scene (240 × 240 Rgb565, the 362-vertex"
+        f" sphere, {ent.get('lit_px', '—')} lit pixels): clears, vertex stage, bins, set-up, spans, flushes into a"
+        " checksumming `DrawTarget`; counted in Unicorn on the crate's compiled code (O3; *z*: opt-level z);"
+        " every checksum equals the host's. *8-row*: through an 8-row strip and depth strip; *buffers*:"
+        " strip + depth strip + vertex cache + bins + resume records at the frame's exact need; *code*: fixshade's"
+        " flash reachable from the frame entry (compiler-builtins excluded); *fps*: 133 MHz ÷ instructions per"
+        " frame (8-row bands), i.e. assuming one instruction per cycle — optimistic on a Cortex-M0+ (loads,"
+        " branches and calls take two cycles). Mesh in flash: "
+        f"{ent.get('mesh_bytes', '—')} B. Measured by `python3 measure/frame.py` (→ `measure/out/frame.json`).")
+    return "\n".join(out)
+
+
+def rewrite_marked(path: Path, body: str) -> bool:
+    """Replaces the block between MARK in `path`; False when the markers are missing."""
+    if not path.exists():
+        return False
+    text = path.read_text()
+    a, b = MARK
+    i, j = text.find(a), text.find(b)
+    if i < 0 or j < i:
+        return False
+    path.write_text(text[: i + len(a)] + "\n" + body + "\n" + text[j:])
+    return True
 
 
 def main(argv=None) -> int:
@@ -860,6 +917,9 @@ def main(argv=None) -> int:
         OUT.parent.mkdir(exist_ok=True)
         OUT.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
         log(f"wrote {OUT.relative_to(HERE.parent)} ({time.time() - t:.0f} s)")
+        for path in (README, TRADEOFF):
+            if rewrite_marked(path, frame_markdown(doc)):
+                log(f"wrote the frame table in {path.relative_to(HERE.parent)}")
     return 0
 
 

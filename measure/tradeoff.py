@@ -233,6 +233,16 @@ def front_text(pts, idx, with_shading=False):
 # ----------------------------------------------------------------------------- markdown
 
 
+def frame_section() -> str:
+    """The whole-frame table from measure/out/frame.json, between the markers frame.py rewrites."""
+    import frame  # measure/frame.py
+    a, b = frame.MARK
+    path = ROOT / "measure" / "out" / "frame.json"
+    body = (frame.frame_markdown(json.loads(path.read_text())) if path.exists()
+            else "Not measured yet: run `python3 measure/frame.py`.")
+    return f"{a}\n{body}\n{b}"
+
+
 def markdown(d: Data, command: str, ran: bool) -> str:
     today = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d")
     pixels = sorted({r.get("pixels") for r in d.host.values() if r.get("pixels")})
@@ -244,6 +254,9 @@ def markdown(d: Data, command: str, ran: bool) -> str:
         + (" (which first ran `cargo bench --bench tradeoff` and `python3 measure/counts.py`)."
            if ran else " from the existing `measure/out/host.json` and `measure/out/counts.json`."))
     add("Do not edit by hand: rerun the command.\n")
+
+    add("## Whole frames (the mesh renderer)\n")
+    add(frame_section() + "\n")
 
     add("## How to read\n")
     add(

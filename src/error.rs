@@ -34,6 +34,31 @@ pub enum ParamError {
     GammaOutOfRange,
     /// The fog end distance is not beyond its start.
     FogRange,
+    /// A value the scene needs lies beyond the range of the number tier: the named
+    /// term (a light colour times a material colour, with the attenuation's `1/a`
+    /// folded in, or a bound of the per-channel sum) must stay below `limit` in
+    /// magnitude in tier `tier` ([`Scalar::NAME`](crate::num::Scalar::NAME)). Use a
+    /// wider tier (`f32`) for such scenes.
+    TierRange {
+        /// The term.
+        param: &'static str,
+        /// The tier's name.
+        tier: &'static str,
+        /// The largest magnitude the tier holds, rounded up (2 for the fixed tiers).
+        limit: u32,
+    },
+    /// An OpenGL light of another kind than the light type asked for (e.g. a
+    /// positional `GL_POSITION` for a [`DirectionalLight`](crate::light::DirectionalLight)).
+    LightKind(&'static str),
+    /// More lights than the light set holds.
+    LightCount {
+        /// Lights given.
+        lights: usize,
+        /// Lights the set holds (its exact length for arrays).
+        capacity: usize,
+    },
+    /// The viewer type does not match `GL_LIGHT_MODEL_LOCAL_VIEWER`.
+    Viewer(&'static str),
 }
 
 impl fmt::Display for ParamError {
@@ -48,6 +73,17 @@ impl fmt::Display for ParamError {
             Self::RefractiveIndex => f.write_str("relative refractive index: not positive"),
             Self::GammaOutOfRange => f.write_str("gamma: outside 1..=4"),
             Self::FogRange => f.write_str("fog: end is not beyond start"),
+            Self::TierRange { param, tier, limit } => {
+                write!(
+                    f,
+                    "{param}: beyond the range of tier {tier} (magnitude below {limit})"
+                )
+            }
+            Self::LightKind(p) => write!(f, "light kind: {p}"),
+            Self::LightCount { lights, capacity } => {
+                write!(f, "{lights} lights for a light set of {capacity}")
+            }
+            Self::Viewer(p) => write!(f, "viewer: {p}"),
         }
     }
 }

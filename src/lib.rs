@@ -113,7 +113,9 @@ pub mod vector;
 
 /// The types most programs need, for `use fixshade::prelude::*`.
 pub mod prelude {
-    pub use crate::camera::{Camera, MeshTransform, Orthographic, Perspective};
+    pub use crate::camera::{
+        Angle, Camera, FixedCamera, MeshTransform, Orthographic, Perspective, Pose,
+    };
     pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
     pub use crate::error::ParamError;
     pub use crate::light::{

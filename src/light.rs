@@ -6,22 +6,30 @@
 //! kinds at run time; arrays, `heapless::Vec`s and tuples of lights are light sets.
 
 use crate::color::Rgb;
-use crate::error::{direction, finite, non_negative, ParamError};
+use crate::error::{direction, finite, non_negative, non_negative3, ParamError};
 use crate::material::Material;
-use crate::num::Scalar;
+use crate::num::{Exponent, GeoScalar, Scalar};
 use crate::vector::{point_from_f32, point_sub, Point3, Vec3};
+use core::marker::PhantomData;
 
 /// The colours a light emits into each term (OpenGL's `GL_AMBIENT`, `GL_DIFFUSE`,
-/// `GL_SPECULAR` light parameters), linear RGB, non-negative.
+/// `GL_SPECULAR` light parameters), linear RGB.
+///
+/// Kept as `f32`, as given: a light colour is multiplied with the material's colour
+/// (and the attenuation's `1/a`) when a [`Lighting`](crate::lighting::Lighting) is
+/// built, and only that product must fit the tier — a `GL_DIFFUSE` of 2.5 on a
+/// material of 0.3 is exact in `Q14`. [`LightColors::new`] takes non-negative
+/// colours; [`LightColors::signed`] also negative ones (OpenGL's "negative light").
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LightColors<S> {
     /// Added to the ambient term (`Ia`), scaled by the material's ambient colour.
-    pub ambient: Rgb<S>,
+    pub ambient: [f32; 3],
     /// Scaled by the material's diffuse colour and `N·L` (`Il` of the diffuse term).
-    pub diffuse: Rgb<S>,
+    pub diffuse: [f32; 3],
     /// Scaled by the material's specular colour and the highlight (`Il` of the
     /// specular term; also drives the transmission term).
-    pub specular: Rgb<S>,
+    pub specular: [f32; 3],
+    tier: PhantomData<S>,
 }
 
 impl<S: Scalar> LightColors<S> {
@@ -32,9 +40,32 @@ impl<S: Scalar> LightColors<S> {
         specular: [f32; 3],
     ) -> Result<Self, ParamError> {
         Ok(Self {
-            ambient: Rgb::try_from_f32("light ambient", ambient)?,
-            diffuse: Rgb::try_from_f32("light diffuse", diffuse)?,
-            specular: Rgb::try_from_f32("light specular", specular)?,
+            ambient: non_negative3("light ambient", ambient)?,
+            diffuse: non_negative3("light diffuse", diffuse)?,
+            specular: non_negative3("light specular", specular)?,
+            tier: PhantomData,
+        })
+    }
+
+    /// Validated colours of any sign, as OpenGL takes them: a negative channel
+    /// subtracts light (the output still clamps to [0, 1]). NaN and infinite
+    /// channels are rejected.
+    pub fn signed(
+        ambient: [f32; 3],
+        diffuse: [f32; 3],
+        specular: [f32; 3],
+    ) -> Result<Self, ParamError> {
+        let f = |name, c: [f32; 3]| -> Result<[f32; 3], ParamError> {
+            for v in c {
+                finite(name, v)?;
+            }
+            Ok(c)
+        };
+        Ok(Self {
+            ambient: f("light ambient", ambient)?,
+            diffuse: f("light diffuse", diffuse)?,
+            specular: f("light specular", specular)?,
+            tier: PhantomData,
         })
     }
 
@@ -47,9 +78,45 @@ impl<S: Scalar> LightColors<S> {
     /// A white light of intensity 1 (no ambient), like OpenGL's `GL_LIGHT0`.
     pub fn white() -> Self {
         Self {
-            ambient: Rgb::BLACK,
-            diffuse: Rgb::WHITE,
-            specular: Rgb::WHITE,
+            ambient: [0.0; 3],
+            diffuse: [1.0; 3],
+            specular: [1.0; 3],
+            tier: PhantomData,
+        }
+    }
+}
+
+/// A light's colour terms for one material, in `f32`, before they are converted to
+/// the tier: the light's colours times the material's, with a constant factor
+/// (the attenuation's `1/a`) folded in. [`Lighting::checked`](crate::lighting::Lighting::checked)
+/// tests them against the tier's range.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ColorTerms {
+    /// `La ∘ ka / a`.
+    pub ambient: [f32; 3],
+    /// `Ld ∘ kd / a`.
+    pub diffuse: [f32; 3],
+    /// `Ls ∘ ks / a`.
+    pub specular: [f32; 3],
+    /// `Ls ∘ kst / a`.
+    pub transmission: [f32; 3],
+    /// Whether the terms are multiplied by a per-point factor in [0, 1] (the
+    /// distance attenuation `1/(1 + b'·d + c'·d²)` or a spot cone); the ambient
+    /// term then varies per point as well.
+    pub varying: bool,
+}
+
+impl ColorTerms {
+    /// The terms of `colors` on `m`, each product times `k` (NaN from `0·∞` is 0;
+    /// the conversion to a tier saturates what is beyond it).
+    pub fn new<S: Scalar>(c: &LightColors<S>, m: &Material<S>, k: f32, varying: bool) -> Self {
+        let p = |a: [f32; 3], b: [f32; 3]| core::array::from_fn(|i| a[i] * b[i] * k);
+        Self {
+            ambient: p(c.ambient, m.ambient),
+            diffuse: p(c.diffuse, m.diffuse),
+            specular: p(c.specular, m.specular),
+            transmission: p(c.specular, m.transmission),
+            varying,
         }
     }
 }
@@ -73,26 +140,15 @@ pub struct Prepared<S> {
 }
 
 impl<S: Scalar> Prepared<S> {
-    /// For a point or spot light: a constant attenuation `1/a` (b = c = 0) is
-    /// folded into the colours here, once, instead of per point.
-    fn positional(c: &LightColors<S>, m: &Material<S>, att: &Attenuation<S::Geo>) -> Self {
-        let mut p = Self::new(c, m, None, None);
-        if att.constant {
-            let k = att.factor::<S>(S::geo_from_f32(0.0));
-            p.ambient = p.ambient.scale(k);
-            p.diffuse = p.diffuse.scale(k);
-            p.specular = p.specular.scale(k);
-            p.transmission = p.transmission.scale(k);
-        }
-        p
-    }
-
-    fn new(c: &LightColors<S>, m: &Material<S>, l: Option<Vec3<S>>, v: Option<Vec3<S>>) -> Self {
+    /// The terms converted to the tier (rounded once; beyond the range they
+    /// saturate, which [`Lighting::checked`](crate::lighting::Lighting::checked)
+    /// reports), and the halfway vector of the constant `l` and `v`.
+    fn new(t: &ColorTerms, l: Option<Vec3<S>>, v: Option<Vec3<S>>) -> Self {
         Self {
-            ambient: c.ambient.mul(m.ambient),
-            diffuse: c.diffuse.mul(m.diffuse),
-            specular: c.specular.mul(m.specular),
-            transmission: c.specular.mul(m.transmission),
+            ambient: Rgb::from_f32(t.ambient),
+            diffuse: Rgb::from_f32(t.diffuse),
+            specular: Rgb::from_f32(t.specular),
+            transmission: Rgb::from_f32(t.transmission),
             half: match (l, v) {
                 (Some(l), Some(v)) => Some(S::normalize_precise(l.add(v))),
                 _ => None,
@@ -127,6 +183,13 @@ pub trait LightSource<S: Scalar> {
     fn constant_ambient(&self) -> Option<Rgb<S>>;
     /// The light arriving at surface point `p`.
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S>;
+    /// The colour terms [`LightSource::prepare`] converts for `material`, in `f32`
+    /// (for the range check of [`Lighting::checked`](crate::lighting::Lighting::checked));
+    /// `None` (the default) leaves the light out of the check.
+    fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
+        let _ = material;
+        None
+    }
 }
 
 /// What receives each light's [`Incident`] from [`LightSet::for_each`] (a trait
@@ -158,6 +221,9 @@ pub trait LightSet<S: Scalar> {
     fn constant_ambient(&self) -> Rgb<S>;
     /// Hands each light's [`Incident`] at `p` to `visitor`.
     fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V);
+    /// Hands each light's [`LightSource::color_terms`] for `material` to `f`
+    /// (construction time only).
+    fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms));
 }
 
 macro_rules! light_set_for_source {
@@ -175,6 +241,11 @@ macro_rules! light_set_for_source {
             #[inline(always)]
             fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
                 visitor.visit(self.incident(p))
+            }
+            fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms)) {
+                if let Some(t) = LightSource::color_terms(self, material) {
+                    f(t)
+                }
             }
         }
     )*};
@@ -198,6 +269,9 @@ macro_rules! light_set_for_container {
                     l.for_each(p, visitor);
                 }
             }
+            fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms)) {
+                self.iter().for_each(|l| l.for_each_color_terms(material, f));
+            }
         }
     )*};
 }
@@ -216,6 +290,9 @@ macro_rules! light_set_tuple {
             #[inline(always)]
             fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V) {
                 $(self.$idx.for_each(p, visitor);)*
+            }
+            fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms)) {
+                $(self.$idx.for_each_color_terms(material, f);)*
             }
         }
     };
@@ -271,10 +348,14 @@ impl<S: Scalar> DirectionalLight<S> {
 impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
     const NEEDS_POSITION: bool = false;
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
-        self.pre = Prepared::new(&self.colors, material, Some(self.dir), view);
+        let t = ColorTerms::new(&self.colors, material, 1.0, false);
+        self.pre = Prepared::new(&t, Some(self.dir), view);
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
         Some(self.pre.ambient)
+    }
+    fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
+        Some(ColorTerms::new(&self.colors, material, 1.0, false))
     }
     #[inline(always)]
     fn incident(&self, _p: &Point3<S>) -> Incident<'_, S> {
@@ -291,17 +372,48 @@ impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
 /// quadratic attenuation). `a = 1, b = c = 0` is no attenuation; pure `1/d²` is
 /// the physical case.
 ///
-/// At extremes: `d = 0` gives `1/a` (saturating at the tier's maximum when
-/// `a = 0`); very far lights give factors that round to 0; distances beyond the
-/// geometry range (±32768 for the fixed tiers) saturate.
+/// # Representation
+///
+/// The coefficients keep the relative precision of the `f32` they are given as, in
+/// the form the geometry type stores them ([`GeoScalar::inv_quadratic`]): `f32` for
+/// the float tiers; for the fixed tiers (Q16.16 distances) the exact 24-bit
+/// mantissa and exponent of each (a 16-bit mantissa for `Q14`), multiplied with the
+/// normalised distance in 32-bit (`Q14`) or 64-bit (`Q30`) integer arithmetic. So
+/// `c = 10⁻⁶` at `d = 300` counts (it was 0 in Q16.16), for every legal coefficient
+/// and every distance of the geometry range (see [`Scalar::geo_inv_quadratic`] for
+/// the error: far below 1 LSB of 8-bit output).
+///
+/// # Folding `1/a`
+///
+/// A light does not evaluate `1/(a + b·d + c·d²)` itself: it folds the constant
+/// `1/a` into its colours once (when a [`Lighting`](crate::lighting::Lighting) is
+/// built, in `f32`) and evaluates `1/(1 + (b/a)·d + (c/a)·d²)`, a factor in [0, 1].
+/// So `GL_CONSTANT_ATTENUATION` 0.25 (a light four times brighter than its colour)
+/// is exact in the fixed tiers wherever the brightened colour terms fit the tier
+/// (see [`Lighting::checked`](crate::lighting::Lighting::checked)).
+///
+/// # Extremes
+///
+/// - `a = 0` (pure `1/d²`) cannot be folded: the factor grows without bound near
+///   the light and saturates at the tier's maximum (below 2 for the fixed tiers,
+///   where `b·d + c·d² < ½`; 10⁹ for the float tiers). [`Attenuation::factor`]
+///   saturates likewise for any `a < ½` in the fixed tiers.
+/// - Very far lights give factors that round to 0; lengths beyond the geometry range
+///   (32768 units for the fixed tiers) saturate there.
+/// - Negative distances (only reachable through [`Attenuation::factor`]) count as 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Attenuation<G> {
-    k: [G; 3],
+pub struct Attenuation<G: GeoScalar> {
+    /// `a, b, c` as given (for [`Attenuation::factor`]).
+    k: G::InvQuadratic,
+    /// `1, b/a, c/a`, or `a, b, c` when `a = 0` (or `b/a`, `c/a` overflow).
+    kn: G::InvQuadratic,
+    /// `1/a` when `kn` is normalised, else 1: folded into the colours.
+    inv_a: f32,
     /// `b = c = 0`: the factor is the constant `1/a`, folded into the colours.
     constant: bool,
 }
 
-impl<G> Attenuation<G> {
+impl<G: GeoScalar> Attenuation<G> {
     /// Validated coefficients: finite, non-negative, not all zero.
     pub fn new<S: Scalar<Geo = G>>(a: f32, b: f32, c: f32) -> Result<Self, ParamError> {
         let a = non_negative("attenuation constant", a)?;
@@ -310,36 +422,63 @@ impl<G> Attenuation<G> {
         if a == 0.0 && b == 0.0 && c == 0.0 {
             return Err(ParamError::AttenuationAllZero);
         }
+        let (inv_a, bn, cn) = (1.0 / a, b / a, c / a);
+        let (kn, inv_a) = if a > 0.0 && inv_a.is_finite() && bn.is_finite() && cn.is_finite() {
+            (G::inv_quadratic(1.0, bn, cn), inv_a)
+        } else {
+            (G::inv_quadratic(a, b, c), 1.0)
+        };
         Ok(Self {
-            k: [S::geo_from_f32(a), S::geo_from_f32(b), S::geo_from_f32(c)],
+            k: G::inv_quadratic(a, b, c),
+            kn,
+            inv_a,
             constant: b == 0.0 && c == 0.0,
         })
     }
 
     /// No attenuation (`a = 1, b = c = 0`).
     pub fn none<S: Scalar<Geo = G>>() -> Self {
+        let k = G::inv_quadratic(1.0, 0.0, 0.0);
         Self {
-            k: [
-                S::geo_from_f32(1.0),
-                S::geo_from_f32(0.0),
-                S::geo_from_f32(0.0),
-            ],
+            k,
+            kn: k,
+            inv_a: 1.0,
             constant: true,
         }
     }
 
-    /// The attenuation factor at distance `d`.
+    /// The attenuation factor `1/(a + b·d + c·d²)` at distance `d`
+    /// ([`Scalar::geo_inv_quadratic`]; saturates at the tier's maximum).
     #[inline(always)]
-    pub fn factor<S: Scalar<Geo = G>>(&self, d: G) -> S
-    where
-        G: Copy,
-    {
-        // 1/(a + d·(b + c·d))
-        let [a, b, c] = self.k;
-        S::geo_recip(S::geo_add(
-            a,
-            S::geo_mul(d, S::geo_add(b, S::geo_mul(c, d))),
-        ))
+    pub fn factor<S: Scalar<Geo = G>>(&self, d: G) -> S {
+        S::geo_inv_quadratic(&self.k, d)
+    }
+
+    /// Whether the factor is the constant `1/a` (`b = c = 0`).
+    pub fn is_constant(&self) -> bool {
+        self.constant
+    }
+
+    /// The constant a light folds into its colours: `1/a` (1 when `a = 0`).
+    pub fn folded(&self) -> f32 {
+        self.inv_a
+    }
+
+    /// The per-point factor after folding: `1/(1 + (b/a)·d + (c/a)·d²)` (or
+    /// `1/(b·d + c·d²)` when `a = 0`).
+    #[inline(always)]
+    fn varying<S: Scalar<Geo = G>>(&self, d: G) -> S {
+        S::geo_inv_quadratic(&self.kn, d)
+    }
+
+    /// The colour terms of `colors` on `m` with `1/a` folded in.
+    fn terms<S: Scalar<Geo = G>>(
+        &self,
+        colors: &LightColors<S>,
+        m: &Material<S>,
+        spot: bool,
+    ) -> ColorTerms {
+        ColorTerms::new(colors, m, self.inv_a, spot || !self.constant)
     }
 }
 
@@ -382,10 +521,13 @@ impl<S: Scalar> PointLight<S> {
 impl<S: Scalar> LightSource<S> for PointLight<S> {
     const NEEDS_POSITION: bool = true;
     fn prepare(&mut self, material: &Material<S>, _view: Option<Vec3<S>>) {
-        self.pre = Prepared::positional(&self.colors, material, &self.att);
+        self.pre = Prepared::new(&self.att.terms(&self.colors, material, false), None, None);
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
         self.att.constant.then_some(self.pre.ambient)
+    }
+    fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
+        Some(self.att.terms(&self.colors, material, false))
     }
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
@@ -394,7 +536,7 @@ impl<S: Scalar> LightSource<S> for PointLight<S> {
         let varying = !self.att.constant;
         Incident {
             l,
-            scale: varying.then(|| self.att.factor::<S>(d)),
+            scale: varying.then(|| self.att.varying::<S>(d)),
             ambient_per_point: varying,
             colors: &self.pre,
         }
@@ -413,15 +555,16 @@ pub struct SpotLight<S: Scalar> {
     pos: Point3<S>,
     axis: Vec3<S>,
     cos_cutoff: S,
-    exponent: u16,
+    exponent: Exponent,
     att: Attenuation<S::Geo>,
     colors: LightColors<S>,
     pre: Prepared<S>,
 }
 
 impl<S: Scalar> SpotLight<S> {
-    /// A spot light at `position` pointing along `axis`, with `exponent` (rounded to
-    /// an integer in 0..=65535) and `cutoff_deg` in 0..=90 degrees (OpenGL's
+    /// A spot light at `position` pointing along `axis`, with `exponent` (a real
+    /// number in 0..=65535; OpenGL's `GL_SPOT_EXPONENT` 2.5 is 2.5) and `cutoff_deg`
+    /// in 0..=90 degrees (OpenGL's
     /// `GL_SPOT_CUTOFF`; 180 means no cone: use a [`PointLight`] instead).
     ///
     /// Errors: non-finite position, zero or non-finite axis, exponent negative or
@@ -438,7 +581,7 @@ impl<S: Scalar> SpotLight<S> {
             finite("position", c)?;
         }
         let axis = direction("spot axis", axis)?;
-        let exponent = exponent_u16("spot exponent", exponent)?;
+        let exponent = Exponent::new("spot exponent", exponent)?;
         let cutoff = finite("spot cutoff", cutoff_deg).map_err(|_| ParamError::CutoffOutOfRange)?;
         if !(0.0..=90.0).contains(&cutoff) {
             return Err(ParamError::CutoffOutOfRange);
@@ -455,37 +598,32 @@ impl<S: Scalar> SpotLight<S> {
     }
 }
 
-/// Validates an exponent given as `f32`: finite, in 0..=65535, rounded.
-pub(crate) fn exponent_u16(name: &'static str, e: f32) -> Result<u16, ParamError> {
-    let e = finite(name, e)?;
-    if !(0.0..=65535.0).contains(&e) {
-        return Err(ParamError::ExponentOutOfRange(name));
-    }
-    Ok(libm::roundf(e) as u16)
-}
-
 impl<S: Scalar> LightSource<S> for SpotLight<S> {
     const NEEDS_POSITION: bool = true;
     fn prepare(&mut self, material: &Material<S>, _view: Option<Vec3<S>>) {
-        self.pre = Prepared::positional(&self.colors, material, &self.att);
+        self.pre = Prepared::new(&self.att.terms(&self.colors, material, true), None, None);
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
         None
     }
+    fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
+        Some(self.att.terms(&self.colors, material, true))
+    }
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
         let (l, d) = S::geo_direction(point_sub::<S>(self.pos, *p));
-        // cos φ = s·(−L); spot = cos^e φ inside the cone, 0 outside
-        let cos_phi = S::ZERO.sub(self.axis.dot(l));
+        // cos φ = s·(−L); spot = cos^e φ inside the cone, 0 outside (a cosine that
+        // corrects the lengths of s and L, which cos^e φ amplifies)
+        let cos_phi = S::ZERO.sub(S::cos_normal(self.axis, l));
         let spot = if cos_phi >= self.cos_cutoff && cos_phi > S::ZERO {
-            cos_phi.min1().powi(self.exponent)
+            cos_phi.min1().pow(self.exponent)
         } else {
             S::ZERO
         };
         let scale = if self.att.constant {
             spot
         } else {
-            spot.mul(self.att.factor::<S>(d))
+            spot.mul(self.att.varying::<S>(d))
         };
         Incident {
             l,
@@ -531,6 +669,13 @@ impl<S: Scalar> LightSource<S> for AnyLight<S> {
             Self::Spot(l) => l.incident(p),
         }
     }
+    fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
+        match self {
+            Self::Directional(l) => LightSource::color_terms(l, material),
+            Self::Point(l) => LightSource::color_terms(l, material),
+            Self::Spot(l) => LightSource::color_terms(l, material),
+        }
+    }
 }
 
 /// A plain `f32` description of a light, shared by the tiers, the OpenGL parameter
@@ -568,7 +713,7 @@ pub enum LightKind {
         position: [f32; 3],
         /// Direction the spot points to.
         axis: [f32; 3],
-        /// Spot exponent `e` of `cos^e φ`.
+        /// Spot exponent `e` of `cos^e φ` (a real number in 0..=65535).
         exponent: f32,
         /// Cone half-angle in degrees, 0..=90.
         cutoff_deg: f32,
@@ -578,9 +723,18 @@ pub enum LightKind {
 }
 
 impl<S: Scalar> AnyLight<S> {
-    /// Builds and validates a light from its description.
+    /// Builds and validates a light from its description (non-negative colours).
     pub fn new(d: &LightDesc) -> Result<Self, ParamError> {
-        let colors = LightColors::new(d.ambient, d.diffuse, d.specular)?;
+        Self::with_colors(d, LightColors::new(d.ambient, d.diffuse, d.specular)?)
+    }
+
+    /// [`AnyLight::new`] with colours of any sign ([`LightColors::signed`]).
+    pub fn signed(d: &LightDesc) -> Result<Self, ParamError> {
+        Self::with_colors(d, LightColors::signed(d.ambient, d.diffuse, d.specular)?)
+    }
+
+    /// The light of `d`'s kind with the validated `colors`.
+    pub fn with_colors(d: &LightDesc, colors: LightColors<S>) -> Result<Self, ParamError> {
         Ok(match d.kind {
             LightKind::Directional { towards_light } => {
                 Self::Directional(DirectionalLight::new(towards_light, colors)?)

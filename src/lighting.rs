@@ -26,7 +26,16 @@
 //!   maximum while summed and is clamped to [0, 1] when converted to an output colour.
 //! - Normals are expected unit length; [`Lighting::shade`] takes them as they are,
 //!   [`Lighting::shade_normalizing`] normalises first (a zero normal gives the ambient
-//!   and emission terms only).
+//!   and emission terms only). A unit vector rounded to a fixed tier is up to
+//!   5·10⁻⁵ too long or short, which the powers amplify (n·5·10⁻⁵ at the top of a
+//!   highlight): every cosine that a power raises ([`Scalar::cos_normal`],
+//!   [`Scalar::reflect_dot`]) corrects the lengths of `N`, `L`, `V` and `H` to
+//!   first order in `Q14` when they are within 2⁻⁵ of unit length, and Phong's
+//!   `R = 2(N·L)N − L` is exact at the mirror direction (where `2(N·L)` is 2,
+//!   beyond the fixed tiers' range).
+//! - A float tier's normal with an infinite or NaN component (only a `Vec3` built
+//!   directly holds one) lights nothing; infinite or NaN positions give zero light
+//!   directions and distances: no channel is ever NaN or infinite.
 
 use crate::color::Rgb;
 use crate::error::{finite, ParamError};
@@ -184,6 +193,13 @@ pub trait FogModel<S: Scalar>: Copy + core::fmt::Debug {
     const NEEDS_DISTANCE: bool;
     /// `f·direct + (1 − f)·fog_colour` at viewing distance `d`.
     fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S>;
+    /// `f·c` alone (for a part of the light that is faded but carries no fog
+    /// colour: the secondary colour of [`Lighting::shade_parts`]). The default is
+    /// `apply(c) − apply(0)`.
+    #[inline(always)]
+    fn fade(&self, c: Rgb<S>, d: S::Geo) -> Rgb<S> {
+        self.apply(c, d).sub(self.apply(Rgb::BLACK, d))
+    }
 }
 
 /// No fog.
@@ -196,15 +212,32 @@ impl<S: Scalar> FogModel<S> for NoFog {
     fn apply(&self, direct: Rgb<S>, _d: S::Geo) -> Rgb<S> {
         direct
     }
+    #[inline(always)]
+    fn fade(&self, c: Rgb<S>, _d: S::Geo) -> Rgb<S> {
+        c
+    }
 }
 
 /// Linear depth cueing (seed 004's atmospheric attenuation): the diffuse and
 /// specular light fades towards `colour` between `start` and `end`:
 /// `f = clamp((end − d)/(end − start), 0, 1)`.
+///
+/// # Representation and extremes
+///
+/// The ramp is stored per tier ([`Scalar::ramp`]) so that any finite `start < end`
+/// works: ranges of `f32::MAX` and more (`start = −f32::MAX, end = f32::MAX` is
+/// half fog near 0), ends far beyond the geometry range (`0…200 000` fades over the
+/// whole range of the fixed tiers' distances), ranges down to one `f32` step (a step
+/// at `end`). The fixed tiers hold the slope `1/(end − start)` as a mantissa and an
+/// exponent rather than in Q16.16, and evaluate it from the point of the geometry
+/// range nearest to `end`; `f` is within 2⁻¹³ (`Q14`) or 10⁻⁶ (the others) of the
+/// exact ramp at the tier's distance `d`. What remains is the distance's own
+/// rounding (2⁻¹⁶ units for the fixed tiers, 2⁻²⁴ relative for `f32`), which the
+/// ramp scales by `1/(end − start)`. A NaN distance (only from non-finite positions
+/// given directly as `Vec3`) is full fog.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearFog<S: Scalar> {
-    end: S::Geo,
-    inv_range: S::Geo,
+    ramp: S::Ramp,
     color: Rgb<S>,
 }
 
@@ -217,8 +250,7 @@ impl<S: Scalar> LinearFog<S> {
             return Err(ParamError::FogRange);
         }
         Ok(Self {
-            end: S::geo_from_f32(e),
-            inv_range: S::geo_from_f32(1.0 / (e - s)),
+            ramp: S::ramp(s, e),
             color: Rgb::try_from_f32("fog colour", color)?,
         })
     }
@@ -228,13 +260,102 @@ impl<S: Scalar> FogModel<S> for LinearFog<S> {
     const NEEDS_DISTANCE: bool = true;
     #[inline(always)]
     fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S> {
-        let f = S::geo_to_unit(S::geo_mul(S::geo_sub(self.end, d), self.inv_range));
-        self.color.lerp(direct, f)
+        self.color.lerp(direct, S::ramp_at(&self.ramp, d))
+    }
+    #[inline(always)]
+    fn fade(&self, c: Rgb<S>, d: S::Geo) -> Rgb<S> {
+        c.scale(S::ramp_at(&self.ramp, d))
+    }
+}
+
+/// `GL_COLOR_MATERIAL`: which material colour a per-vertex colour replaces
+/// (`glColorMaterial`'s mode), for [`Lighting::shade_parts`] with a colour.
+///
+/// The replaced material colour counts as white in the lighting's prepared terms,
+/// and the sums it multiplies are multiplied by the vertex colour per point: one
+/// product per channel and point, no per-light work. [`Lighting::shade`] (no
+/// colour) is the lighting under a white vertex colour, as OpenGL's default
+/// current colour (1, 1, 1, 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ColorMaterial {
+    /// `glDisable(GL_COLOR_MATERIAL)`: vertex colours are ignored.
+    #[default]
+    Off,
+    /// `GL_EMISSION`.
+    Emission,
+    /// `GL_AMBIENT`.
+    Ambient,
+    /// `GL_DIFFUSE`.
+    Diffuse,
+    /// `GL_SPECULAR`.
+    Specular,
+    /// `GL_AMBIENT_AND_DIFFUSE` (OpenGL's default mode).
+    AmbientAndDiffuse,
+}
+
+impl ColorMaterial {
+    /// The material the lights are prepared with: the replaced colours white.
+    fn effective<S: Scalar>(self, m: &Material<S>) -> Material<S> {
+        let mut e = *m;
+        match self {
+            Self::Off => {}
+            Self::Emission => e.emission = [1.0; 3],
+            Self::Ambient => e.ambient = [1.0; 3],
+            Self::Diffuse => e.diffuse = [1.0; 3],
+            Self::Specular => e.specular = [1.0; 3],
+            Self::AmbientAndDiffuse => {
+                e.ambient = [1.0; 3];
+                e.diffuse = [1.0; 3];
+            }
+        }
+        e
+    }
+}
+
+/// The colour of a surface point in the two parts OpenGL keeps apart: the primary
+/// colour (emission, ambient and diffuse) and the secondary colour (specular, and
+/// transmission), both linear and unclamped. `GL_SINGLE_COLOR` is their
+/// [`sum`](LitColor::sum); `GL_SEPARATE_SPECULAR_COLOR` clamps each to [0, 1]
+/// first ([`separate`](LitColor::separate)), so that a texture can modulate the
+/// primary colour before the secondary one is added.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LitColor<S> {
+    /// Emission + ambient + diffuse.
+    pub primary: Rgb<S>,
+    /// Specular (+ transmission).
+    pub secondary: Rgb<S>,
+}
+
+impl<S: Scalar> LitColor<S> {
+    /// `primary + secondary` (OpenGL's `GL_SINGLE_COLOR`).
+    #[inline(always)]
+    pub fn sum(self) -> Rgb<S> {
+        self.primary.add(self.secondary)
+    }
+
+    /// `clamp(primary) + clamp(secondary)`, each clamped to [0, 1] (OpenGL's
+    /// `GL_SEPARATE_SPECULAR_COLOR` without a texture; in [0, 2], clamped again by
+    /// the output).
+    #[inline(always)]
+    pub fn separate(self) -> Rgb<S> {
+        self.primary.clamp01().add(self.secondary.clamp01())
     }
 }
 
 /// A lighting configuration: lights, material, viewer, fog and the global ambient
 /// light, with everything that is constant precomputed.
+///
+/// # Building
+///
+/// The lights' colours are multiplied with the material's (and with the
+/// attenuation's `1/a`) in `f32` when the lighting is built; every product is
+/// rounded to the tier once. [`Lighting::new`] and the `with_*` builders are
+/// infallible: a product beyond the tier's range (±2 for `Q14`/`Q30`) saturates
+/// there. [`Lighting::checked`] returns a [`ParamError::TierRange`] naming the term
+/// instead: a lighting that passes it gives, in every tier, the colours of the
+/// `f64` reference up to the tier's documented bound (`GL_DIFFUSE` 2.5,
+/// `GL_CONSTANT_ATTENUATION` 0.25 and negative colours included), because no
+/// intermediate sum saturates where that would change the clamped output.
 ///
 /// ```
 /// use fixshade::prelude::*;
@@ -255,8 +376,14 @@ where
 {
     lights: L,
     material: Material<S>,
-    global_ambient: Rgb<S>,
+    global_ambient: [f32; 3],
+    color_material: ColorMaterial,
+    /// `emission + ambient_base`.
     base: Rgb<S>,
+    /// The emission (white under `ColorMaterial::Emission`).
+    emission: Rgb<S>,
+    /// `global ∘ ka + Σ` the ambient of lights without attenuation.
+    ambient_base: Rgb<S>,
     viewer: V,
     fog: F,
     model: PhantomData<M>,
@@ -279,22 +406,47 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting<S, L, M, V, F> {
     /// Every part at once.
     pub fn with_parts(
-        mut lights: L,
+        lights: L,
         material: Material<S>,
         global_ambient: Rgb<S>,
         viewer: V,
         fog: F,
     ) -> Self {
-        lights.prepare(&material, viewer.constant_dir());
-        let base = material
-            .emission
-            .add(global_ambient.mul(material.ambient))
+        Self::build(
+            lights,
+            material,
+            global_ambient.to_f32(),
+            viewer,
+            fog,
+            ColorMaterial::Off,
+        )
+    }
+
+    /// Every part, the global ambient light in `f32` (multiplied with the material's
+    /// ambient colour before it is converted to the tier).
+    pub(crate) fn build(
+        mut lights: L,
+        material: Material<S>,
+        global_ambient: [f32; 3],
+        viewer: V,
+        fog: F,
+        color_material: ColorMaterial,
+    ) -> Self {
+        let eff = color_material.effective(&material);
+        lights.prepare(&eff, viewer.constant_dir());
+        let ga: [f32; 3] = core::array::from_fn(|i| global_ambient[i] * eff.ambient[i]);
+        let emission = Rgb::from_f32(eff.emission);
+        let ambient_base = Rgb::from_f32(ga).add(lights.constant_ambient());
+        let base = Rgb::from_f32(core::array::from_fn(|i| eff.emission[i] + ga[i]))
             .add(lights.constant_ambient());
         Self {
             lights,
             material,
             global_ambient,
+            color_material,
             base,
+            emission,
+            ambient_base,
             viewer,
             fog,
             model: PhantomData,
@@ -304,51 +456,166 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// The same configuration with a global ambient light `Ia` (OpenGL's
     /// `GL_LIGHT_MODEL_AMBIENT`, default 0.2).
     pub fn with_global_ambient(self, ambient: Rgb<S>) -> Self {
-        Self::with_parts(self.lights, self.material, ambient, self.viewer, self.fog)
+        self.with_global_ambient_f32(ambient.to_f32())
+    }
+
+    /// [`Lighting::with_global_ambient`] from `f32` channels (any sign), multiplied
+    /// with the material's ambient colour before it is converted to the tier.
+    pub fn with_global_ambient_f32(self, ambient: [f32; 3]) -> Self {
+        Self::build(
+            self.lights,
+            self.material,
+            ambient,
+            self.viewer,
+            self.fog,
+            self.color_material,
+        )
     }
 
     /// The same configuration with another viewer.
     pub fn with_viewer<V2: Viewer<S>>(self, viewer: V2) -> Lighting<S, L, M, V2, F> {
-        Lighting::with_parts(
+        Lighting::build(
             self.lights,
             self.material,
             self.global_ambient,
             viewer,
             self.fog,
+            self.color_material,
         )
     }
 
     /// The same configuration with fog.
     pub fn with_fog<F2: FogModel<S>>(self, fog: F2) -> Lighting<S, L, M, V, F2> {
-        Lighting::with_parts(
+        Lighting::build(
             self.lights,
             self.material,
             self.global_ambient,
             self.viewer,
             fog,
+            self.color_material,
         )
     }
 
     /// The same configuration with another material model.
     pub fn with_model<M2: Model>(self) -> Lighting<S, L, M2, V, F> {
-        Lighting::with_parts(
+        Lighting::build(
             self.lights,
             self.material,
             self.global_ambient,
             self.viewer,
             self.fog,
+            self.color_material,
         )
     }
 
     /// The same lights and viewer with another material.
     pub fn with_material(self, material: Material<S>) -> Self {
-        Self::with_parts(
+        Self::build(
             self.lights,
             material,
             self.global_ambient,
             self.viewer,
             self.fog,
+            self.color_material,
         )
+    }
+
+    /// The same configuration with `GL_COLOR_MATERIAL` in mode `mode`: the vertex
+    /// colour given to [`Lighting::shade_parts`] replaces that material colour.
+    pub fn with_color_material(self, mode: ColorMaterial) -> Self {
+        Self::build(
+            self.lights,
+            self.material,
+            self.global_ambient,
+            self.viewer,
+            self.fog,
+            mode,
+        )
+    }
+
+    /// The lighting if the tier holds every term of its equation, else the term
+    /// that does not fit: [`ParamError::TierRange`] with the tier's limit.
+    ///
+    /// The test, per channel, on the products formed in `f32` (light colour ×
+    /// material colour × `1/a`):
+    /// - each product is below the tier's maximum in magnitude;
+    /// - with a negative colour anywhere, or fog: the sum of all positive terms
+    ///   (emission and global ambient included) and the sum of all negative ones.
+    ///
+    /// Where it passes, no intermediate value saturates unless the true sum is
+    /// beyond the tier's maximum with every term non-negative, where the output
+    /// clamps to 1 either way. The float tiers (maximum 10⁹) pass every finite scene.
+    ///
+    /// ```
+    /// use fixshade::prelude::*;
+    /// use fixshade::error::ParamError;
+    /// // GL_DIFFUSE 2.5 on a material of 0.3: the product 0.75 fits Q14
+    /// let light = DirectionalLight::<Q14>::new([0.0, 0.0, 1.0],
+    ///     LightColors::new([0.0; 3], [2.5; 3], [0.0; 3]).unwrap()).unwrap();
+    /// let mat = Material::new(&MaterialDesc { diffuse: [0.3; 3], ..MaterialDesc::default() }).unwrap();
+    /// let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat).checked().unwrap();
+    /// let c = lit.shade(&Lighting::<Q14, DirectionalLight<Q14>>::origin(), Vec3::from_f32([0.0, 0.0, 1.0]));
+    /// assert_eq!(c.to_rgb888().r(), 191); // 0.75
+    /// // on a material of 1.0 the product 2.5 does not
+    /// let mat = Material::new(&MaterialDesc { diffuse: [1.0; 3], ..MaterialDesc::default() }).unwrap();
+    /// let err = Lighting::<Q14, _, BlinnPhong>::new(light, mat).checked().unwrap_err();
+    /// assert!(matches!(err, ParamError::TierRange { limit: 2, .. }));
+    /// ```
+    pub fn checked(self) -> Result<Self, ParamError> {
+        let max = S::MAX.to_f32();
+        let err = |param| ParamError::TierRange {
+            param,
+            tier: S::NAME,
+            limit: libm::ceilf(max) as u32,
+        };
+        let eff = self.color_material.effective(&self.material);
+        // the constant part: emission + global ambient
+        let constant: [f32; 3] = core::array::from_fn(|i| {
+            let v = eff.emission[i] + self.global_ambient[i] * eff.ambient[i];
+            if v.is_nan() {
+                0.0
+            } else {
+                v
+            }
+        });
+        let mut pos = constant.map(|v| v.max(0.0));
+        let mut neg = constant.map(|v| v.min(0.0));
+        let mut negative = neg.iter().any(|&v| v < 0.0);
+        let mut result = Ok(());
+        const NAMES: [&str; 4] = [
+            "light ambient × material ambient",
+            "light diffuse × material diffuse",
+            "light specular × material specular",
+            "light specular × material transmission",
+        ];
+        self.lights.for_each_color_terms(&eff, &mut |t| {
+            for c in 0..3 {
+                // 0·∞ (a colour 0 under a folded 1/a of ∞) is no light
+                let terms = [t.ambient[c], t.diffuse[c], t.specular[c], t.transmission[c]]
+                    .map(|v| if v.is_nan() { 0.0 } else { v });
+                for (v, name) in terms.iter().zip(NAMES) {
+                    if !(v.abs() < max) {
+                        result = Err(err(name));
+                    }
+                }
+                let [a, d, s, tr] = terms;
+                // diffuse + specular and transmission exclude each other
+                pos[c] += a.max(0.0) + (d.max(0.0) + s.max(0.0)).max(tr.max(0.0));
+                neg[c] += a.min(0.0) + (d.min(0.0) + s.min(0.0)).min(tr.min(0.0));
+                negative |= terms.iter().any(|&v| v < 0.0);
+            }
+        });
+        result?;
+        if negative || F::NEEDS_DISTANCE {
+            for c in 0..3 {
+                if !(pos[c] < max && neg[c] > -max) {
+                    return Err(err(
+                        "sum of the lighting terms (with negative colours or fog)",
+                    ));
+                }
+            }
+        }
+        Ok(self)
     }
 
     /// Whether [`Lighting::shade`] reads the surface position (point or spot lights,
@@ -370,6 +637,11 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         &self.lights
     }
 
+    /// The `GL_COLOR_MATERIAL` mode.
+    pub fn color_material(&self) -> ColorMaterial {
+        self.color_material
+    }
+
     /// The part of the colour that is the same at every point: emission, global
     /// ambient and the ambient of lights without attenuation.
     pub fn base(&self) -> Rgb<S> {
@@ -377,15 +649,21 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     }
 
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
+    ///
+    /// Never NaN or infinite, whatever a float tier's `Vec3` holds: a normal with an
+    /// infinite or NaN component lights nothing (only the ambient and emission terms
+    /// remain), infinite or NaN positions give zero light directions and distances
+    /// (and full fog for a NaN viewing distance).
     #[inline(always)]
     pub fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
         let (v, dist) = self.viewer.view(p);
-        let mut sum = LightSum {
+        let mut sum = LightSum::<S, L, M, V, F, false> {
             lighting: self,
             n,
             v,
             ambient: self.base,
             direct: Rgb::BLACK,
+            specular: Rgb::BLACK,
         };
         self.lights.for_each(p, &mut sum);
         sum.ambient.add(self.fog.apply(sum.direct, dist))
@@ -397,34 +675,99 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         self.shade(p, n.normalize())
     }
 
-    /// One light's (per-point ambient, diffuse + specular + transmission).
+    /// The colour of `p` with normal `n` in OpenGL's two parts ([`LitColor`]), with
+    /// `GL_COLOR_MATERIAL`: `color` (a vertex colour) replaces the material colour
+    /// of the lighting's [`ColorMaterial`] mode (ignored when it is `Off`; `None` is
+    /// white). `shade_parts(p, n, None).sum()` is [`Lighting::shade`] up to
+    /// rounding.
+    ///
+    /// Fog fades the diffuse part towards the fog colour and the secondary colour
+    /// towards zero.
     #[inline(always)]
-    fn light_terms(
+    pub fn shade_parts(&self, p: &Point3<S>, n: Vec3<S>, color: Option<Rgb<S>>) -> LitColor<S> {
+        let (v, dist) = self.viewer.view(p);
+        let mut sum = LightSum::<S, L, M, V, F, true> {
+            lighting: self,
+            n,
+            v,
+            ambient: self.ambient_base,
+            direct: Rgb::BLACK,
+            specular: Rgb::BLACK,
+        };
+        self.lights.for_each(p, &mut sum);
+        let (mut emission, mut ambient) = (self.emission, sum.ambient);
+        let (mut diffuse, mut specular) = (sum.direct, sum.specular);
+        if let Some(c) = color {
+            match self.color_material {
+                ColorMaterial::Off => {}
+                ColorMaterial::Emission => emission = c,
+                ColorMaterial::Ambient => ambient = ambient.mul(c),
+                ColorMaterial::Diffuse => diffuse = diffuse.mul(c),
+                ColorMaterial::Specular => specular = specular.mul(c),
+                ColorMaterial::AmbientAndDiffuse => {
+                    ambient = ambient.mul(c);
+                    diffuse = diffuse.mul(c);
+                }
+            }
+        }
+        LitColor {
+            primary: emission.add(ambient).add(self.fog.apply(diffuse, dist)),
+            secondary: self.fog.fade(specular, dist),
+        }
+    }
+
+    /// One light's (per-point ambient, diffuse, specular): with `SPLIT` the
+    /// specular (and transmission) part apart, else added to the diffuse part
+    /// (and the specular part zero).
+    #[inline(always)]
+    fn light_terms<const SPLIT: bool>(
         &self,
         inc: &Incident<'_, S>,
         n: Vec3<S>,
         v: Vec3<S>,
-    ) -> (Option<Rgb<S>>, Rgb<S>) {
+    ) -> (Option<Rgb<S>>, Rgb<S>, Rgb<S>) {
         let c = inc.colors;
         let m = &self.material;
-        let nl = n.dot(inc.l);
+        // N·L: with the lengths corrected where a power (brilliance) or the refraction
+        // amplifies their rounding (see `Scalar::cos_normal`); the plain dot product
+        // elsewhere (the diffuse term is linear in it: 5·10⁻⁵ is 0.013 LSB)
+        let nl = if M::BRILLIANCE || M::TRANSMISSION {
+            S::cos_normal(n, inc.l)
+        } else {
+            n.dot(inc.l)
+        };
+        // the per-point factor (attenuation, spot cone) scales each scalar
+        // before the colours: the sum diffuse + specular is formed scaled, so it
+        // saturates only where the light's true contribution does
+        let k = inc.scale;
+        let sc = |x: S| match k {
+            Some(k) => x.mul(k),
+            None => x,
+        };
         let mut direct = Rgb::BLACK;
-        if nl > S::ZERO {
+        let mut specular = Rgb::BLACK;
+        // A float tier's normal with an infinite component (only a `Vec3` built directly
+        // holds one) makes N·L infinite or NaN: outside (0, MAX] and [−MAX, 0) it
+        // lights nothing, so no channel becomes infinite or NaN. (Free for the fixed
+        // tiers, whose values never exceed MAX.)
+        if nl > S::ZERO && nl <= S::MAX {
             // diffuse: kd·Id·(N·L)^b
             let d = if M::BRILLIANCE {
                 nl.min1().powi(m.brilliance as u16)
             } else {
                 nl
             };
-            direct = c.diffuse.scale(d);
+            direct = c.diffuse.scale(sc(d));
             // specular: ks·Is·f(β)·x^n, x = R·V or N·H
             let x = match M::SPECULAR {
                 Specular::None => S::ZERO,
-                Specular::Phong => n.reflect(inc.l).dot(v),
-                Specular::BlinnPhong => n.dot(c.half.unwrap_or_else(|| inc.l.add(v).normalize())),
+                Specular::Phong => S::reflect_dot(n, inc.l, v),
+                Specular::BlinnPhong => {
+                    S::cos_normal(n, c.half.unwrap_or_else(|| inc.l.add(v).normalize()))
+                }
             };
             if M::SPECULAR != Specular::None && x > S::ZERO {
-                let mut s = x.min1().powi(m.shininess);
+                let mut s = x.min1().pow(m.shininess);
                 if M::FRESNEL {
                     // Schlick: F0 + (1 − F0)(1 − cos β)^5, cos β = N·L
                     let f = m
@@ -432,24 +775,39 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
                         .add(S::ONE.sub(m.fresnel_f0).mul(S::ONE.sub(nl.min1()).powi(5)));
                     s = s.mul(f);
                 }
-                direct = direct.add_scaled(c.specular, s);
+                let s = sc(s);
+                if SPLIT {
+                    specular = c.specular.scale(s);
+                } else {
+                    direct = direct.add_scaled(c.specular, s);
+                }
             }
-        } else if M::TRANSMISSION && nl < S::ZERO {
-            direct = c
-                .transmission
-                .scale(transmission(n, inc.l, v, m.eta, nl).powi(m.transmission_exponent));
+        } else if M::TRANSMISSION && nl < S::ZERO && nl >= S::ZERO.sub(S::MAX) {
+            let t = c.transmission.scale(sc(
+                transmission(n, inc.l, v, m.eta, nl).pow(m.transmission_exponent)
+            ));
+            if SPLIT {
+                specular = t;
+            } else {
+                direct = t;
+            }
         }
         let ambient = inc.ambient_per_point.then_some(c.ambient);
-        match inc.scale {
-            Some(k) => (ambient.map(|a| a.scale(k)), direct.scale(k)),
-            None => (ambient, direct),
-        }
+        (
+            ambient.map(|a| match k {
+                Some(k) => a.scale(k),
+                None => a,
+            }),
+            direct,
+            specular,
+        )
     }
 }
 
 /// What the shading stage lights with: anything that gives the colour of a surface
-/// point. Implemented by every [`Lighting`] configuration; the shading modes take
-/// one type parameter for it instead of the five of [`Lighting`].
+/// point. Implemented by every [`Lighting`] configuration (and by [`BackFaces`] and
+/// [`SeparateSpecular`] around one); the shading modes take one type parameter for
+/// it instead of the five of [`Lighting`].
 pub trait Illuminate {
     /// The number tier.
     type Scalar: Scalar;
@@ -457,6 +815,22 @@ pub trait Illuminate {
     const NEEDS_POSITION: bool;
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
     fn shade(&self, p: &Point3<Self::Scalar>, n: Vec3<Self::Scalar>) -> Rgb<Self::Scalar>;
+    /// The colour in OpenGL's primary and secondary parts, with a vertex colour for
+    /// `GL_COLOR_MATERIAL` (see [`Lighting::shade_parts`]). The default is
+    /// [`Illuminate::shade`] as the primary colour, the vertex colour ignored.
+    #[inline(always)]
+    fn shade_parts(
+        &self,
+        p: &Point3<Self::Scalar>,
+        n: Vec3<Self::Scalar>,
+        color: Option<Rgb<Self::Scalar>>,
+    ) -> LitColor<Self::Scalar> {
+        let _ = color;
+        LitColor {
+            primary: self.shade(p, n),
+            secondary: Rgb::BLACK,
+        }
+    }
 }
 
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illuminate
@@ -468,27 +842,109 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illumina
     fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
         Lighting::shade(self, p, n)
     }
+    #[inline(always)]
+    fn shade_parts(&self, p: &Point3<S>, n: Vec3<S>, color: Option<Rgb<S>>) -> LitColor<S> {
+        Lighting::shade_parts(self, p, n, color)
+    }
 }
 
-/// Σ over the lights: the per-point ambient and the light-dependent part.
-struct LightSum<'a, S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> {
+/// Two-sided lighting (`GL_LIGHT_MODEL_TWO_SIDE`): lights back faces with the
+/// normal negated. Wrap a lighting built with the back material (`GL_BACK`) and
+/// draw the back faces with it (`Cull::Front`), the front faces with the front
+/// lighting (`Cull::Back`): each face is lit as OpenGL lights it, and a scene
+/// without two-sided lighting pays nothing.
+///
+/// ```
+/// use fixshade::prelude::*;
+/// use fixshade::lighting::BackFaces;
+/// let light = DirectionalLight::<f32>::white([0.0, 0.0, 1.0]).unwrap();
+/// let back = Material::new(&MaterialDesc { ambient: [0.0; 3], ..MaterialDesc::default() }).unwrap();
+/// let lit = BackFaces(Lighting::<f32, _, Lambert>::new(light, back));
+/// // a back face whose (front) normal points away from the viewer is lit from the front
+/// use fixshade::lighting::Illuminate;
+/// let c = lit.shade(&Lighting::<f32, DirectionalLight<f32>>::origin(), Vec3::from_f32([0.0, 0.0, -1.0]));
+/// assert_eq!(c.to_rgb888().r(), 204); // 0.8·(N·L = 1)
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BackFaces<I>(pub I);
+
+impl<I: Illuminate> Illuminate for BackFaces<I> {
+    type Scalar = I::Scalar;
+    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    #[inline(always)]
+    fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
+        self.0.shade(p, n.neg())
+    }
+    #[inline(always)]
+    fn shade_parts(
+        &self,
+        p: &Point3<I::Scalar>,
+        n: Vec3<I::Scalar>,
+        color: Option<Rgb<I::Scalar>>,
+    ) -> LitColor<I::Scalar> {
+        self.0.shade_parts(p, n.neg(), color)
+    }
+}
+
+/// `GL_SEPARATE_SPECULAR_COLOR` per point: [`Illuminate::shade`] is
+/// [`LitColor::separate`] (the primary and secondary colours clamped apart, then
+/// added). Per-pixel shading ([`PhongShading`](crate::shade::PhongShading)) then
+/// matches OpenGL; with Gouraud shading OpenGL interpolates the two clamped
+/// colours separately, which [`Shader::draw_vertex_colors`](crate::shade::Shader::draw_vertex_colors)
+/// reproduces (their sum, interpolated, clamped per pixel).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SeparateSpecular<I>(pub I);
+
+impl<I: Illuminate> Illuminate for SeparateSpecular<I> {
+    type Scalar = I::Scalar;
+    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    #[inline(always)]
+    fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
+        self.0.shade_parts(p, n, None).separate()
+    }
+    #[inline(always)]
+    fn shade_parts(
+        &self,
+        p: &Point3<I::Scalar>,
+        n: Vec3<I::Scalar>,
+        color: Option<Rgb<I::Scalar>>,
+    ) -> LitColor<I::Scalar> {
+        self.0.shade_parts(p, n, color)
+    }
+}
+
+/// Σ over the lights: the per-point ambient and the light-dependent part (with
+/// `SPLIT`, its specular part apart).
+struct LightSum<
+    'a,
+    S: Scalar,
+    L: LightSet<S>,
+    M: Model,
+    V: Viewer<S>,
+    F: FogModel<S>,
+    const SPLIT: bool,
+> {
     lighting: &'a Lighting<S, L, M, V, F>,
     n: Vec3<S>,
     v: Vec3<S>,
     ambient: Rgb<S>,
     direct: Rgb<S>,
+    specular: Rgb<S>,
 }
 
-impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> IncidentVisitor<S>
-    for LightSum<'_, S, L, M, V, F>
+impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>, const SPLIT: bool>
+    IncidentVisitor<S> for LightSum<'_, S, L, M, V, F, SPLIT>
 {
     #[inline(always)]
     fn visit(&mut self, inc: Incident<'_, S>) {
-        let (a, d) = self.lighting.light_terms(&inc, self.n, self.v);
+        let (a, d, s) = self.lighting.light_terms::<SPLIT>(&inc, self.n, self.v);
         if let Some(a) = a {
             self.ambient = self.ambient.add(a);
         }
         self.direct = self.direct.add(d);
+        if SPLIT {
+            self.specular = self.specular.add(s);
+        }
     }
 }
 
@@ -510,7 +966,11 @@ fn transmission<S: Scalar>(n: Vec3<S>, l: Vec3<S>, v: Vec3<S>, eta: S, nl: S) ->
         return S::ZERO;
     }
     let c2 = k.sqrt();
-    // T = η·d + (η·c1 − c2)·(−N) = −η·L + (c2 − η·c1)·N
-    let t = n.scale(c2.sub(eta.mul(c1))).sub(l.scale(eta));
-    t.dot(v).max0().min1()
+    // T = η·d + (η·c1 − c2)·(−N) = −η·L + (c2 − η·c1)·N, so
+    // T·V = (c2 − η·c1)·(N·V) − η·(L·V), with cosines that correct the lengths
+    let tv = c2
+        .sub(eta.mul(c1))
+        .mul(S::cos_normal(n, v))
+        .sub(eta.mul(S::cos_normal(l, v)));
+    tv.max0().min1()
 }

@@ -1,10 +1,8 @@
 //! Surface materials: emission, ambient, diffuse (with brilliance), specular,
 //! Fresnel angle factor and transmission coefficients.
 
-use crate::color::Rgb;
 use crate::error::{finite, non_negative, non_negative3, ParamError};
-use crate::light::exponent_u16;
-use crate::num::Scalar;
+use crate::num::{Exponent, Scalar};
 
 /// A plain `f32` description of a material, shared by the tiers, the OpenGL
 /// parameter set and the `f64` reference model. `Default` is OpenGL's default
@@ -27,7 +25,7 @@ pub struct MaterialDesc {
     pub diffuse: [f32; 3],
     /// Specular reflection per channel (`ks`, normally grey: not tinted).
     pub specular: [f32; 3],
-    /// Specular exponent `n`, rounded to an integer in 0..=65535.
+    /// Specular exponent `n`, a real number in 0..=65535 (OpenGL: 0..=128).
     pub shininess: f32,
     /// Diffuse brilliance exponent `b` of `(N·L)^b` (1 = Lambert); used by models
     /// with [`Model::BRILLIANCE`](crate::lighting::Model::BRILLIANCE).
@@ -38,7 +36,7 @@ pub struct MaterialDesc {
     /// Transmission coefficient `kst` per channel; used by models with
     /// [`Model::TRANSMISSION`](crate::lighting::Model::TRANSMISSION).
     pub transmission: [f32; 3],
-    /// Exponent `n''` of `(T·V)^n''`.
+    /// Exponent `n''` of `(T·V)^n''`, a real number in 0..=65535.
     pub transmission_exponent: f32,
     /// Relative index of refraction `n21 = n_inside / n_outside`, in 0.5..=8.
     pub refractive_index: f32,
@@ -98,43 +96,62 @@ impl MaterialDesc {
 
 /// A validated material in tier `S`.
 ///
+/// The colours stay `f32` as given: they are multiplied with the lights' colours
+/// (and the attenuation's `1/a`) once, when a [`Lighting`](crate::lighting::Lighting)
+/// is built, so only those products must fit the tier's range — a material
+/// colour of 3 under a light of 0.5 is exact in every tier.
+///
 /// ```
 /// use fixshade::material::{Material, MaterialDesc};
-/// use fixshade::num::Q14;
+/// use fixshade::num::{Exponent, Q14};
 /// let m = Material::<Q14>::new(&MaterialDesc::default()).unwrap();
-/// assert_eq!(m.shininess, 0);
+/// assert_eq!(m.shininess, Exponent::ZERO);
 /// let bad = MaterialDesc { shininess: -1.0, ..MaterialDesc::default() };
 /// assert!(Material::<Q14>::new(&bad).is_err());
+/// // OpenGL allows negative colours; `signed` takes them
+/// let neg = MaterialDesc { ambient: [0.4, -0.2, 0.3], ..MaterialDesc::default() };
+/// assert!(Material::<Q14>::new(&neg).is_err());
+/// assert!(Material::<Q14>::signed(&neg).is_ok());
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material<S> {
     /// `GL_EMISSION`.
-    pub emission: Rgb<S>,
+    pub emission: [f32; 3],
     /// Ambient reflection.
-    pub ambient: Rgb<S>,
+    pub ambient: [f32; 3],
     /// Diffuse reflection.
-    pub diffuse: Rgb<S>,
+    pub diffuse: [f32; 3],
     /// Specular reflection.
-    pub specular: Rgb<S>,
-    /// Specular exponent.
-    pub shininess: u16,
+    pub specular: [f32; 3],
+    /// Specular exponent (real: `GL_SHININESS` 12.8 is 12.8).
+    pub shininess: Exponent,
     /// Diffuse brilliance exponent (≥ 1).
     pub brilliance: u8,
     /// Schlick's `F0`.
     pub fresnel_f0: S,
     /// Transmission coefficient.
-    pub transmission: Rgb<S>,
+    pub transmission: [f32; 3],
     /// Transmission exponent.
-    pub transmission_exponent: u16,
+    pub transmission_exponent: Exponent,
     /// `η = 1/n21` (ratio of refractive indices, outside over inside).
     pub eta: S,
 }
 
 impl<S: Scalar> Material<S> {
     /// Validates a description: colours finite and non-negative, exponents in
-    /// 0..=65535, brilliance ≥ 1, `F0` in [0, 1], `n21` in 0.5..=8. Values beyond the
-    /// tier's range saturate (≈ 2 for the fixed tiers).
+    /// 0..=65535 (real numbers), brilliance ≥ 1, `F0` in [0, 1], `n21` in 0.5..=8.
     pub fn new(d: &MaterialDesc) -> Result<Self, ParamError> {
+        Self::validate(d, false)
+    }
+
+    /// [`Material::new`] accepting negative emission, ambient, diffuse and specular
+    /// colours, as OpenGL does (they subtract light; the output still clamps to
+    /// [0, 1] per channel). The transmission coefficient stays non-negative.
+    pub fn signed(d: &MaterialDesc) -> Result<Self, ParamError> {
+        Self::validate(d, true)
+    }
+
+    fn validate(d: &MaterialDesc, signed: bool) -> Result<Self, ParamError> {
         let f0 = non_negative("fresnel F0", d.fresnel_f0)?;
         if f0 > 1.0 {
             return Err(ParamError::ExponentOutOfRange("fresnel F0"));
@@ -146,17 +163,31 @@ impl<S: Scalar> Material<S> {
         if !(0.5..=8.0).contains(&n21) {
             return Err(ParamError::RefractiveIndex);
         }
+        let colour = |name: &'static str, c: [f32; 3]| {
+            if signed {
+                finite3(name, c)
+            } else {
+                non_negative3(name, c)
+            }
+        };
         Ok(Self {
-            emission: Rgb::from_f32(non_negative3("emission", d.emission)?),
-            ambient: Rgb::from_f32(non_negative3("ambient", d.ambient)?),
-            diffuse: Rgb::from_f32(non_negative3("diffuse", d.diffuse)?),
-            specular: Rgb::from_f32(non_negative3("specular", d.specular)?),
-            shininess: exponent_u16("shininess", d.shininess)?,
+            emission: colour("emission", d.emission)?,
+            ambient: colour("ambient", d.ambient)?,
+            diffuse: colour("diffuse", d.diffuse)?,
+            specular: colour("specular", d.specular)?,
+            shininess: Exponent::new("shininess", d.shininess)?,
             brilliance: d.brilliance,
             fresnel_f0: S::from_f32(f0),
-            transmission: Rgb::from_f32(non_negative3("transmission", d.transmission)?),
-            transmission_exponent: exponent_u16("transmission exponent", d.transmission_exponent)?,
+            transmission: non_negative3("transmission", d.transmission)?,
+            transmission_exponent: Exponent::new("transmission exponent", d.transmission_exponent)?,
             eta: S::from_f32(1.0 / n21),
         })
     }
+}
+
+fn finite3(name: &'static str, c: [f32; 3]) -> Result<[f32; 3], ParamError> {
+    for v in c {
+        finite(name, v)?;
+    }
+    Ok(c)
 }

@@ -4,7 +4,7 @@
 //! feature to get it).
 
 use crate::light::{LightDesc, LightKind};
-use crate::lighting::Specular;
+use crate::lighting::{ColorMaterial, Specular};
 use crate::material::MaterialDesc;
 
 /// A 3-vector of `f64`.
@@ -40,8 +40,9 @@ pub fn normalize(a: V3) -> V3 {
         [0.0; 3]
     }
 }
-fn powi(x: f64, n: f32) -> f64 {
-    libm::pow(x, libm::roundf(n) as f64)
+/// `x^n` for a real exponent (`x^0 = 1`, also for `x = 0`).
+fn powf(x: f64, n: f32) -> f64 {
+    libm::pow(x, n as f64)
 }
 
 /// Where the eye is.
@@ -106,11 +107,56 @@ pub struct Reference<'a> {
     pub model: ModelDesc,
 }
 
+/// How [`Reference::shade_parts`] treats a vertex (OpenGL state beyond the light
+/// and material parameters).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexOptions {
+    /// `GL_NORMALIZE`: normalise the normal (else it is used as given).
+    pub normalize: bool,
+    /// `GL_COLOR_MATERIAL`'s mode.
+    pub color_material: ColorMaterial,
+    /// The vertex colour (`glColor`), used when `color_material` is not `Off`.
+    pub color: [f32; 3],
+}
+
+impl Default for VertexOptions {
+    fn default() -> Self {
+        Self {
+            normalize: true,
+            color_material: ColorMaterial::Off,
+            color: [1.0; 3],
+        }
+    }
+}
+
 impl Reference<'_> {
     /// Linear RGB at point `p` with normal `n` (normalised here), unclamped.
     pub fn shade(&self, p: V3, n: V3) -> V3 {
-        let n = normalize(n);
-        let m = &self.material;
+        let (primary, secondary) = self.shade_parts(p, n, &VertexOptions::default());
+        add(primary, secondary)
+    }
+
+    /// OpenGL's primary (emission, ambient, diffuse) and secondary (specular,
+    /// transmission) colours at `p` with normal `n`, unclamped: the material colour
+    /// `o.color_material` names is `o.color`, and the normal is normalised only with
+    /// `o.normalize`. Fog fades the diffuse part towards its colour and the
+    /// secondary colour towards zero.
+    pub fn shade_parts(&self, p: V3, n: V3, o: &VertexOptions) -> (V3, V3) {
+        let n = if o.normalize { normalize(n) } else { n };
+        let mut m = self.material;
+        match o.color_material {
+            ColorMaterial::Off => {}
+            ColorMaterial::Emission => m.emission = o.color,
+            ColorMaterial::Ambient => m.ambient = o.color,
+            ColorMaterial::Diffuse => m.diffuse = o.color,
+            ColorMaterial::Specular => m.specular = o.color,
+            ColorMaterial::AmbientAndDiffuse => {
+                m.ambient = o.color;
+                m.diffuse = o.color;
+            }
+        }
+        let m = &m;
+
         let (view, view_dist) = match self.viewer {
             ViewerDesc::Infinite(d) => {
                 let d = normalize(v(d));
@@ -124,6 +170,7 @@ impl Reference<'_> {
         // emission + global ambient
         let mut ambient = add(v(m.emission), mul(v(self.global_ambient), v(m.ambient)));
         let mut direct = [0.0; 3];
+        let mut specular = [0.0; 3];
         for light in self.lights {
             let (l, factor) = match light.kind {
                 LightKind::Directional { towards_light } => (normalize(v(towards_light)), 1.0),
@@ -148,7 +195,7 @@ impl Reference<'_> {
                     let cos_phi = -dot(normalize(v(axis)), l);
                     let cos_cut = libm::cos(cutoff_deg as f64 * core::f64::consts::PI / 180.0);
                     let spot = if cos_phi >= cos_cut && cos_phi > 0.0 {
-                        powi(cos_phi.min(1.0), exponent)
+                        powf(cos_phi.min(1.0), exponent)
                     } else {
                         0.0
                     };
@@ -159,6 +206,7 @@ impl Reference<'_> {
             ambient = add(ambient, scale(mul(v(light.ambient), v(m.ambient)), factor));
             let nl = dot(n, l);
             let mut c = [0.0; 3];
+            let mut sp = [0.0; 3];
             if nl > 0.0 {
                 // diffuse: kd·Id·(N·L)^b
                 let d = if self.model.brilliance {
@@ -174,12 +222,12 @@ impl Reference<'_> {
                     Specular::BlinnPhong => dot(n, normalize(add(l, view))),
                 };
                 if self.model.specular != Specular::None && x > 0.0 {
-                    let mut s = powi(x.min(1.0), m.shininess);
+                    let mut s = powf(x.min(1.0), m.shininess);
                     if self.model.fresnel {
                         let f0 = m.fresnel_f0 as f64;
                         s *= f0 + (1.0 - f0) * libm::pow(1.0 - nl.min(1.0), 5.0);
                     }
-                    c = add(c, scale(mul(v(light.specular), v(m.specular)), s));
+                    sp = scale(mul(v(light.specular), v(m.specular)), s);
                 }
             } else if self.model.transmission && nl < 0.0 {
                 // Snell: T = −η·L + (c2 − η·c1)·N, c1 = −N·L, c2 = √(1 − η²(1 − c1²))
@@ -189,19 +237,21 @@ impl Reference<'_> {
                 if k > 0.0 {
                     let t = sub(scale(n, libm::sqrt(k) - eta * c1), scale(l, eta));
                     let tv = dot(t, view).clamp(0.0, 1.0);
-                    c = scale(
+                    sp = scale(
                         mul(v(light.specular), v(m.transmission)),
-                        powi(tv, m.transmission_exponent),
+                        powf(tv, m.transmission_exponent),
                     );
                 }
             }
             direct = add(direct, scale(c, factor));
+            specular = add(specular, scale(sp, factor));
         }
         if let Some(f) = self.fog {
             let k = ((f.end as f64 - view_dist) / (f.end as f64 - f.start as f64)).clamp(0.0, 1.0);
             direct = add(scale(direct, k), scale(v(f.color), 1.0 - k));
+            specular = scale(specular, k);
         }
-        add(ambient, direct)
+        (add(ambient, direct), specular)
     }
 }
 

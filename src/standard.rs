@@ -10,7 +10,7 @@
 //! (0.08, 0.01, 0.01), diffuse (0.8, 0.1, 0.1), specular white, shininess 32;
 //! depth test on; back faces culled.
 
-use crate::camera::{Camera, MeshTransform, Orthographic};
+use crate::camera::{Camera, FixedCamera, MeshTransform, Orthographic, Pose};
 use crate::error::ParamError;
 use crate::light::{DirectionalLight, LightColors};
 use crate::lighting::{BlinnPhong, Lambert, Lighting};
@@ -45,6 +45,19 @@ pub fn camera() -> Result<Camera<Orthographic>, MeshError> {
 /// The sphere's fixed-point transform (model matrix: identity).
 pub fn transform() -> Result<MeshTransform<Orthographic>, MeshError> {
     camera()?.mesh_transform(&Mat4::IDENTITY, SPHERE.frac)
+}
+
+/// The camera converted for integer per-frame transforms (once, in `f32`).
+pub fn fixed_camera() -> Result<FixedCamera<Orthographic>, MeshError> {
+    FixedCamera::new(&camera()?)
+}
+
+/// The sphere's transform built in integers from [`fixed_camera`] (what a
+/// Cortex-M0 does every frame: no soft float).
+pub fn fixed_transform(
+    c: &FixedCamera<Orthographic>,
+) -> Result<MeshTransform<Orthographic>, MeshError> {
+    c.mesh_transform(&Pose::IDENTITY, SPHERE.frac)
 }
 
 /// The material.

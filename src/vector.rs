@@ -43,10 +43,10 @@ impl<S: Scalar> Vec3<S> {
         [self.x.to_f32(), self.y.to_f32(), self.z.to_f32()]
     }
 
-    /// `a·b = ax·bx + ay·by + az·bz`, saturating.
+    /// `a·b = ax·bx + ay·by + az·bz`, saturating ([`Scalar::dot3`]).
     #[inline(always)]
     pub fn dot(self, o: Self) -> S {
-        self.x.mul(o.x).add(self.y.mul(o.y)).add(self.z.mul(o.z))
+        S::dot3(self, o)
     }
 
     /// `a + b`, saturating per component.
@@ -84,10 +84,18 @@ impl<S: Scalar> Vec3<S> {
     }
 
     /// The ideal reflection of `l` about the unit normal `self`: `R = 2(N·L)N − L`.
+    ///
+    /// Each component is `2(N·L)·N_i − L_i` rounded once (see
+    /// [`Scalar::twice_mul_sub`]): at the mirror direction `2(N·L)` is 2, which the
+    /// fixed tiers cannot hold, but the components of `R` can.
     #[inline(always)]
     pub fn reflect(self, l: Self) -> Self {
         let nl = self.dot(l);
-        self.scale(nl.add(nl)).sub(l)
+        Self::new(
+            nl.twice_mul_sub(self.x, l.x),
+            nl.twice_mul_sub(self.y, l.y),
+            nl.twice_mul_sub(self.z, l.z),
+        )
     }
 }
 

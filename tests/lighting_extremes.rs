@@ -140,11 +140,12 @@ fn nothing_leaks_behind_the_surface() {
     for_each_tier!(tier);
 }
 
-/// Shininess 0, 1, 1024 and u16::MAX: a full highlight where N = H; `x^0 = 1`.
+/// Shininess 0, 1, 256, 1024, 4096 and u16::MAX: a full highlight where N = H
+/// (Blinn-Phong) and where R = V (Phong); `x^0 = 1`.
 #[test]
 fn extreme_shininess() {
     fn tier<S: Scalar>() {
-        for n in [0.0f32, 1.0, 1024.0, 65535.0] {
+        for n in [0.0f32, 1.0, 256.0, 1024.0, 4096.0, 65535.0] {
             let m = MaterialDesc {
                 ambient: [0.0; 3],
                 diffuse: [0.0; 3],
@@ -159,6 +160,14 @@ fn extreme_shininess() {
             let pt = point_from_f32::<S>([0.0; 3]);
             let at_peak = lit.shade(&pt, Vec3::from_f32([0.0, 0.0, 1.0])).to_unorm(8);
             assert_eq!(at_peak, [255; 3], "{} n={n}", S::NAME);
+            // Phong's mirror peak: 2(N·L) = 2 inside R = 2(N·L)N − L, which the fixed
+            // tiers cannot hold (issue 11, item 7: Q14 gave e^(−n/16384), 5 at 65535)
+            let phong = lit.with_model::<Phong>();
+            let at_peak = phong.shade(&pt, Vec3::from_f32([0.0, 0.0, 1.0]));
+            assert_eq!(at_peak.to_unorm(8), [255; 3], "{} Phong n={n}", S::NAME);
+            let n3 = Vec3::<S>::from_f32([0.0, 0.0, 1.0]);
+            let r = n3.reflect(n3);
+            assert_eq!(r, n3, "{} reflect at the peak", S::NAME);
             // off the peak: N·H = cos 30° = 0.866; 0.866^n
             let off = lit
                 .shade(&pt, Vec3::from_f32([0.5, 0.0, 0.8660254]))

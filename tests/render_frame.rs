@@ -92,6 +92,72 @@ fn bands_equal_full_frame_bit_for_bit() {
     assert!((32_000..33_500).contains(&lit_px), "{lit_px} lit pixels");
 }
 
+/// The standard sphere through a perspective camera so close that the near
+/// plane cuts its front (the clip-space path), in bands of `band_rows` rows.
+fn render_near<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> Vec<Rgb565>
+where
+    K::Vertex: fixshade::render::Lerp,
+{
+    let layout = Layout::banded(W, W, band_rows).unwrap();
+    let cam = Camera::perspective(
+        1.2,
+        1.0,
+        1.0,
+        20.0,
+        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+    )
+    .unwrap()
+    .with_view(Mat4::translate([0.2, -0.1, -1.9]));
+    let t = cam
+        .mesh_transform(
+            &Mat4::rotate_y(0.4).mul(&Mat4::rotate_x(0.3)),
+            standard::SPHERE.frac,
+        )
+        .unwrap();
+    let mut cache = vec![CachedVertex::<K::Vertex>::default(); NV];
+    let mut bins = vec![0u16; bins_len(NT, layout.bands() as usize)];
+    let mut carry = vec![Carry::default(); 256];
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut carry,
+    };
+    let mut draw = MeshDraw::new(layout, standard::SPHERE.mesh(), &t, kernel, memory).unwrap();
+    let mut strip = vec![Rgb565::BLACK; (W * band_rows) as usize];
+    let mut depth = vec![0u16; (W * band_rows) as usize];
+    let mut bands = Bands::new(layout, &mut strip, Some(&mut depth)).unwrap();
+    let mut sink = Recorder(Vec::new(), Checksum::new(Size::new(W, W)));
+    bands
+        .render(&mut sink, Rgb565::BLACK, &mut [&mut draw])
+        .unwrap();
+    sink.0
+}
+
+#[test]
+fn perspective_through_the_near_plane_bands_equal_full_frame() {
+    let lit = standard::blinn::<Q14>().unwrap();
+    let g_full = render_near(Shader::new(GouraudShading, &lit, Linear), 240);
+    let p_full = render_near(Shader::new(PhongShading, &lit, Linear), 240);
+    for rows in [8, 1, 13] {
+        assert_eq!(
+            render_near(Shader::new(GouraudShading, &lit, Linear), rows),
+            g_full,
+            "{rows}"
+        );
+        assert_eq!(
+            render_near(Shader::new(PhongShading, &lit, Linear), rows),
+            p_full,
+            "{rows}"
+        );
+    }
+    // the near plane opens the sphere: its front is cut away, the back faces
+    // behind it are culled, so the middle of the frame shows the background
+    let lit_px = g_full.iter().filter(|p| **p != Rgb565::BLACK).count();
+    assert!(lit_px > 10_000, "{lit_px}");
+    let centre = (W / 2 * W + W / 2) as usize;
+    assert_eq!(g_full[centre], Rgb565::BLACK);
+}
+
 #[test]
 fn full_frame_target_matches_bands() {
     let lit = standard::blinn::<Q14>().unwrap();
@@ -123,6 +189,10 @@ fn write_pngs() {
     let lam = standard::lambert::<Q14>().unwrap();
     let imgs = [
         ("flat", render(Shader::new(FlatShading, &lam, Linear), 8).0),
+        (
+            "near_phong",
+            render_near(Shader::new(PhongShading, &lit, Linear), 8),
+        ),
         (
             "gouraud",
             render(Shader::new(GouraudShading, &lit, Linear), 8).0,

@@ -14,6 +14,7 @@ use core::fmt;
 /// assert_eq!(err.to_string(), "triangle 0: vertex index 3 out of range");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub enum MeshError {
     /// An output (or scratch) slice holds fewer elements than needed.
     BufferTooSmall {

@@ -11,7 +11,7 @@ use super::error::{finite, MeshError};
 ///
 /// Constructors whose parameters can be invalid return a [`MeshError`]; the
 /// others accept any `f32` and produce a non-finite matrix from non-finite
-/// input, which [`FixedMat4::new`] then rejects.
+/// input, which [`FixedMat4::new`](super::FixedMat4::new) then rejects.
 ///
 /// ```
 /// use fixshade::mesh::Mat4;
@@ -171,7 +171,7 @@ impl Mat4 {
     /// `z_c = (far + near)/(near − far)·z + 2·far·near/(near − far)`, `w_c = −z`.
     /// Eye-space points at `z = −near` get `z_c/w_c = −1`, at `z = −far` `+1`;
     /// `w_c` is the distance in front of the eye, so the near plane is
-    /// `w_c = near` (pass `near` to [`ScreenTransform::new`] and
+    /// `w_c = near` (pass `near` to [`ScreenTransform::new`](super::ScreenTransform::new) and
     /// [`clip_near`](super::clip_near)).
     ///
     /// # Errors
@@ -221,7 +221,7 @@ impl Mat4 {
     /// `bottom..top`, `z = −near..−far` maps to `−1..1` on each axis; `w_c = 1`.
     ///
     /// With `w_c = 1` everywhere the near plane is not a `w` plane: pass any
-    /// `near_w` in `(0, 1)` to [`ScreenTransform::new`] and
+    /// `near_w` in `(0, 1)` to [`ScreenTransform::new`](super::ScreenTransform::new) and
     /// [`clip_near`](super::clip_near) (nothing is clipped); depths outside
     /// `near..far` saturate to 0 or 65535.
     ///

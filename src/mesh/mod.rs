@@ -48,11 +48,14 @@ mod matrix;
 mod normals;
 mod screen;
 mod sphere;
+mod torus_knot;
 
 pub use clip::{clip_near, ClipVertex};
+pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE};
 pub use error::MeshError;
 pub use matrix::Mat4;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
 pub use screen::{EyeTransform, FixedMat4, ScreenTransform, ScreenVertex, Viewport, INV_W_ONE};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
+pub use torus_knot::{torus_knot_counts, TorusKnot};

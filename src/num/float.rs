@@ -4,6 +4,64 @@
 use super::Scalar;
 use crate::vector::Vec3;
 
+/// The linear fog ramp of the float tiers (see [`Scalar::ramp`]):
+/// `clamp((end − d)·scale·inv, 0, 1)` with `end` as given and
+/// `scale·inv = 1/(end − start)` formed without overflow: a range beyond `f32::MAX`
+/// is halved first, and a range below 2⁻¹⁰⁰ (whose inverse may exceed `f32::MAX`)
+/// is scaled by `scale = 2¹⁰⁰` (otherwise 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RampF32 {
+    end: f32,
+    scale: f32,
+    inv: f32,
+}
+
+impl RampF32 {
+    fn new(start: f32, end: f32) -> Self {
+        const TINY: f32 = 7.888_609e-31; // 2^-100
+        const HUGE: f32 = 1.267_650_6e30; // 2^100
+        let r = end - start;
+        let (scale, inv) = if !r.is_finite() {
+            (1.0, 0.5 / (end * 0.5 - start * 0.5))
+        } else if r < TINY {
+            (HUGE, 1.0 / (r * HUGE))
+        } else {
+            (1.0, 1.0 / r)
+        };
+        Self { end, scale, inv }
+    }
+
+    #[inline(always)]
+    fn at(&self, d: f32) -> f32 {
+        // (end − d) is finite for |d| ≤ F32_LIMIT and `scale` may take it to ±∞, which
+        // clamps; an infinite or NaN distance (a position given directly as `Vec3`)
+        // gives 1 or 0, never NaN
+        let x = (self.end - d) * self.scale * self.inv;
+        unit(x)
+    }
+}
+
+/// `1/(a + b·d + c·d²)` in `f32`: the distance is made finite and non-negative first
+/// (NaN to 0, ∞ to `f32::MAX`), so that no product is `0·∞`; an infinite sum gives 0.
+#[inline(always)]
+fn inv_quadratic(k: &[f32; 3], d: f32) -> Option<f32> {
+    // comparisons, not `f32::min`/`max` (library calls on a Cortex-M4F)
+    let d = if d > f32::MAX {
+        f32::MAX
+    } else if d > 0.0 {
+        d
+    } else {
+        0.0
+    };
+    let [a, b, c] = *k;
+    let q = a + d * (b + c * d);
+    if q > 1.0 / F32_LIMIT {
+        Some(1.0 / q)
+    } else {
+        None
+    }
+}
+
 /// The range of the float tiers: conversions from `f32` clamp to ±`F32_LIMIT`, so
 /// that the products of the lighting equation (at most four factors) stay finite.
 pub const F32_LIMIT: f32 = 1.0e9;
@@ -24,10 +82,16 @@ pub struct F32Fast<const NEWTON: u8 = 2>(pub f32);
 
 #[inline(always)]
 fn clamp_f32(v: f32) -> f32 {
-    if v.is_nan() {
+    // explicit comparisons rather than `f32::clamp`, whose `min <= max` assertion
+    // can survive in a size-optimised build
+    if v > F32_LIMIT {
+        F32_LIMIT
+    } else if v < -F32_LIMIT {
+        -F32_LIMIT
+    } else if v.is_nan() {
         0.0
     } else {
-        v.clamp(-F32_LIMIT, F32_LIMIT)
+        v
     }
 }
 
@@ -48,10 +112,27 @@ fn rsqrt_micromath<const N: u8>(x: f32) -> f32 {
     y
 }
 
+/// `x` limited to [0, 1], NaN to 0 (comparisons: `f32::clamp` has a panicking
+/// assertion and `f32::min` is a library call on a Cortex-M4F).
+#[inline(always)]
+fn unit(x: f32) -> f32 {
+    // two independent conditional moves (as `f32::clamp` compiles), not a chain of
+    // branches
+    let mut x = x;
+    if !(x > 0.0) {
+        x = 0.0;
+    }
+    if x > 1.0 {
+        x = 1.0;
+    }
+    x
+}
+
 macro_rules! float_tier {
-    ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr) => {
+    ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $refine:expr) => {
         impl<$($gen)*> Scalar for $ty {
             type Geo = f32;
+            type Ramp = RampF32;
             const ZERO: Self = $wrap(0.0);
             const ONE: Self = $wrap(1.0);
             const MAX: Self = $wrap(F32_LIMIT);
@@ -77,6 +158,12 @@ macro_rules! float_tier {
             fn mul(self, rhs: Self) -> Self {
                 $wrap($get(self) * $get(rhs))
             }
+            #[inline(always)]
+            fn twice_mul_sub(self, b: Self, c: Self) -> Self {
+                $wrap(2.0 * $get(self) * $get(b) - $get(c))
+            }
+
+
             #[inline]
             fn div(self, rhs: Self) -> Self {
                 let (a, b) = ($get(self), $get(rhs));
@@ -99,9 +186,9 @@ macro_rules! float_tier {
             }
             #[inline]
             fn to_unorm(self, bits: u32) -> u32 {
-                let max = ((1u32 << bits.clamp(1, 16)) - 1) as f32;
-                // `as` maps NaN to 0; the clamp keeps the result within `bits`.
-                ($get(self).clamp(0.0, 1.0) * max + 0.5) as u32
+                let max = ((1u32 << bits.max(1).min(16)) - 1) as f32;
+                // NaN fails `> 0` and becomes 0; the result stays within `bits`.
+                (unit($get(self)) * max + 0.5) as u32
             }
             #[inline]
             fn normalize(v: Vec3<Self>) -> Vec3<Self> {
@@ -166,7 +253,7 @@ macro_rules! float_tier {
             }
             #[inline(always)]
             fn geo_to_unit(g: f32) -> Self {
-                $wrap(if g > 0.0 { g.min(1.0) } else { 0.0 })
+                $wrap(unit(g))
             }
             #[inline]
             fn geo_recip(g: f32) -> Self {
@@ -177,16 +264,33 @@ macro_rules! float_tier {
                 }
             }
             #[inline]
+            fn geo_inv_quadratic(k: &[f32; 3], d: f32) -> Self {
+                match inv_quadratic(k, d) {
+                    Some(f) => $wrap(f),
+                    None => <Self as Scalar>::MAX,
+                }
+            }
+            fn ramp(start: f32, end: f32) -> RampF32 {
+                RampF32::new(start, end)
+            }
+            #[inline]
+            fn ramp_at(r: &RampF32, d: f32) -> Self {
+                $wrap(r.at(d))
+            }
+            #[inline]
             fn geo_direction(v: Vec3<f32>) -> (Vec3<Self>, f32) {
                 let s = v.x * v.x + v.y * v.y + v.z * v.z;
                 if !(s > f32::MIN_POSITIVE) || s.is_infinite() {
                     return (Vec3::new(<Self as Scalar>::ZERO, <Self as Scalar>::ZERO, <Self as Scalar>::ZERO), 0.0);
                 }
                 let r = $rsqrt(s);
-                (
-                    Vec3::new($wrap(v.x * r), $wrap(v.y * r), $wrap(v.z * r)),
-                    s * r,
-                )
+                let d = s * r;
+                // The fog ramp scales a distance error by 1/(end − start): with an
+                // approximate r (relative error e), one step d·(3 − d·r)/2 takes the
+                // length's error to e² (2·10⁻¹¹ with two Newton steps), for four
+                // operations per light or local viewer.
+                let d = if $refine { d * (1.5 - 0.5 * d * r) } else { d };
+                (Vec3::new($wrap(v.x * r), $wrap(v.y * r), $wrap(v.z * r)), d)
             }
         }
     };
@@ -201,7 +305,8 @@ fn get_f32(v: f32) -> f32 {
     v
 }
 
-float_tier!([] f32, "f32", wrap_f32, get_f32, rsqrt_exact);
+// `f32`'s lengths are exact to 10⁻⁷: no refinement of distances.
+float_tier!([] f32, "f32", wrap_f32, get_f32, rsqrt_exact, false);
 float_tier!(
     [const N: u8] F32Fast<N>,
     match N {
@@ -212,5 +317,6 @@ float_tier!(
     },
     F32Fast::<N>,
     |v: F32Fast<N>| v.0,
-    rsqrt_micromath::<N>
+    rsqrt_micromath::<N>,
+    true
 );

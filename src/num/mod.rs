@@ -13,23 +13,38 @@
 //!
 //! Geometry (positions, distances for attenuation and fog) needs range rather than
 //! precision, so every tier names a separate [`Scalar::Geo`] type: the fixed tiers
-//! use [`Geo16`] (Q16.16, ±32768 scene units), the float tiers use `f32`.
+//! use [`Geo16`] (Q16.16, ±32768 scene units), the float tiers use `f32`. The
+//! parameters of the distance functions (attenuation coefficients, fog ranges) are
+//! not geometry: they keep the relative precision of their `f32` values over the
+//! whole legal range ([`GeoScalar`], [`Scalar::geo_inv_quadratic`], [`Scalar::ramp`]).
 //!
 //! # Overflow behaviour
 //!
 //! Every operation of every tier **saturates**: it never wraps and never panics,
 //! in debug builds with overflow checks included. Conversions from `f32` map NaN to
 //! zero and clamp to the tier's range. Specular powers are exact (repeated squaring
-//! for the integer exponent), up to the rounding of each multiplication.
+//! for the integer exponent), up to the rounding of each multiplication; a
+//! fractional exponent ([`Exponent`]) adds one table-driven `x^f` (see
+//! [`Scalar::pow_frac`]).
+
+// `max(lo).min(hi)` rather than `clamp(lo, hi)` on the per-pixel path: `clamp`'s
+// `min <= max` assertion (a panic path) can survive in a size-optimised build.
+#![allow(clippy::manual_clamp)]
 
 mod float;
+mod geo;
+mod pow;
 mod q14;
 mod q30;
 pub(crate) mod rsqrt;
 pub(crate) mod wide;
 
-pub use float::{F32Fast, F32_LIMIT};
+pub use float::{F32Fast, RampF32, F32_LIMIT};
+pub use geo::{GeoScalar, InvQuadratic16};
+pub use pow::Exponent;
+pub use q14::RampQ14;
 pub use q14::Q14;
+pub use q30::RampQ30;
 pub use q30::Q30;
 
 use crate::vector::Vec3;
@@ -60,7 +75,10 @@ pub type Geo16 = fixed::types::I16F16;
 /// All operations saturate at the tier's range and never panic.
 pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync + 'static {
     /// The scalar for positions and distances (more range, less precision).
-    type Geo: Copy + Debug + PartialEq + Default + Send + Sync + 'static;
+    type Geo: GeoScalar;
+    /// The linear fog ramp `clamp((end − d)/(end − start), 0, 1)` in the form this
+    /// tier evaluates (see [`Scalar::ramp`]).
+    type Ramp: Copy + Debug + PartialEq + Send + Sync + 'static;
 
     /// Zero.
     const ZERO: Self;
@@ -88,6 +106,59 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     fn div(self, rhs: Self) -> Self;
     /// `√self`; zero for `self ≤ 0`.
     fn sqrt(self) -> Self;
+
+    /// `a·b = ax·bx + ay·by + az·bz`, saturating ([`Vec3::dot`]). The default rounds
+    /// each product; `Q14` sums the three exact products and rounds once (more
+    /// accurate, and fewer instructions).
+    #[inline(always)]
+    fn dot3(a: Vec3<Self>, b: Vec3<Self>) -> Self {
+        a.x.mul(b.x).add(a.y.mul(b.y)).add(a.z.mul(b.z))
+    }
+
+    /// `2·self·b − c`, rounded once and saturated only at the end: a component of
+    /// the reflection `2(N·L)N − L`, whose partial product `2(N·L)·N` reaches 2 for
+    /// unit vectors (the fixed tiers' range ends just below 2) while the result stays
+    /// within [−1, 1].
+    #[inline(always)]
+    fn twice_mul_sub(self, b: Self, c: Self) -> Self {
+        let t = self.mul(b);
+        t.sub(c).add(t)
+    }
+
+    /// `N·U/(|N||U|)`: the cosine between a normal `n` and a direction `u` that are
+    /// unit vectors up to rounding. Specular, brilliance and spot powers amplify any
+    /// deviation of a length from 1 (`d(xⁿ) = n·xⁿ⁻¹·dx`), and a unit vector rounded
+    /// to `Q14` is up to 5·10⁻⁵ too long or short (4·10⁻⁴ after a normalisation with
+    /// one Newton step).
+    ///
+    /// The default is `n·u`. `Q14` sums the three products before rounding and
+    /// corrects each length to first order when its square is within 2⁻⁵ of 1
+    /// (`N·U·(1 − (|N|² − 1)/2 − (|U|² − 1)/2)`: the residual is below 10⁻⁸ for
+    /// normalised vectors, 4·10⁻⁴ at the window's edge); a length outside the window
+    /// is taken as it is. The other tiers hold a normalised vector to 10⁻⁸ (`Q30`),
+    /// 10⁻⁷ (`f32`) or their inverse square root's error (`F32Fast<N>`: 4.7·10⁻⁶ with
+    /// two Newton steps, which is what limits its highlights at high exponents) and
+    /// use the default.
+    #[inline(always)]
+    fn cos_normal(n: Vec3<Self>, u: Vec3<Self>) -> Self {
+        n.dot(u)
+    }
+
+    /// `R·V`, the Phong specular base: the cosine between the reflection `R` of `l`
+    /// about the normal `n` and the view direction `v`, all three unit vectors up to
+    /// rounding. `R·V = 2(N·L)(N·V) − L·V` is first-order sensitive to the length of
+    /// `N` at the mirror direction, twice as much as a plain cosine (see
+    /// [`Scalar::cos_normal`]).
+    ///
+    /// The default is `n.reflect(l).dot(v)`. `Q14` evaluates
+    /// `(2(N·L)(N·V)/|N|² − L·V)/(|L||V|)` with the three dot products unrounded and
+    /// the lengths corrected to first order as in [`Scalar::cos_normal`]; it falls
+    /// back to the default when a dot product exceeds 1.125 (vectors far from unit
+    /// length).
+    #[inline(always)]
+    fn reflect_dot(n: Vec3<Self>, l: Vec3<Self>, v: Vec3<Self>) -> Self {
+        n.reflect(l).dot(v)
+    }
 
     /// `max(self, 0)`.
     #[inline(always)]
@@ -128,6 +199,24 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
             }
         }
         acc
+    }
+
+    /// `self^(f/2^16)`, the fractional part of a real power, for `self` in [0, 1]
+    /// (below 0 it is 0, above 1 it is 1; `f = 0` gives 1). The float tiers use
+    /// `libm::powf`; `Q14` and `Q30` evaluate `2^(f·log₂ x)` from interpolated
+    /// tables (relative error below 1.2·10⁻⁴ in `Q14`, with 32-bit products only,
+    /// and 5·10⁻⁶ in `Q30`).
+    #[inline]
+    fn pow_frac(self, f: u16) -> Self {
+        Self::from_f32(pow::pow_frac_f32(self.to_f32(), f))
+    }
+
+    /// `self^e` for a real exponent ([`Exponent`]): [`Scalar::powi`] of the integer
+    /// part times [`Scalar::pow_frac`] of the fraction, which an integer exponent
+    /// skips. The base is expected in [0, 1]; `x^0 = 1` (also for `x = 0`).
+    #[inline(always)]
+    fn pow(self, e: Exponent) -> Self {
+        pow::pow(self, e)
     }
 
     /// `round(clamp(self, 0, 1) · (2^bits − 1))` for `bits` in 1..=16 (the quantised
@@ -188,6 +277,26 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     /// The unit vector along `v` and the length of `v`. A zero vector gives the zero
     /// vector and length zero. Lengths beyond the geometry range saturate.
     fn geo_direction(v: Vec3<Self::Geo>) -> (Vec3<Self>, Self::Geo);
+
+    /// The attenuation `1/(a + b·d + c·d²)` of the coefficients `k` (see
+    /// [`GeoScalar::inv_quadratic`]) at distance `d`; a negative (or NaN) distance
+    /// counts as 0. Saturates at [`Scalar::MAX`] where `a + b·d + c·d²` is below
+    /// `1/MAX` (0.5 for the fixed tiers, 10⁻⁹ for the float tiers).
+    ///
+    /// Accuracy, for every finite non-negative `a, b, c` and every distance of the
+    /// geometry range: `Q14` within 2⁻¹³ relative (16-bit mantissas) plus its final
+    /// rounding (2⁻¹⁵), `Q30` and the float tiers within 10⁻⁶ relative
+    /// (`tests/stability_distance.rs` sweeps every binade of both).
+    fn geo_inv_quadratic(k: &<Self::Geo as GeoScalar>::InvQuadratic, d: Self::Geo) -> Self;
+
+    /// The ramp `clamp((end − d)/(end − start), 0, 1)` for finite `start < end`
+    /// (validated by the caller). Either end may lie beyond the geometry range, and
+    /// the range may be anything from the smallest `f32` step to `2·f32::MAX`.
+    fn ramp(start: f32, end: f32) -> Self::Ramp;
+
+    /// The value of ramp `r` at distance `d`, within 2⁻¹³ (`Q14`) or 10⁻⁶ (the
+    /// others) of the exact ramp at that distance (a NaN distance gives 0).
+    fn ramp_at(r: &Self::Ramp, d: Self::Geo) -> Self;
 }
 
 #[cfg(test)]

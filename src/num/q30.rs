@@ -1,5 +1,6 @@
 //! The accurate fixed tier: Q2.30 values with 64-bit products.
 
+use super::geo::{shift_u64, InvQuadratic16, RampParts};
 use super::q14::{geo16_direction, geo16_ops};
 use super::rsqrt::{rsqrt_q30_mantissa, split_u64};
 use super::{round_shr, Geo16, Scalar};
@@ -40,12 +41,26 @@ impl<const NEWTON: u8> Q30<NEWTON> {
 
     #[inline(always)]
     fn from_wide(v: i64) -> Self {
-        Self(v.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
+        // `max`/`min`, not `clamp`: its `min <= max` assertion can survive at opt-level s
+        Self(v.max(i32::MIN as i64).min(i32::MAX as i64) as i32)
     }
+}
+
+/// The linear fog ramp of the `Q30` tier (see [`Scalar::ramp`]): `f = 0` beyond the
+/// raw distance `d0`, else `min(1, g0 + (d0 − D)·mi ≫ sh)` with a 64-bit product and
+/// a 32-bit mantissa `mi` of the slope, and `f = 1` without a product beyond `full`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RampQ30 {
+    d0: i32,
+    g0: u32,
+    full: u32,
+    mi: u32,
+    sh: u32,
 }
 
 impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     type Geo = Geo16;
+    type Ramp = RampQ30;
     const ZERO: Self = Self(0);
     const ONE: Self = Self(1 << FRAC);
     const MAX: Self = Self(i32::MAX);
@@ -79,6 +94,11 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
         // |a·b| ≤ 2^62: fits in i64.
         Self::from_wide(round_shr(self.0 as i64 * rhs.0 as i64, FRAC))
     }
+    #[inline(always)]
+    fn twice_mul_sub(self, b: Self, c: Self) -> Self {
+        // |a·b| ≤ 2^62: 2ab in Q30 is a·b / 2^29 (≤ 2^33), minus c
+        Self::from_wide(round_shr(self.0 as i64 * b.0 as i64, FRAC - 1) - c.0 as i64)
+    }
     #[inline]
     fn div(self, rhs: Self) -> Self {
         if rhs.0 <= 0 {
@@ -98,9 +118,13 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
         Self::from_wide(round_shr(self.0 as i64 * y, 32 - k / 2))
     }
     #[inline]
+    fn pow_frac(self, f: u16) -> Self {
+        Self(super::pow::pow_frac_q30(self.0, f))
+    }
+    #[inline]
     fn to_unorm(self, bits: u32) -> u32 {
-        let x = self.0.clamp(0, 1 << FRAC) as u64;
-        let max = (1u64 << bits.clamp(1, 16)) - 1;
+        let x = self.0.max(0).min(1 << FRAC) as u64;
+        let max = (1u64 << bits.max(1).min(16)) - 1;
         ((x * max + (1 << (FRAC - 1))) >> FRAC) as u32
     }
     #[inline]
@@ -148,9 +172,68 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     }
 
     geo16_ops!();
+
+    /// In 64-bit arithmetic: the distance `D` (Q16.16) is normalised to 31 bits,
+    /// `Dn = D ≪ z` (`d = Dn·2^(−16−z)`), the terms are the products of the exact
+    /// 24-bit mantissas with `Dn` and `Dn² ≫ 31` shifted into Q32.32 (rounded,
+    /// saturated), and the sum is inverted by one 64-bit division: relative error
+    /// below 2⁻³⁰.
+    #[inline]
+    fn geo_inv_quadratic(k: &InvQuadratic16, d: Geo16) -> Self {
+        let d = d.to_bits().max(0) as u32;
+        let z = d.leading_zeros().wrapping_sub(1) & 31;
+        let dn = (d << z) as u64; // [2^30, 2^31), or 0
+        let z = z as i32;
+        let b = shift_u64(k.m24[0] as u64 * dn, k.k30[0] - z);
+        let d2 = (dn * dn + (1 << 30)) >> 31; // ≤ 2^31
+        let c = shift_u64(k.m24[1] as u64 * d2, k.k30[1] - 2 * z);
+        let q = k.a32.saturating_add(b).saturating_add(c);
+        if q <= 1 << 31 {
+            return Self::MAX;
+        }
+        // 1/q in Q30 = 2^62 / q (Q32.32), rounded
+        Self::from_wide((((1u64 << 62) + (q >> 1)) / q) as i64)
+    }
+
+    fn ramp(start: f32, end: f32) -> RampQ30 {
+        let p = RampParts::new(start, end);
+        // one unit of d0 − D is 2^(14 − re)/rm in Q30: mi = 2^31/rm in [2^31, 2^32),
+        // sh = 17 + re
+        let mut mi = libm::roundf(2_147_483_648.0 / p.rm) as u64;
+        let mut sh = 17 + p.re;
+        if mi >= 1 << 32 {
+            mi >>= 1;
+            sh -= 1;
+        }
+        if !(0..=63).contains(&sh) || p.g0 >= 1.0 {
+            (mi, sh) = (0, 0);
+        }
+        RampQ30 {
+            d0: p.d0,
+            g0: libm::roundf(p.g0 * 1_073_741_824.0) as u32,
+            full: p.full,
+            mi: mi as u32,
+            sh: sh as u32,
+        }
+    }
+
+    #[inline]
+    fn ramp_at(r: &RampQ30, d: Geo16) -> Self {
+        let d = d.to_bits();
+        if d > r.d0 {
+            return Self::ZERO;
+        }
+        let y = (r.d0 as u32).wrapping_sub(d as u32);
+        if y > r.full {
+            return Self::ONE;
+        }
+        // g0 ≤ 2^30 and p ≤ 2^30: the sum fits a u32
+        let p = shift_u64(y as u64 * r.mi as u64, -(r.sh as i32)).min(1 << FRAC) as u32;
+        Self((r.g0 + p).min(1 << FRAC) as i32)
+    }
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
-        Self(g.to_bits().clamp(0, 1 << 16) << 14)
+        Self(g.to_bits().max(0).min(1 << 16) << 14)
     }
     #[inline]
     fn geo_recip(g: Geo16) -> Self {

@@ -85,7 +85,7 @@ pub const WINDOW_MAX: i32 = (3 << 13) - 1;
 /// Length of the sub-spans whose ends are computed exactly by
 /// [`draw_triangle_perspective`] (16).
 pub const PERSPECTIVE_SPAN: usize = 1 << PERSPECTIVE_SHIFT;
-const PERSPECTIVE_SHIFT: u32 = 4;
+const PERSPECTIVE_SHIFT: u32 = 3;
 
 /// Attribute values of [`RasterVertex::attrs`] are clamped to ±`ATTR_LIMIT`
 /// (2^29) before set-up.

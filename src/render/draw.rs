@@ -1,9 +1,10 @@
 //! A mesh prepared for one frame and drawn band by band.
 
 use super::bins::{self, Bins};
+use super::hclip::{self, HPoint, HPolygon};
 use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
-use crate::camera::{MeshTransform, Orthographic};
+use crate::camera::{Clip, MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
 use crate::num::wide::lerp_i32;
 use crate::raster::clip::{ClipPoint, Polygon};
@@ -109,9 +110,29 @@ impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize> Defau
 /// - the bins: see [`bins_len`](super::bins_len);
 /// - the resume records: twice the largest number of triangles crossing one
 ///   band boundary (none for a full frame); [`MeshDraw::new`] reports the need.
-pub struct MeshDraw<'a, K: Kernel> {
+///
+/// The projection `P` comes from the transform's type:
+/// - [`Orthographic`]: no division, no clip-space code linked; triangles
+///   reaching beyond the set-up window are clipped to it exactly.
+/// - [`Perspective`](crate::camera::Perspective): each vertex is divided by
+///   its `w` once per frame. A triangle with a vertex behind the near plane or
+///   beyond the window is clipped in clip space to the near plane and to a
+///   guard band of ±2^26 sub-pixels ([`GUARD`](crate::camera::GUARD)), then
+///   to the window; every cut point is computed from its edge's endpoints in
+///   a canonical order, so meshes stay watertight across the near plane (the
+///   property tests render random sheets through it and count every pixel).
+///   Depth (`z/w`) is affine on the screen, so it is interpolated exactly;
+///   the shading attributes (colours, normals, eye positions) are
+///   interpolated affinely on the screen within each triangle, not
+///   perspective-correctly: exact at the vertices, off inside a triangle by
+///   the classic perspective distortion, which grows with the triangle's
+///   depth range (negligible for the small triangles of a tessellated mesh,
+///   visible on a large one spanning a wide depth range: subdivide it, or
+///   use the per-triangle [`Shading::draw_perspective`](crate::shade::Shading::draw_perspective)).
+///   No far-plane clipping: depth saturates at 65535 beyond it.
+pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
     mesh: Mesh<'a>,
-    transform: MeshTransform<Orthographic>,
+    transform: MeshTransform<P>,
     kernel: K,
     layout: Layout,
     cache: &'a [CachedVertex<K::Vertex>],
@@ -122,7 +143,7 @@ pub struct MeshDraw<'a, K: Kernel> {
     half: usize,
 }
 
-impl<K: Kernel> core::fmt::Debug for MeshDraw<'_, K> {
+impl<K: Kernel, P: Projection> core::fmt::Debug for MeshDraw<'_, K, P> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("MeshDraw")
             .field("vertices", &self.mesh.vertex_count())
@@ -132,7 +153,7 @@ impl<K: Kernel> core::fmt::Debug for MeshDraw<'_, K> {
     }
 }
 
-impl<'a, K: Kernel> MeshDraw<'a, K>
+impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P>
 where
     K::Vertex: Lerp,
 {
@@ -148,7 +169,7 @@ where
     pub fn new(
         layout: Layout,
         mesh: Mesh<'a>,
-        transform: &MeshTransform<Orthographic>,
+        transform: &MeshTransform<P>,
         shader: K,
         memory: MeshMemory<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
@@ -170,7 +191,7 @@ where
     pub fn with_options(
         layout: Layout,
         mesh: Mesh<'a>,
-        transform: &MeshTransform<Orthographic>,
+        transform: &MeshTransform<P>,
         kernel: K,
         opts: DrawOptions,
         memory: MeshMemory<'a, K::Vertex>,
@@ -183,7 +204,7 @@ where
         if cache.len() < mesh.vertex_count() {
             return Err(RenderError::TooManyVertices);
         }
-        vertex::orthographic(&mesh, transform, &kernel, cache);
+        vertex::stage(&mesh, transform, &kernel, cache);
         let cache: &'a [CachedVertex<K::Vertex>] = cache;
         let classify = |t: usize| classify(&mesh, transform, cache, &layout, opts.cull, t);
         let bins = bins::sort(&layout, mesh.triangle_count(), classify, bins)?;
@@ -293,21 +314,21 @@ where
         }
         let last = w.last.min(rows.end - 1);
         zp.row = zp.row.wrapping_add(zbase);
-        match (clamp, band.depth.is_some()) {
-            (false, true) => self.rows::<false, true>(&mut w, last, &mut t, &mut zp, band),
-            (true, true) => self.rows::<true, true>(&mut w, last, &mut t, &mut zp, band),
-            (false, false) => self.rows::<false, false>(&mut w, last, &mut t, &mut zp, band),
-            (true, false) => self.rows::<true, false>(&mut w, last, &mut t, &mut zp, band),
+        if clamp {
+            self.rows::<true>(&mut w, last, &mut t, &mut zp, band);
+        } else {
+            self.rows::<false>(&mut w, last, &mut t, &mut zp, band);
         }
         w.more().then(|| w.snapshot())
     }
 
     /// The rows `w.y..=last` of a set-up triangle: the walker's columns, the
     /// depth test of each run (the depth plane `zp` holds absolute values), the
-    /// kernel on the passing pixels. `CLAMP`: values clamped per run; `DEPTH`:
-    /// the band has a depth buffer.
+    /// kernel on the passing pixels (all of them without a depth buffer: a
+    /// branch per row, not a second copy of the loop). `CLAMP`: values clamped
+    /// per run.
     #[inline(always)]
-    fn rows<const CLAMP: bool, const DEPTH: bool>(
+    fn rows<const CLAMP: bool>(
         &self,
         w: &mut Walker,
         last: i32,
@@ -326,13 +347,9 @@ where
                 let n = (hi - lo + 1) as usize;
                 let at = row + lo as usize;
                 if let Some(color) = band.color.get_mut(at..at + n) {
-                    if DEPTH {
+                    if let Some(d) = band.depth.as_deref_mut() {
                         let (z0, dz) = crate::shade::start::<CLAMP>(zp, lo, n);
-                        if let Some(depth) = band
-                            .depth
-                            .as_deref_mut()
-                            .and_then(|d| d.get_mut(at..at + n))
-                        {
+                        if let Some(depth) = d.get_mut(at..at + n) {
                             crate::shade::depth_runs(z0, dz, depth, |k0, k1| {
                                 if let Some(c) = color.get_mut(k0..k1) {
                                     self.kernel.shade::<CLAMP>(t, lo + k0 as i32, y, c);
@@ -350,49 +367,46 @@ where
         }
     }
 
-    /// A triangle with a vertex outside the set-up window: clipped to the
-    /// window in full precision, the pieces drawn for this band; set up again
-    /// in every band it continues into.
+    /// A triangle with a vertex outside the set-up window (or, in perspective,
+    /// behind the near plane): clipped in full precision (in clip space to the
+    /// near plane and the guard band, then to the window), the pieces drawn for
+    /// this band; clipped and set up again in every band it continues into.
+    /// Never inlined: its polygons stay off the common path's stack.
+    #[inline(never)]
+    #[cold]
     fn clipped(
         &self,
         tri: u16,
         idx: [usize; 3],
         band: &mut BandView<'_, K::Color>,
     ) -> Option<Carry> {
-        let mut pts = [Point::<K::Vertex>::default(); 3];
-        for (p, &i) in pts.iter_mut().zip(idx.iter()) {
-            let pos = *self.mesh.positions().get(i)?;
-            let s = self.transform.project(pos);
-            *p = Point {
-                x: s.x,
-                y: s.y,
-                z: i32::from(s.z),
-                v: self.cache.get(i)?.v,
-                eye: if K::NEEDS_POSITION {
-                    self.transform.eye(pos)
-                } else {
-                    [0; 3]
-                },
-            };
-        }
-        let mut poly = Polygon::new(&pts);
-        poly.clip_to_window();
         let rows = band.rows();
         let mut more = false;
-        let mut t = [pts[0]; 3];
-        let mut k = 0;
-        while poly.fan(k, &mut t) {
-            k += 1;
-            // the pieces' rows beyond this band are drawn in later bands
-            let bottom = t.iter().map(|p| p.y).max().unwrap_or(0);
-            if ((bottom - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS) >= rows.end {
-                more = true;
-            }
-            let xy = t.map(|p| (p.x, p.y));
-            let z = t.map(|p| p.z.clamp(0, 65535) as u16);
-            let eye = t.map(|p| p.eye);
-            let _ = self.draw_setup(xy, z, [&t[0].v, &t[1].v, &t[2].v], eye, None, band);
-        }
+        pieces(
+            &self.mesh,
+            &self.transform,
+            |i| self.cache.get(i).map(|c| c.v),
+            K::NEEDS_POSITION,
+            idx,
+            |pts| {
+                let mut poly = Polygon::new(pts);
+                poly.clip_to_window();
+                let mut t = *pts;
+                let mut k = 0;
+                while poly.fan(k, &mut t) {
+                    k += 1;
+                    // the pieces' rows beyond this band are drawn in later bands
+                    let bottom = t.iter().map(|p| p.y).max().unwrap_or(0);
+                    if ((bottom - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS) >= rows.end {
+                        more = true;
+                    }
+                    let xy = t.map(|p| (p.x, p.y));
+                    let z = t.map(|p| p.z.clamp(0, 65535) as u16);
+                    let eye = t.map(|p| p.eye);
+                    let _ = self.draw_setup(xy, z, [&t[0].v, &t[1].v, &t[2].v], eye, None, band);
+                }
+            },
+        )?;
         more.then_some(Carry {
             tri,
             long: Carry::CLIPPED,
@@ -401,7 +415,7 @@ where
     }
 }
 
-impl<K: Kernel> DrawBand<K::Color> for MeshDraw<'_, K>
+impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P>
 where
     K::Vertex: Lerp,
 {
@@ -503,11 +517,97 @@ impl<V: Lerp + Default> ClipPoint for Point<V> {
     }
 }
 
+/// A vertex of the perspective clipping path, in clip space.
+#[derive(Clone, Copy, Debug, Default)]
+struct HVertex<V> {
+    c: Clip,
+    v: V,
+    eye: [i32; 3],
+}
+
+impl<V: Lerp + Default> HPoint for HVertex<V> {
+    #[inline]
+    fn clip(&self) -> Clip {
+        self.c
+    }
+
+    fn hcut(&self, o: &Self, num: u32, den: u32, c: Clip) -> Self {
+        HVertex {
+            c,
+            v: self.v.lerp(&o.v, num, den),
+            eye: core::array::from_fn(|i| lerp_i32(self.eye[i], o.eye[i], num, den)),
+        }
+    }
+}
+
+impl Lerp for () {
+    fn lerp(&self, _: &Self, _: u32, _: u32) -> Self {}
+}
+
+/// Calls `f` with the screen triangles of mesh triangle `idx`, before window
+/// clipping: the triangle itself (orthographic), or the fan of its polygon
+/// clipped to the near plane and the guard band (perspective). `payload(i)`
+/// gives vertex `i`'s payload; eye positions are computed when `eye`.
+/// `None` when an index or payload lookup fails.
+fn pieces<V: Lerp + Default, P: Projection>(
+    mesh: &Mesh<'_>,
+    transform: &MeshTransform<P>,
+    payload: impl Fn(usize) -> Option<V>,
+    eye: bool,
+    idx: [usize; 3],
+    mut f: impl FnMut(&[Point<V>; 3]),
+) -> Option<()> {
+    let pos = [
+        *mesh.positions().get(idx[0])?,
+        *mesh.positions().get(idx[1])?,
+        *mesh.positions().get(idx[2])?,
+    ];
+    let pay = [payload(idx[0])?, payload(idx[1])?, payload(idx[2])?];
+    let eyes = pos.map(|p| if eye { transform.eye(p) } else { [0; 3] });
+    if P::PERSPECTIVE {
+        let hv = [0, 1, 2].map(|k| HVertex {
+            c: transform.clip_coords(pos[k]),
+            v: pay[k],
+            eye: eyes[k],
+        });
+        let poly = HPolygon::clipped(&hv, transform.near_units());
+        let centre = transform.centre_sub();
+        let screen = |h: &HVertex<V>| {
+            let s = crate::camera::divide(centre, h.c);
+            Point {
+                x: s.x,
+                y: s.y,
+                z: i32::from(s.z),
+                v: h.v,
+                eye: h.eye,
+            }
+        };
+        let vs = poly.vertices();
+        for k in 1..vs.len().saturating_sub(1) {
+            f(&[screen(&vs[0]), screen(&vs[k]), screen(&vs[k + 1])]);
+        }
+    } else {
+        let mut pts = [Point::<V>::default(); 3];
+        for k in 0..3 {
+            let s = transform.screen(pos[k])?;
+            pts[k] = Point {
+                x: s.x,
+                y: s.y,
+                z: i32::from(s.z),
+                v: pay[k],
+                eye: eyes[k],
+            };
+        }
+        f(&pts);
+    }
+    Some(())
+}
+
 /// The rows of triangle `t` clamped to the frame, or `None` when it is culled,
 /// degenerate or outside the frame.
-fn classify<V>(
+fn classify<V, P: Projection>(
     mesh: &Mesh<'_>,
-    transform: &MeshTransform<Orthographic>,
+    transform: &MeshTransform<P>,
     cache: &[CachedVertex<V>],
     layout: &Layout,
     cull: Cull,
@@ -519,35 +619,72 @@ fn classify<V>(
         cache.get(usize::from(idx[1]))?,
         cache.get(usize::from(idx[2]))?,
     ];
-    let (xy, front) = if v[0].inside() && v[1].inside() && v[2].inside() {
+    let ((xmin, xmax, ymin, ymax), front) = if v[0].inside() && v[1].inside() && v[2].inside() {
         let p = v.map(|c| (i32::from(c.x), i32::from(c.y)));
         // A > 0: clockwise on the screen (a back face); products < 2^30
         let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0);
         if area == 0 {
             return None;
         }
-        (p, area < 0)
+        let bbox = (
+            p[0].0.min(p[1].0).min(p[2].0),
+            p[0].0.max(p[1].0).max(p[2].0),
+            p[0].1.min(p[1].1).min(p[2].1),
+            p[0].1.max(p[1].1).max(p[2].1),
+        );
+        (bbox, area < 0)
     } else {
-        let p = [0, 1, 2].map(|k| {
-            let s = mesh
-                .positions()
-                .get(usize::from(idx[k]))
-                .map(|pos| transform.project(*pos))
-                .map_or((0, 0), |s| (s.x, s.y));
-            s
-        });
-        let d1 = (
-            i64::from(p[1].0) - i64::from(p[0].0),
-            i64::from(p[1].1) - i64::from(p[0].1),
-        );
-        let d2 = (
-            i64::from(p[2].0) - i64::from(p[0].0),
-            i64::from(p[2].1) - i64::from(p[0].1),
-        );
-        match crate::raster::clip::cmp_products(d1.0, d2.1, d1.1, d2.0) {
-            core::cmp::Ordering::Equal => return None,
-            o => (p, o == core::cmp::Ordering::Less),
+        let idx = idx.map(usize::from);
+        let front = if P::PERSPECTIVE {
+            let pos = |k: usize| mesh.positions().get(idx[k]).copied();
+            hclip::facing([
+                transform.clip_coords(pos(0)?),
+                transform.clip_coords(pos(1)?),
+                transform.clip_coords(pos(2)?),
+            ])?
+        } else {
+            let p = [0, 1, 2].map(|k| {
+                mesh.positions()
+                    .get(idx[k])
+                    .and_then(|pos| transform.screen(*pos))
+                    .map_or((0, 0), |s| (s.x, s.y))
+            });
+            let d1 = (
+                i64::from(p[1].0) - i64::from(p[0].0),
+                i64::from(p[1].1) - i64::from(p[0].1),
+            );
+            let d2 = (
+                i64::from(p[2].0) - i64::from(p[0].0),
+                i64::from(p[2].1) - i64::from(p[0].1),
+            );
+            match crate::raster::clip::cmp_products(d1.0, d2.1, d1.1, d2.0) {
+                core::cmp::Ordering::Equal => return None,
+                o => o == core::cmp::Ordering::Less,
+            }
+        };
+        // the bounding box of what remains after clipping in clip space
+        let mut bbox = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
+        pieces(
+            mesh,
+            transform,
+            |_| Some(()),
+            false,
+            idx,
+            |t| {
+                for p in t {
+                    bbox = (
+                        bbox.0.min(p.x),
+                        bbox.1.max(p.x),
+                        bbox.2.min(p.y),
+                        bbox.3.max(p.y),
+                    );
+                }
+            },
+        )?;
+        if bbox.0 > bbox.1 {
+            return None;
         }
+        (bbox, front)
     };
     let culled = match cull {
         Cull::None => false,
@@ -557,14 +694,6 @@ fn classify<V>(
     if culled {
         return None;
     }
-    let (ymin, ymax) = (
-        xy[0].1.min(xy[1].1).min(xy[2].1),
-        xy[0].1.max(xy[1].1).max(xy[2].1),
-    );
-    let (xmin, xmax) = (
-        xy[0].0.min(xy[1].0).min(xy[2].0),
-        xy[0].0.max(xy[1].0).max(xy[2].0),
-    );
     let half = 1 << (SUBPIXEL_BITS - 1);
     // rows whose centre lies in [ymin, ymax], columns likewise
     let r0 = (ymin

@@ -23,6 +23,9 @@
 
 pub mod bins;
 mod draw;
+mod hclip;
+#[cfg(test)]
+mod tests;
 pub mod vertex;
 
 pub use draw::{Carry, DrawOptions, Lerp, MeshBuffers, MeshDraw, MeshMemory};

@@ -1,7 +1,7 @@
 //! The vertex stage: every vertex of a mesh transformed, projected and (for
 //! flat and Gouraud shading) lit once per frame, into the caller's vertex cache.
 
-use crate::camera::{MeshTransform, Orthographic};
+use crate::camera::{MeshTransform, Projection};
 use crate::mesh::Mesh;
 use crate::raster::{WINDOW_MAX, WINDOW_MIN};
 use crate::shade::Kernel;
@@ -57,11 +57,12 @@ fn window(x: i32, y: i32) -> (i16, i16) {
     }
 }
 
-/// Runs the vertex stage of an orthographic mesh: `cache[i]` for every vertex
-/// `i` (the cache holds at least `mesh.vertex_count()` entries).
-pub(crate) fn orthographic<K: Kernel>(
+/// Runs the vertex stage of a mesh: `cache[i]` for every vertex `i` (the cache
+/// holds at least `mesh.vertex_count()` entries). A vertex behind the near
+/// plane or outside the set-up window is marked [`CachedVertex::OUTSIDE`].
+pub(crate) fn stage<K: Kernel, P: Projection>(
     mesh: &Mesh<'_>,
-    t: &MeshTransform<Orthographic>,
+    t: &MeshTransform<P>,
     kernel: &K,
     cache: &mut [CachedVertex<K::Vertex>],
 ) {
@@ -70,13 +71,18 @@ pub(crate) fn orthographic<K: Kernel>(
         .zip(mesh.positions().iter())
         .zip(mesh.normals().iter())
     {
-        let s = t.project(*p);
-        let (x, y) = window(s.x, s.y);
+        let (x, y, z) = match t.screen(*p) {
+            Some(s) => {
+                let (x, y) = window(s.x, s.y);
+                (x, y, s.z)
+            }
+            None => (CachedVertex::<K::Vertex>::OUTSIDE, 0, 0),
+        };
         let eye = if K::NEEDS_POSITION { t.eye(*p) } else { [0; 3] };
         *slot = CachedVertex {
             x,
             y,
-            z: s.z,
+            z,
             v: kernel.vertex(t.normal(*n), eye),
         };
     }

@@ -189,7 +189,8 @@ struct Desc<const K: usize> {
     l: [[f32; 3]; K],
     h: [[f32; 3]; K],
     v: [f32; 3],
-    n: u16,
+    /// The shininess (real).
+    n: f32,
     specular: Specular,
 }
 
@@ -211,10 +212,10 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> IncrementalState<K> {
     let spec = d.specular != Specular::None;
     let phong = d.specular == Specular::Phong;
     let n = d.n;
-    let x0 = if n == 0 {
+    let x0 = if n == 0.0 {
         0.0
     } else {
-        libm::powf(4096.0, -1.0 / f32::from(n))
+        libm::powf(4096.0, -1.0 / n)
     };
     let x0q = libm::floorf(x0 * 32768.0) as i32;
     let x0 = x0q as f32 / 32768.0;
@@ -318,7 +319,7 @@ impl<S: IncrementalTier, const K: usize, M: IncrementalModel, C: OutputColor>
                     .unwrap_or([0.0; 3]),
             }),
             v,
-            n: lighting.material().shininess,
+            n: lighting.material().shininess.to_f32(),
             specular: M::SPECULAR,
         };
         state::<K, C>(&desc)
@@ -946,12 +947,12 @@ mod tests {
 
     #[test]
     fn pow_table_matches_powf() {
-        for n in [1u16, 8, 32, 256, 1024] {
-            let x0 = libm::powf(4096.0, -1.0 / f32::from(n));
+        for n in [1.0f32, 1.5, 8.0, 12.8, 32.0, 256.0, 1024.0] {
+            let x0 = libm::powf(4096.0, -1.0 / n);
             let t = PowTable::new(n, x0);
             for i in (0..=U_ONE).step_by(61) {
                 let x = x0 + (1.0 - x0) * i as f32 / U_ONE as f32;
-                let want = libm::powf(x, f32::from(n));
+                let want = libm::powf(x, n);
                 let got = t.at(i) as f32 / 32768.0;
                 assert!((got - want).abs() < 2.5e-3, "n {n} i {i}: {got} {want}");
             }

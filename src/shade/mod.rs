@@ -50,9 +50,12 @@ mod gouraud;
 mod incremental;
 mod phong;
 mod segment;
+mod vertex_colors;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
-pub use incremental::{DirectionalLighting, IncrementalLighting, IncrementalModel, IncrementalTier};
+pub use incremental::{
+    DirectionalLighting, IncrementalLighting, IncrementalModel, IncrementalTier,
+};
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;

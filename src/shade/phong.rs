@@ -17,7 +17,12 @@ impl<I: Illuminate, C> ModeState<I, C> for PhongShading {
     type State = PhongOrigin<I::Scalar>;
     fn state(_: &I) -> Self::State {
         PhongOrigin {
-            origin: crate::vector::point_from_f32::<I::Scalar>([0.0; 3]),
+            // the origin (zero: no soft float per frame)
+            origin: crate::vector::Vec3::new(
+                Default::default(),
+                Default::default(),
+                Default::default(),
+            ),
             shift: 0,
         }
     }

@@ -54,11 +54,11 @@ pub(crate) struct PowTable {
 
 impl PowTable {
     /// The table of `x^n` over `[x0, 1]`.
-    pub(crate) fn new(n: u16, x0: f32) -> Self {
+    pub(crate) fn new(n: f32, x0: f32) -> Self {
         let mut t = [0u16; POW_SEGMENTS + 4];
         for (i, v) in t.iter_mut().enumerate() {
             let x = x0 + (1.0 - x0) * (i.min(POW_SEGMENTS) as f32) / POW_SEGMENTS as f32;
-            let p = if n == 0 { 1.0 } else { libm::powf(x, n as f32) };
+            let p = if n == 0.0 { 1.0 } else { libm::powf(x, n) };
             *v = libm::roundf(p * 32768.0).clamp(0.0, 32768.0) as u16;
         }
         Self { t }

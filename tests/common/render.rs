@@ -858,3 +858,275 @@ pub fn all_phong(scene: &Scene) -> Scene {
     s.objects.iter_mut().for_each(|o| o.mode = Mode::Phong);
     s
 }
+
+// ------------------------------------------------------------------ the mesh renderer
+
+/// A scene's objects as compact meshes for the mesh renderer: positions in eye
+/// units with `MESH_FRAC` fraction bits, Q14 normals.
+const MESH_FRAC: u8 = 10;
+
+/// The unit sphere of the showcase spheres (scaled and moved by each object's
+/// model matrix).
+static UNIT_SPHERE: fixshade::mesh::MeshData<
+    { uv_sphere_counts(STACKS, SLICES).0 },
+    { uv_sphere_counts(STACKS, SLICES).1 },
+> = fixshade::mesh::MeshData::uv_sphere(STACKS, SLICES, 14);
+
+/// An object's mesh and model matrix.
+struct ObjectMesh {
+    positions: Vec<[i16; 3]>,
+    normals: Vec<[i16; 3]>,
+    triangles: Vec<[u16; 3]>,
+    frac: u8,
+    model: Mat4,
+}
+
+fn object_mesh(obj: &Object) -> ObjectMesh {
+    match obj.shape {
+        Shape::Sphere { centre, radius } => ObjectMesh {
+            positions: UNIT_SPHERE.positions.to_vec(),
+            normals: UNIT_SPHERE.normals.to_vec(),
+            triangles: UNIT_SPHERE.triangles.to_vec(),
+            frac: UNIT_SPHERE.frac,
+            model: Mat4::translate(eye(centre)).mul(&Mat4::scale([radius / PIXELS_PER_UNIT; 3])),
+        },
+        Shape::Triangle { corners, normals } => {
+            let q = |v: f32, f: u8| (v * f32::from(1u16 << f)).round() as i16;
+            ObjectMesh {
+                positions: corners
+                    .iter()
+                    .map(|c| eye(*c).map(|v| q(v, MESH_FRAC)))
+                    .collect(),
+                normals: normals
+                    .iter()
+                    .map(|n| {
+                        normalize([n[0] as f64, n[1] as f64, n[2] as f64]).map(|v| q(v as f32, 14))
+                    })
+                    .collect(),
+                triangles: vec![[0, 1, 2]],
+                frac: MESH_FRAC,
+                model: Mat4::IDENTITY,
+            }
+        }
+    }
+}
+
+/// Renders a scene with the mesh renderer in tier `S`: one `MeshDraw` per
+/// object (each with its own model matrix, material and shading mode), all
+/// drawn band by band (8-row strip and depth strip) into `display`.
+pub fn render_mesh<S: Scalar, D>(scene: &Scene, display: &mut D) -> Result<(), D::Error>
+where
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = Rgb888>,
+{
+    use fixshade::camera::Camera;
+    use fixshade::render::{
+        bins_len, Bands, CachedVertex, Carry, DrawBand, Layout, MeshDraw, MeshMemory,
+    };
+    const ROWS: u32 = 8;
+    let (w, h) = (scene.width, scene.height);
+    let layout = Layout::banded(w, h, ROWS).unwrap();
+    let cam = Camera::orthographic(
+        0.0,
+        w as f32 / PIXELS_PER_UNIT,
+        -(h as f32) / PIXELS_PER_UNIT,
+        0.0,
+        1.0,
+        20.0,
+        Viewport::new(0, 0, w as i32, h as i32).unwrap(),
+    )
+    .unwrap();
+    let meshes: Vec<ObjectMesh> = scene.objects.iter().map(object_mesh).collect();
+    let lights: heapless::Vec<AnyLight<S>, 4> = scene
+        .lights
+        .iter()
+        .map(|d| AnyLight::new(d).unwrap())
+        .collect();
+    let lighting = |o: &Object| {
+        (
+            lights.clone(),
+            Material::<S>::new(&o.material).unwrap(),
+            Rgb::<S>::from_f32(scene.global_ambient),
+        )
+    };
+    // storage first (one slot per object and payload type), then the draws borrowing it
+    let mut lam: Vec<_> = Vec::new();
+    let mut bri: Vec<_> = Vec::new();
+    let mut pho: Vec<_> = Vec::new();
+    let mut bli: Vec<_> = Vec::new();
+    for o in &scene.objects {
+        let (l, m, g) = lighting(o);
+        match o.terms {
+            Terms4::Lambert => {
+                lam.push(Lighting::<S, _, Lambert>::new(l, m).with_global_ambient(g))
+            }
+            Terms4::Brilliance => bri.push(
+                Lighting::<S, _, Terms<0, true, false, false>>::new(l, m).with_global_ambient(g),
+            ),
+            Terms4::Phong => {
+                pho.push(Lighting::<S, _, PhongSpec>::new(l, m).with_global_ambient(g))
+            }
+            Terms4::Blinn => {
+                bli.push(Lighting::<S, _, BlinnPhong>::new(l, m).with_global_ambient(g))
+            }
+        }
+    }
+    let nv = |m: &ObjectMesh| m.positions.len();
+    let mut caches_u: Vec<Vec<CachedVertex<[u16; 3]>>> = meshes
+        .iter()
+        .map(|m| vec![CachedVertex::default(); nv(m)])
+        .collect();
+    let mut caches_i: Vec<Vec<CachedVertex<[i16; 3]>>> = meshes
+        .iter()
+        .map(|m| vec![CachedVertex::default(); nv(m)])
+        .collect();
+    let mut bins: Vec<Vec<u16>> = meshes
+        .iter()
+        .map(|m| vec![0; bins_len(m.triangles.len(), layout.bands() as usize)])
+        .collect();
+    let mut carry: Vec<Vec<Carry>> = meshes
+        .iter()
+        .map(|m| vec![Carry::default(); 2 * m.triangles.len()])
+        .collect();
+    let (mut il, mut ib, mut ip, mut iq) = (lam.iter(), bri.iter(), pho.iter(), bli.iter());
+    let mut draws: Vec<Box<dyn DrawBand<Rgb888> + '_>> = Vec::new();
+    for ((((o, m), (cu, ci)), b), c) in scene
+        .objects
+        .iter()
+        .zip(&meshes)
+        .zip(caches_u.iter_mut().zip(caches_i.iter_mut()))
+        .zip(bins.iter_mut())
+        .zip(carry.iter_mut())
+    {
+        let mesh =
+            fixshade::mesh::Mesh::new(&m.positions, &m.normals, &m.triangles, m.frac).unwrap();
+        let t = cam.mesh_transform(&m.model, m.frac).unwrap();
+        macro_rules! draw {
+            ($lit:expr) => {{
+                let lit = $lit;
+                match o.mode {
+                    Mode::Flat => Box::new(
+                        MeshDraw::new(
+                            layout,
+                            mesh,
+                            &t,
+                            Shader::new(FlatShading, lit, Linear),
+                            MeshMemory {
+                                vertices: ci,
+                                bins: b,
+                                carry: c,
+                            },
+                        )
+                        .unwrap(),
+                    ) as Box<dyn DrawBand<Rgb888>>,
+                    Mode::Gouraud => Box::new(
+                        MeshDraw::new(
+                            layout,
+                            mesh,
+                            &t,
+                            Shader::new(GouraudShading, lit, Linear),
+                            MeshMemory {
+                                vertices: cu,
+                                bins: b,
+                                carry: c,
+                            },
+                        )
+                        .unwrap(),
+                    ),
+                    Mode::Phong => Box::new(
+                        MeshDraw::new(
+                            layout,
+                            mesh,
+                            &t,
+                            Shader::new(PhongShading, lit, Linear),
+                            MeshMemory {
+                                vertices: ci,
+                                bins: b,
+                                carry: c,
+                            },
+                        )
+                        .unwrap(),
+                    ),
+                }
+            }};
+        }
+        draws.push(match o.terms {
+            Terms4::Lambert => draw!(il.next().unwrap()),
+            Terms4::Brilliance => draw!(ib.next().unwrap()),
+            Terms4::Phong => draw!(ip.next().unwrap()),
+            Terms4::Blinn => draw!(iq.next().unwrap()),
+        });
+    }
+    let mut strip = vec![Rgb888::BLACK; (w * ROWS) as usize];
+    let mut depth = vec![0u16; (w * ROWS) as usize];
+    let mut items: Vec<&mut dyn DrawBand<Rgb888>> = draws
+        .iter_mut()
+        .map(|d| &mut **d as &mut dyn DrawBand<Rgb888>)
+        .collect();
+    Bands::new(layout, &mut strip, Some(&mut depth))
+        .unwrap()
+        .render(display, Rgb888::BLACK, &mut items)
+}
+
+/// A `DrawTarget` over a `Vec` (the mesh renderer's output for comparisons).
+pub struct Pixels(pub Vec<Rgb888>, pub u32, pub u32);
+
+impl embedded_graphics_core::geometry::OriginDimensions for Pixels {
+    fn size(&self) -> embedded_graphics_core::geometry::Size {
+        embedded_graphics_core::geometry::Size::new(self.1, self.2)
+    }
+}
+
+impl embedded_graphics_core::draw_target::DrawTarget for Pixels {
+    type Color = Rgb888;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = embedded_graphics_core::Pixel<Rgb888>>,
+    {
+        for embedded_graphics_core::Pixel(p, c) in pixels {
+            if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.1 && (p.y as u32) < self.2 {
+                self.0[(p.y as u32 * self.1 + p.x as u32) as usize] = c;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The mesh renderer's image of a scene in tier `S`.
+pub fn render_mesh_pixels<S: Scalar>(scene: &Scene) -> Vec<Rgb888> {
+    let mut p = Pixels(
+        vec![Rgb888::BLACK; (scene.width * scene.height) as usize],
+        scene.width,
+        scene.height,
+    );
+    let Ok(()) = render_mesh::<S, _>(scene, &mut p);
+    p.0
+}
+
+/// The mesh renderer against the reference: the error on pixels both cover,
+/// and how many pixels only one of them covers (silhouette pixels: the
+/// renderer's vertices are rounded from its fixed-point transform, the
+/// reference's from `f32`).
+pub fn compare_mesh(mesh: &[Rgb888], reference: &[Option<V3>]) -> (u32, f64, usize, usize) {
+    let (mut max, mut sum, mut n, mut only) = (0u32, 0u64, 0usize, 0usize);
+    for (t, r) in mesh.iter().zip(reference) {
+        match r {
+            Some(r) if *t != Rgb888::BLACK => {
+                let want = [q(r[0], 255.0), q(r[1], 255.0), q(r[2], 255.0)];
+                let got = [t.r() as u32, t.g() as u32, t.b() as u32];
+                let e = (0..3).map(|c| got[c].abs_diff(want[c])).max().unwrap();
+                max = max.max(e);
+                sum += u64::from(e);
+                n += 1;
+            }
+            Some(r) if want_black(r) => {}
+            None if *t == Rgb888::BLACK => {}
+            _ => only += 1,
+        }
+    }
+    (max, sum as f64 / n.max(1) as f64, n, only)
+}
+
+fn want_black(r: &V3) -> bool {
+    r.iter().all(|c| q(*c, 255.0) == 0)
+}

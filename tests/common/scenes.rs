@@ -6,6 +6,7 @@
 
 #![allow(dead_code)]
 
+use fixshade::color::Rgb;
 use fixshade::light::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{InfiniteViewer, Lighting, LinearFog, LocalViewer, Model};
 use fixshade::material::{Material, MaterialDesc};
@@ -182,6 +183,7 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
                 0.0f64..1.0,
                 0.0f64..1.0,
                 0.0f64..1.0,
+                (0.0f64..1.0, 0.0f64..1.0),
                 colour(1.0),
             ),
             4,
@@ -190,12 +192,18 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
         colour(1.0),
         colour(1.0),
         shininess(band),
-        (0.0f64..1.3, 0.0f64..6.3),
+        // the normal: direction, and length (1, or below 1 as interpolated normals are)
+        (
+            0.0f64..1.3,
+            0.0f64..6.3,
+            prop_oneof![Just(1.0f64), 0.6f64..1.0],
+        ),
         (-3.0f32..3.0, -3.0f32..3.0, -3.0f32..3.0),
+        (0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0),
         (0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0),
     )
         .prop_map(
-            move |(k, lights_raw, ka, kd, ks, n_exp, (nt, np), p, extra)| {
+            move |(k, lights_raw, ka, kd, ks, n_exp, (nt, np, len), p, extra, wide)| {
                 build(
                     term,
                     k,
@@ -204,29 +212,48 @@ pub fn sample(term: Term, band: Band) -> impl Strategy<Value = Sample> {
                     kd,
                     ks,
                     n_exp,
-                    nt,
-                    np,
+                    (nt, np, len),
                     [p.0, p.1, p.2],
                     extra,
+                    wide,
                 )
             },
         )
 }
 
+/// The random numbers of one light: kind, direction (2), distance, attenuation (2),
+/// colour.
+type LightRaw = (f64, f64, f64, f64, (f64, f64), [f32; 3]);
+
 #[allow(clippy::too_many_arguments)]
 fn build(
     term: Term,
     k: usize,
-    lights_raw: &[(f64, f64, f64, f64, [f32; 3])],
+    lights_raw: &[LightRaw],
     ka: [f32; 3],
     kd: [f32; 3],
     ks: [f32; 3],
     n_exp: f32,
-    nt: f64,
-    np: f64,
+    (nt, np, len): (f64, f64, f64),
     p: [f32; 3],
     extra: (f64, f64, f64),
+    w: (f64, f64, f64),
 ) -> Sample {
+    // Half of the samples with distances, attenuation or fog span the whole legal
+    // range: positions up to ±12 288 units, lights up to 13 300 units away,
+    // attenuation coefficients from 0 to whatever makes each term reach 3 at that
+    // distance (c down to 10⁻⁸), fog ranges from a few units to 10³⁸ and to
+    // ±f32::MAX, placed around the point's viewing distance.
+    let ranged = matches!(
+        term,
+        Term::PointAttenuation | Term::Spot | Term::Fog | Term::LocalViewer | Term::Everything
+    );
+    let wide = ranged && w.0 < 0.5;
+    let p = if wide {
+        p.map(|c| c * (w.1 * 12.0).exp2() as f32)
+    } else {
+        p
+    };
     let local = matches!(term, Term::LocalViewer | Term::Everything) && extra.0 < 0.7;
     let eye = [0.5f32, -0.3, 8.0];
     let viewer = if local {
@@ -251,7 +278,7 @@ fn build(
     );
     let scale = 0.9 / k as f32;
     let mut lights = Vec::new();
-    for (i, &(a, b, c, d, col)) in lights_raw.iter().take(k).enumerate() {
+    for (i, &(a, b, c, d, (e, f), col)) in lights_raw.iter().take(k).enumerate() {
         let col = col.map(|x| x * scale);
         // direction to the light: near the specular direction half of the time, else anywhere
         // in the hemisphere around N (or behind it for transmission)
@@ -281,13 +308,32 @@ fn build(
         } else {
             around(n, b * 1.6, c * std::f64::consts::TAU)
         };
-        let dist = 0.5 + d * 15.0;
+        let dist = if wide {
+            (-1.0 + 14.7 * d).exp2()
+        } else {
+            0.5 + d * 15.0
+        };
         let pos = f32s([
             pd[0] + l[0] * dist,
             pd[1] + l[1] * dist,
             pd[2] + l[2] * dist,
         ]);
-        let att = [1.0, (b * 0.3) as f32, (c * 0.05) as f32];
+        let att = if wide {
+            // a = 0 (pure 1/(b·d + c·d²)) a quarter of the time, b·d and c·d² up to 3
+            // each (either may be 0); a + b·d + c·d² ≥ 0.6 keeps the factor within the
+            // fixed tiers' range (below 2)
+            let a = if e < 0.25 { 0.0 } else { 0.5 + e };
+            let tb = if f < 0.2 { 0.0 } else { 3.0 * f };
+            let tc = if (e * 13.0).fract() < 0.2 {
+                0.0
+            } else {
+                3.0 * (e * 7.0).fract()
+            };
+            let tc = if a + tb + tc < 0.6 { tc + 0.6 } else { tc };
+            [a as f32, (tb / dist) as f32, (tc / (dist * dist)) as f32]
+        } else {
+            [1.0, (b * 0.3) as f32, (c * 0.05) as f32]
+        };
         let kind_pick = if term == Term::Everything {
             (i as f64 * 0.37 + a) % 1.0
         } else {
@@ -369,10 +415,43 @@ fn build(
         }
         _ => {}
     }
-    let fog = matches!(term, Term::Fog | Term::Everything).then(|| FogDesc {
-        start: 2.0 + extra.2 as f32,
-        end: 9.0 + extra.1 as f32 * 4.0,
-        color: [0.5, 0.55, 0.6],
+    let fog = matches!(term, Term::Fog | Term::Everything).then(|| {
+        if wide {
+            // the viewing distance of the point, as the reference computes it
+            let d = match viewer {
+                ViewerDesc::Infinite(_) => -dot(pd, v),
+                ViewerDesc::Local(e) => {
+                    let t = [0, 1, 2].map(|i| e[i] as f64 - pd[i]);
+                    dot(t, t).sqrt()
+                }
+            };
+            if w.2 > 0.95 {
+                FogDesc {
+                    start: -f32::MAX,
+                    end: f32::MAX,
+                    color: [0.5, 0.55, 0.6],
+                }
+            } else {
+                // range R from where the distance's own rounding (2^-16 units in the
+                // fixed tiers, 2^-24 relative in f32) stays below 2^-10 of it, to 10^38;
+                // d at fraction f0 ∈ [−0.3, 1.3] of the ramp
+                let r_min = 0.05 + d.abs() * 2f64.powi(-11);
+                let r = r_min * ((126.0 - r_min.log2()) * w.2 / 0.95).exp2();
+                let f0 = -0.3 + 1.6 * extra.1;
+                let end = d + f0 * r;
+                FogDesc {
+                    start: (end - r) as f32,
+                    end: end as f32,
+                    color: [0.5, 0.55, 0.6],
+                }
+            }
+        } else {
+            FogDesc {
+                start: 2.0 + extra.2 as f32,
+                end: 9.0 + extra.1 as f32 * 4.0,
+                color: [0.5, 0.55, 0.6],
+            }
+        }
     });
     Sample {
         lights,
@@ -381,7 +460,9 @@ fn build(
         viewer,
         fog,
         p,
-        n: f32s(n),
+        // an interpolated normal (length below 1) is what per-pixel shading
+        // renormalises; the reference normalises it in f64
+        n: f32s(n.map(|c| c * len)),
         model: term.model(),
     }
 }
@@ -402,13 +483,48 @@ fn spot(pos: [f32; 3], l: [f64; 3], extra: (f64, f64, f64), att: [f32; 3]) -> Li
     }
 }
 
+/// Whether the accuracy bounds exclude the sample: near a discontinuity, or outside
+/// the fixed tiers' range.
+pub fn excluded(s: &Sample) -> bool {
+    near_discontinuity(s) || beyond_range(s)
+}
+
+/// Whether an attenuation factor of the sample exceeds 2 (`a + b·d + c·d² < ½`):
+/// the fixed tiers' values end just below 2, so such a factor saturates there (see
+/// `Attenuation`); the generator keeps the sum above 0.6, but a search may move a
+/// light closer.
+pub fn beyond_range(s: &Sample) -> bool {
+    let pd = s.p.map(|c| c as f64);
+    s.lights.iter().any(|l| {
+        let (pos, k) = match l.kind {
+            LightKind::Directional { .. } => return false,
+            LightKind::Point {
+                position,
+                attenuation,
+            } => (position, attenuation),
+            LightKind::Spot {
+                position,
+                attenuation,
+                ..
+            } => (position, attenuation),
+        };
+        let t = [0, 1, 2].map(|i| pos[i] as f64 - pd[i]);
+        let d = dot(t, t).sqrt();
+        (k[0] as f64 + k[1] as f64 * d + k[2] as f64 * d * d) < 0.5
+    })
+}
+
 /// Whether the sample sits within 10⁻³ of a discontinuity of the equation, where
 /// any rounding may switch a whole term on or off: `N·L = 0` (the specular term
-/// exists only for `N·L > 0`) or a spot cone's edge. The accuracy bounds exclude
-/// these samples; `tests/lighting_extremes.rs` covers them for panics and range.
+/// exists only for `N·L > 0`), a spot cone's edge, or the edge of total internal
+/// reflection (transmission: `cos² θt = 1 − η²·sin² θi` near 0, where the refracted
+/// light jumps from grazing to none). The accuracy bounds exclude these samples;
+/// `tests/lighting_extremes.rs` covers them for panics and range.
 pub fn near_discontinuity(s: &Sample) -> bool {
     let pd = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
     let n = norm([s.n[0] as f64, s.n[1] as f64, s.n[2] as f64]);
+    let transmits = s.model == ModelKind::Full && s.material.transmission != [0.0; 3];
+    let eta = 1.0 / s.material.refractive_index as f64;
     s.lights.iter().any(|l| {
         let (dir, cone) = match l.kind {
             LightKind::Directional { towards_light } => {
@@ -432,23 +548,18 @@ pub fn near_discontinuity(s: &Sample) -> bool {
                 )
             }
         };
-        dot(n, dir).abs() < 1.0e-3 || cone.is_some_and(|c| c < 1.0e-3)
+        let nl = dot(n, dir);
+        let tir_edge = transmits && nl < 0.0 && {
+            let k = 1.0 - eta * eta * (1.0 - nl * nl);
+            k.abs() < 1.0e-3
+        };
+        nl.abs() < 1.0e-3 || cone.is_some_and(|c| c < 1.0e-3) || tir_edge
     })
 }
 
 /// The reference colour of a sample, 8 bits per channel.
 pub fn reference_u8(s: &Sample) -> [u8; 3] {
-    let r = Reference {
-        lights: &s.lights,
-        material: s.material,
-        global_ambient: s.global_ambient,
-        viewer: s.viewer,
-        fog: s.fog,
-        model: model_desc(s.model),
-    };
-    let p = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
-    let n = [s.n[0] as f64, s.n[1] as f64, s.n[2] as f64];
-    r.shade(p, n).map(to_u8)
+    reference_rgb(s).map(to_u8)
 }
 
 type M0 = fixshade::lighting::Lambert;
@@ -469,6 +580,12 @@ fn model_desc(m: ModelKind) -> ModelDesc {
 
 /// The tier's colour of a sample, 8 bits per channel.
 pub fn tier_u8<S: Scalar>(s: &Sample) -> [u8; 3] {
+    let [r, g, b] = tier_rgb::<S>(s).to_unorm(8);
+    [r as u8, g as u8, b as u8]
+}
+
+/// The tier's linear colour of a sample.
+pub fn tier_rgb<S: Scalar>(s: &Sample) -> Rgb<S> {
     match s.model {
         ModelKind::Lambert => eval::<S, M0>(s),
         ModelKind::Brilliance => eval::<S, MB>(s),
@@ -478,7 +595,22 @@ pub fn tier_u8<S: Scalar>(s: &Sample) -> [u8; 3] {
     }
 }
 
-fn eval<S: Scalar, M: Model>(s: &Sample) -> [u8; 3] {
+/// The reference's linear colour of a sample.
+pub fn reference_rgb(s: &Sample) -> [f64; 3] {
+    let r = Reference {
+        lights: &s.lights,
+        material: s.material,
+        global_ambient: s.global_ambient,
+        viewer: s.viewer,
+        fog: s.fog,
+        model: model_desc(s.model),
+    };
+    let p = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
+    let n = [s.n[0] as f64, s.n[1] as f64, s.n[2] as f64];
+    r.shade(p, n)
+}
+
+fn eval<S: Scalar, M: Model>(s: &Sample) -> Rgb<S> {
     let lights: heapless::Vec<AnyLight<S>, 4> =
         s.lights.iter().map(|d| AnyLight::new(d).unwrap()).collect();
     let mat = Material::<S>::new(&s.material).unwrap();
@@ -486,7 +618,7 @@ fn eval<S: Scalar, M: Model>(s: &Sample) -> [u8; 3] {
         .with_global_ambient(fixshade::color::Rgb::from_f32(s.global_ambient));
     let p = point_from_f32::<S>(s.p);
     let n = Vec3::<S>::from_f32(s.n);
-    let c = match (s.viewer, s.fog) {
+    match (s.viewer, s.fog) {
         (ViewerDesc::Infinite(d), None) => lit
             .with_viewer(InfiniteViewer::new(d).unwrap())
             .shade_normalizing(&p, n),
@@ -501,9 +633,7 @@ fn eval<S: Scalar, M: Model>(s: &Sample) -> [u8; 3] {
             .with_viewer(LocalViewer::new(e).unwrap())
             .with_fog(LinearFog::new(f.start, f.end, f.color).unwrap())
             .shade_normalizing(&p, n),
-    };
-    let [r, g, b] = c.to_unorm(8);
-    [r as u8, g as u8, b as u8]
+    }
 }
 
 /// Largest channel difference in 8-bit LSBs.
@@ -530,7 +660,7 @@ pub fn measure<S: Scalar>(term: Term, band: Band, cases: u32, seed: u64) -> (u32
     let mut done = 0;
     while done < cases {
         let s = strat.new_tree(&mut runner).unwrap().current();
-        if near_discontinuity(&s) {
+        if excluded(&s) {
             continue;
         }
         done += 1;
@@ -542,4 +672,133 @@ pub fn measure<S: Scalar>(term: Term, band: Band, cases: u32, seed: u64) -> (u32
         }
     }
     (max, sum as f64 / cases as f64, worst.unwrap())
+}
+
+/// A small deterministic generator for the worst-case search (xorshift64*).
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    /// Uniform in [0, 1).
+    pub fn f(&mut self) -> f64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The error of a sample before 8-bit quantisation: the largest channel difference
+/// of the clamped linear colours, in 8-bit LSBs. The hill climb follows it (the
+/// quantised error is flat almost everywhere).
+pub fn linear_error<S: Scalar>(s: &Sample) -> f64 {
+    let t = tier_rgb::<S>(s).to_f32();
+    let r = reference_rgb(s);
+    (0..3)
+        .map(|i| ((t[i] as f64).clamp(0.0, 1.0) - r[i].clamp(0.0, 1.0)).abs() * 255.0)
+        .fold(0.0, f64::max)
+}
+
+/// `s` moved a little: the normal's direction (and, for an interpolated normal, its
+/// length), every light's direction from the surface point and its distance, the
+/// exponent within `band`. `amount` is the rotation in radians.
+pub fn perturb(s: &Sample, band: Band, amount: f64, rng: &mut Rng) -> Sample {
+    let mut out = s.clone();
+    let n = [s.n[0] as f64, s.n[1] as f64, s.n[2] as f64];
+    let len = dot(n, n).sqrt();
+    let dir = around(norm(n), amount * rng.f(), rng.f() * std::f64::consts::TAU);
+    let len = if len > 0.9999 && rng.f() < 0.5 {
+        len
+    } else {
+        (len * (1.0 + amount * (rng.f() - 0.5))).clamp(0.6, 1.0)
+    };
+    out.n = f32s(dir.map(|c| c * len));
+    let pd = s.p.map(|c| c as f64);
+    for l in &mut out.lights {
+        let rotate = |v: [f64; 3], rng: &mut Rng| {
+            let d = dot(v, v).sqrt();
+            let u = around(norm(v), amount * rng.f(), rng.f() * std::f64::consts::TAU);
+            let d = d * (1.0 + amount * (rng.f() - 0.5));
+            u.map(|c| c * d)
+        };
+        match &mut l.kind {
+            LightKind::Directional { towards_light } => {
+                *towards_light = f32s(rotate(towards_light.map(|c| c as f64), rng));
+            }
+            LightKind::Point { position, .. } | LightKind::Spot { position, .. } => {
+                let rel = [0, 1, 2].map(|i| position[i] as f64 - pd[i]);
+                let rel = rotate(rel, rng);
+                *position = f32s([0, 1, 2].map(|i| pd[i] + rel[i]));
+            }
+        }
+    }
+    let (lo, hi) = band.range();
+    if rng.f() < 0.2 {
+        let n = s.material.shininess + if rng.f() < 0.5 { -1.0 } else { 1.0 };
+        out.material.shininess = n.clamp(lo as f32, hi as f32);
+    }
+    out
+}
+
+/// A search for the largest error of tier `S` on `term` and `band`: `cases` random
+/// samples (the generator above, which puts half of the lights near the highlight),
+/// then `climbs` hill climbs of `steps` steps from the worst of them. A step moves
+/// the sample by a random amount between 10⁻⁴ and 10⁻¹ radians (see [`perturb`]) and
+/// keeps it when the unquantised error does not decrease. Deterministic for a seed.
+/// Returns the largest quantised error met and its sample.
+pub fn search<S: Scalar>(
+    term: Term,
+    band: Band,
+    cases: u32,
+    climbs: usize,
+    steps: u32,
+    seed: u64,
+) -> (u32, Sample) {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut seed_bytes = [0u8; 32];
+    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let mut runner = TestRunner::new_with_rng(
+        Config::default(),
+        TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes),
+    );
+    let strat = sample(term, band);
+    let mut pool: Vec<(f64, Sample)> = Vec::new();
+    let mut best: Option<(u32, Sample)> = None;
+    fn note<S: Scalar>(s: &Sample, best: &mut Option<(u32, Sample)>) {
+        let e = lsb_error(tier_u8::<S>(s), reference_u8(s));
+        if best.as_ref().is_none_or(|b| e > b.0) {
+            *best = Some((e, s.clone()));
+        }
+    }
+    let mut done = 0;
+    while done < cases {
+        let s = strat.new_tree(&mut runner).unwrap().current();
+        if excluded(&s) {
+            continue;
+        }
+        done += 1;
+        note::<S>(&s, &mut best);
+        pool.push((linear_error::<S>(&s), s));
+    }
+    pool.sort_by(|a, b| b.0.total_cmp(&a.0));
+    pool.truncate(climbs);
+    let mut rng = Rng::new(seed);
+    for (mut err, mut s) in pool {
+        for _ in 0..steps {
+            let amount = 10f64.powf(-1.0 - 3.0 * rng.f());
+            let t = perturb(&s, band, amount, &mut rng);
+            if excluded(&t) {
+                continue;
+            }
+            let e = linear_error::<S>(&t);
+            if e >= err {
+                note::<S>(&t, &mut best);
+                (err, s) = (e, t);
+            }
+        }
+    }
+    best.unwrap()
 }

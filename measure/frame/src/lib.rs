@@ -14,16 +14,16 @@
 //! parameters), then call [`draw_full`] / [`draw_bands`] (never inlined: the
 //! per-frame path, whose call graph `frame.py --check` inspects on its own):
 //! vertex stage and binning (`MeshDraw::new`), clears, spans, flush. The
-//! mesh transform is built once beforehand ([`standard::transform`], `f32`)
-//! and passed in.
+//! mesh transform is built by the caller (the firmware: in integers every frame,
+//! [`standard::fixed_transform`]) and passed in.
 #![no_std]
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::prelude::*;
-use fixshade::render::{MeshMemory, 
-    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, Lerp, MeshDraw,
+use fixshade::render::{
+    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, Lerp, MeshDraw, MeshMemory,
     RenderError,
 };
 use fixshade::shade::{DirectionalLighting, Kernel};
@@ -55,15 +55,18 @@ pub enum Fail {
     Render,
     /// A buffer too small: elements needed.
     Buffer(usize),
+    /// The mesh transform could not be built.
+    Transform,
 }
 
 impl Fail {
-    /// Status word: 1 lighting, 2 render, 3 | needed << 8 buffer.
+    /// Status word: 1 lighting, 2 render, 3 | needed << 8 buffer, 5 transform.
     pub fn code(self) -> u32 {
         match self {
             Fail::Lighting => 1,
             Fail::Render => 2,
             Fail::Buffer(n) => 3 | (n as u32) << 8,
+            Fail::Transform => 5,
         }
     }
 }
@@ -154,10 +157,12 @@ where
 /// The lighting of `blinn_phong_inc`: one directional light in an array, as
 /// `IncrementalPhongShading` requires.
 pub fn inc_lighting() -> Result<DirectionalLighting<2, 1, BlinnPhong>, ParamError> {
-    Ok(Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
-        [standard::light()?],
-        Material::new(&standard::material())?,
-    ))
+    Ok(
+        Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
+            [standard::light()?],
+            Material::new(&standard::material())?,
+        ),
+    )
 }
 
 macro_rules! configs {

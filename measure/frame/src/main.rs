@@ -6,8 +6,9 @@
 //!   rendering one complete frame of the standard scene into a
 //!   `fixshade::target::Checksum<Rgb565>` and returning
 //!   `status << 32 | checksum` (status 0: drawn, all 57 600 pixels sent).
-//!   `init()` builds the mesh transform (`standard::transform()`, `f32`) and
-//!   every configuration's lighting once into statics that the frames read; frame.py calls it first and counts
+//!   `init()` converts the camera (`standard::fixed_camera()`, `f32`) and
+//!   builds every configuration's lighting once into statics; each frame builds
+//!   its mesh transform from the camera in integers (`standard::fixed_transform`); frame.py calls it first and counts
 //!   it separately. Buffers are statics (`.bss`), named for frame.py:
 //!   `FRAME_COLOR`, `FRAME_DEPTH` (whole frame), `STRIP_COLOR`,
 //!   `STRIP_DEPTH` (8-row bands), and per configuration `CACHE_<config>`,
@@ -28,15 +29,17 @@ mod firmware {
     use cortex_m_rt::entry;
     use embedded_graphics_core::geometry::Size;
     use embedded_graphics_core::pixelcolor::Rgb565;
-    use fixshade::camera::{MeshTransform, Orthographic};
+    use fixshade::camera::{FixedCamera, MeshTransform, Orthographic};
     use fixshade::render::{CachedVertex, Carry};
     use fixshade::target::Checksum;
-    use fixshade_frame::{Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, W};
+    use fixshade_frame::{
+        Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, W,
+    };
 
     // All-zero is a valid value of every buffer element (integers, Rgb565 =
     // u16, CachedVertex and Carry = integers and integer arrays): `.bss`.
     const _: () = assert!(BANDS * BAND_ROWS >= W);
-    static mut TRANSFORM: MaybeUninit<MeshTransform<Orthographic>> = MaybeUninit::uninit();
+    static mut CAMERA: MaybeUninit<FixedCamera<Orthographic>> = MaybeUninit::uninit();
     #[no_mangle]
     static mut FRAME_COLOR: [Rgb565; W * W] = unsafe { zeroed() };
     #[no_mangle]
@@ -46,19 +49,22 @@ mod firmware {
     #[no_mangle]
     static mut STRIP_DEPTH: [u16; W * BAND_ROWS] = [0; W * BAND_ROWS];
 
-    /// Builds the mesh transform (once, before any frame). 0: done.
+    /// Converts the camera (once, in `f32`, before any frame). 0: done.
     #[no_mangle]
     pub unsafe extern "C" fn init() -> u32 {
-        match fixshade::standard::transform() {
-            Ok(t) => (*addr_of_mut!(TRANSFORM)).write(t),
+        match fixshade::standard::fixed_camera() {
+            Ok(c) => (*addr_of_mut!(CAMERA)).write(c),
             Err(_) => return 1,
         };
         init_lightings()
     }
 
-    /// The transform `init` built.
-    unsafe fn transform<'a>() -> &'a MeshTransform<Orthographic> {
-        &*black_box(addr_of!(TRANSFORM)).cast::<MeshTransform<Orthographic>>()
+    /// The frame's mesh transform, built in integers from the camera `init`
+    /// converted (part of every counted frame, as in an animation).
+    fn transform() -> Option<MeshTransform<Orthographic>> {
+        // SAFETY: `init` wrote the camera before any frame runs.
+        let c = unsafe { &*black_box(addr_of!(CAMERA)).cast::<FixedCamera<Orthographic>>() };
+        fixshade::standard::fixed_transform(c).ok()
     }
 
     fn checksum() -> Checksum<Rgb565> {
@@ -121,7 +127,10 @@ mod firmware {
                             color: &mut *addr_of_mut!(FRAME_COLOR),
                             depth: &mut *addr_of_mut!(FRAME_DEPTH),
                         };
-                        let r = fixshade_frame::$name::full(transform(), lighting(), b, &mut d);
+                        let r = match transform() {
+                            Some(t) => fixshade_frame::$name::full(&t, lighting(), b, &mut d),
+                            None => Err(Fail::Transform),
+                        };
                         finish(r, &d)
                     }
 
@@ -136,7 +145,10 @@ mod firmware {
                             color: &mut *addr_of_mut!(STRIP_COLOR),
                             depth: &mut *addr_of_mut!(STRIP_DEPTH),
                         };
-                        let r = fixshade_frame::$name::band8(transform(), lighting(), b, &mut d);
+                        let r = match transform() {
+                            Some(t) => fixshade_frame::$name::band8(&t, lighting(), b, &mut d),
+                            None => Err(Fail::Transform),
+                        };
                         finish(r, &d)
                     }
                 }
@@ -165,7 +177,13 @@ mod firmware {
         };
     }
 
-    entries!(lambert_gouraud, blinn_gouraud, blinn_phong, blinn_phong_inc, flat);
+    entries!(
+        lambert_gouraud,
+        blinn_gouraud,
+        blinn_phong,
+        blinn_phong_inc,
+        flat
+    );
 
     #[entry]
     fn main() -> ! {
@@ -202,7 +220,10 @@ fn main() {
     impl DrawTarget for Recorder {
         type Color = Rgb565;
         type Error = core::convert::Infallible;
-        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, _: I) -> Result<(), Self::Error> {
+        fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+            &mut self,
+            _: I,
+        ) -> Result<(), Self::Error> {
             unreachable!("frames are sent with fill_contiguous")
         }
         fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
@@ -216,7 +237,9 @@ fn main() {
         }
     }
 
-    let t = fixshade::standard::transform().expect("standard transform");
+    let t =
+        fixshade::standard::fixed_transform(&fixshade::standard::fixed_camera().expect("camera"))
+            .expect("standard transform");
     let mut out = Vec::new();
     for name in CONFIGS {
         for band8 in [false, true] {
@@ -225,7 +248,14 @@ fn main() {
             } else {
                 (BINS_FULL, 0, W * W)
             };
-            let go = |bins: usize, carry: usize, d: &mut dyn FnMut(&mut [u16], &mut [Carry], &mut [Rgb565], &mut [u16]) -> Result<(), Fail>| {
+            let go = |bins: usize,
+                      carry: usize,
+                      d: &mut dyn FnMut(
+                &mut [u16],
+                &mut [Carry],
+                &mut [Rgb565],
+                &mut [u16],
+            ) -> Result<(), Fail>| {
                 let mut b = vec![0u16; bins];
                 let mut c = vec![Carry::default(); carry];
                 let mut color = vec![Rgb565::BLACK; px];
@@ -243,7 +273,11 @@ fn main() {
                 run(name, band8, &t, b, c, col, dep, &mut rec).unwrap()
             })
             .expect("frame");
-            assert_eq!(rec.0.value(), sum.value(), "{name}: recorder and checksum disagree");
+            assert_eq!(
+                rec.0.value(),
+                sum.value(),
+                "{name}: recorder and checksum disagree"
+            );
             assert_eq!(sum.pixels() as usize, W * W, "{name}: pixels sent");
             // the exact needs, from the errors of too small buffers
             let need = |bins: usize, carry: usize| {
@@ -259,7 +293,11 @@ fn main() {
             let bands = if band8 { BANDS } else { 1 };
             let bins_needed = need(2 * (bands + 1), carry_len);
             let carry_needed = need(bins_len, 0);
-            let key = if band8 { format!("{name}_band8") } else { name.to_string() };
+            let key = if band8 {
+                format!("{name}_band8")
+            } else {
+                name.to_string()
+            };
             out.push(format!(
                 "  \"{key}\": {{\"checksum\": \"{:#010x}\", \"lit_px\": {}, \"pixels\": {}, \
                  \"bins_needed\": {bins_needed}, \"carry_needed\": {carry_needed}}}",

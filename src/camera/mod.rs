@@ -10,6 +10,10 @@
 //! 16 × 16-bit products per element (one `MULS` each on a Cortex-M0), no
 //! 64-bit multiply and no floating point.
 
+mod fixed;
+
+pub use fixed::{Angle, FixedCamera, Pose};
+
 use crate::mesh::{Mat4, MeshError, Viewport};
 use crate::raster::SUBPIXEL_BITS;
 use core::marker::PhantomData;
@@ -166,18 +170,26 @@ impl<P: Projection> Camera<P> {
         let inv = 1.0 / (1u32 << frac) as f32;
         let nm = mv.normal_matrix();
         if P::PERSPECTIVE {
-            // clip rows: x' = 8W·x_c (so that x_sub = cx + x'/w_c), y' = −8H·y_c
-            let xr = scaled(m[0], w8, inv);
-            let yr = scaled(m[1], -h8, inv);
-            let zr = scaled(m[2], 1.0, inv);
-            let wr = scaled(m[3], 1.0, inv);
+            // clip rows in one unit (so that they compare and divide):
+            // x' = 8W·x_c, y' = −8H·y_c (x_sub = cx + x'/w'), z' = z_c, w' = w_c
+            let rows = [
+                scaled(m[0], w8, inv),
+                scaled(m[1], -h8, inv),
+                scaled(m[2], 1.0, inv),
+                scaled(m[3], 1.0, inv),
+            ];
+            let frac = rows.iter().map(Row::natural_frac).min().unwrap_or(0);
+            let [x, y, z, w] = rows.map(|r| Row::with_frac(r, frac));
+            // the near plane at w_c = near (gluPerspective: w_c = −z_eye)
+            let near_w = libm::roundf(libm::ldexpf(self.near, frac)).clamp(1.0, 1e9) as i32;
             Ok(MeshTransform {
-                x: Row::new(xr),
-                y: Row::new(yr),
-                z: Row::new(zr),
-                w: Row::new(wr),
-                centre: [cx, cy],
+                x,
+                y,
+                z,
+                w,
+                centre: [cx as i32, cy as i32],
                 near: self.near,
+                near_w,
                 normal: NormalRows::new(&nm),
                 eye: EyeRows::new(&mv, inv),
                 kind: PhantomData,
@@ -194,8 +206,9 @@ impl<P: Projection> Camera<P> {
                 y: row(m[1], -h8, cy),
                 z: row(m[2], 65535.0 * 0.5, 65535.0 * 0.5),
                 w: Row::default(),
-                centre: [cx, cy],
+                centre: [cx as i32, cy as i32],
                 near: self.near,
+                near_w: 1,
                 normal: NormalRows::new(&nm),
                 eye: EyeRows::new(&mv, inv),
                 kind: PhantomData,
@@ -223,6 +236,12 @@ pub struct Row {
 impl Row {
     /// From `f32` elements (per raw position unit) and translation.
     fn new(r: [f32; 4]) -> Row {
+        Self::with_frac(r, Self::natural_frac(&r))
+    }
+
+    /// The fraction bits [`Row::new`] gives `r`: the most that keep the
+    /// elements below 2^29 and the translation below 2^30.
+    fn natural_frac(r: &[f32; 4]) -> i32 {
         let max = r[0].abs().max(r[1].abs()).max(r[2].abs());
         // frac with max·2^(frac + 16) in [2^28, 2^29): frac = 12 − exponent
         let frac = if max > 0.0 {
@@ -232,12 +251,16 @@ impl Row {
         };
         // keep the translation below 2^30 in output units
         let tmax = r[3].abs();
-        let frac = if tmax > 0.0 {
+        if tmax > 0.0 {
             frac.min(29 - libm::frexpf(tmax).1)
         } else {
             frac
         }
-        .clamp(-60, 60);
+        .clamp(-60, 60)
+    }
+
+    /// From `f32` elements with `frac` fraction bits (at most the natural ones).
+    fn with_frac(r: [f32; 4], frac: i32) -> Row {
         let conv = |v: f32, s: i32| {
             let x = libm::roundf(libm::ldexpf(v, s));
             // `as` saturates (and maps NaN to 0)
@@ -397,8 +420,10 @@ pub struct MeshTransform<P: Projection> {
     y: Row,
     z: Row,
     w: Row,
-    centre: [f32; 2],
+    centre: [i32; 2],
     near: f32,
+    /// The near plane in `w` units (perspective), at least 1.
+    near_w: i32,
     normal: NormalRows,
     eye: EyeRows,
     kind: PhantomData<P>,
@@ -423,7 +448,147 @@ impl MeshTransform<Orthographic> {
     }
 }
 
+/// Clip coordinates of a vertex in one fixed-point unit (see
+/// [`MeshTransform::clip`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Clip {
+    /// `8W·x_c`: the column is `cx + x/w` sub-pixels.
+    pub x: i32,
+    /// `−8H·y_c`: the row is `cy + y/w` sub-pixels.
+    pub y: i32,
+    /// `z_c`.
+    pub z: i32,
+    /// `w_c` (the distance in front of the eye).
+    pub w: i32,
+}
+
+/// `round(n / d)` (halves away from zero) for `d > 0`.
+#[inline]
+fn div_round(n: i64, d: i64) -> i64 {
+    let q = (2 * n.unsigned_abs() + d as u64) / (2 * d as u64);
+    if n < 0 {
+        -(q as i64)
+    } else {
+        q as i64
+    }
+}
+
+/// See [`MeshTransform::to_screen`].
+#[inline]
+fn to_screen(centre: [i32; 2], c: Clip) -> Option<Projected> {
+    if c.w < 1 {
+        return None;
+    }
+    let (w, g) = (i64::from(c.w), i64::from(GUARD));
+    if i64::from(c.x).abs() > g * w || i64::from(c.y).abs() > g * w {
+        return None;
+    }
+    Some(divide(centre, c))
+}
+
+/// The division by `w` of clip coordinates with `w ≥ 1` (smaller `w` count as
+/// 1) within about the guard band (the result saturates to `i32`).
+#[inline]
+pub(crate) fn divide(centre: [i32; 2], c: Clip) -> Projected {
+    let w = i64::from(c.w.max(1));
+    let z = div_round((i64::from(c.z) + w) * 65535, 2 * w);
+    let sat = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+    Projected {
+        x: sat(i64::from(centre[0]) + div_round(i64::from(c.x), w)),
+        y: sat(i64::from(centre[1]) + div_round(i64::from(c.y), w)),
+        z: z.clamp(0, 65535) as u16,
+    }
+}
+
+/// The guard band of the perspective path: clip-space polygons are cut to
+/// `|x/w|, |y/w| ≤ GUARD` sub-pixels around the screen centre before the
+/// division, so that every projected point is a plain `i32` (no clamping, no
+/// folded triangles) and the window clipper then works exactly.
+pub const GUARD: i32 = 1 << 26;
+
+impl MeshTransform<Perspective> {
+    /// The clip coordinates of a raw position, all four in the same unit.
+    #[inline]
+    pub fn clip(&self, p: [i16; 3]) -> Clip {
+        Clip {
+            x: self.x.apply(p),
+            y: self.y.apply(p),
+            z: self.z.apply(p),
+            w: self.w.apply(p),
+        }
+    }
+
+    /// The near plane in the unit of [`Clip::w`].
+    pub fn near_w(&self) -> i32 {
+        self.near_w
+    }
+
+    /// The screen position and depth of clip coordinates with `w ≥ 1` inside
+    /// the guard band ([`GUARD`]), or `None`. Depth is
+    /// `round((z/w + 1)/2·65535)`, saturated (points beyond the far plane get
+    /// 65535: no far-plane clipping).
+    #[inline]
+    pub fn to_screen(&self, c: Clip) -> Option<Projected> {
+        to_screen(self.centre, c)
+    }
+
+    /// [`MeshTransform::to_screen`] of a vertex in front of the near plane.
+    #[inline]
+    pub fn project(&self, p: [i16; 3]) -> Option<Projected> {
+        let c = self.clip(p);
+        if c.w < self.near_w {
+            return None;
+        }
+        self.to_screen(c)
+    }
+}
+
 impl<P: Projection> MeshTransform<P> {
+    /// The screen position of a vertex: always for an orthographic transform;
+    /// for a perspective one when it lies in front of the near plane and
+    /// inside the guard band.
+    #[inline(always)]
+    pub(crate) fn screen(&self, p: [i16; 3]) -> Option<Projected> {
+        if P::PERSPECTIVE {
+            let c = self.clip_coords(p);
+            if c.w < self.near_w {
+                return None;
+            }
+            to_screen(self.centre, c)
+        } else {
+            let z = self.z.apply_round(p);
+            Some(Projected {
+                x: self.x.apply_round(p),
+                y: self.y.apply_round(p),
+                z: z.clamp(0, 65535) as u16,
+            })
+        }
+    }
+
+    /// The clip coordinates of a raw position (perspective transforms; an
+    /// orthographic one has no `w` row).
+    #[inline]
+    pub(crate) fn clip_coords(&self, p: [i16; 3]) -> Clip {
+        Clip {
+            x: self.x.apply(p),
+            y: self.y.apply(p),
+            z: self.z.apply(p),
+            w: self.w.apply(p),
+        }
+    }
+
+    /// The near plane in `w` units (1 for an orthographic transform).
+    #[inline]
+    pub(crate) fn near_units(&self) -> i32 {
+        self.near_w
+    }
+
+    /// The screen centre in sub-pixels.
+    #[inline]
+    pub(crate) fn centre_sub(&self) -> [i32; 2] {
+        self.centre
+    }
+
     /// The eye-space normal (unnormalised, Q14) of a Q14 normal.
     #[inline(always)]
     pub fn normal(&self, n: [i16; 3]) -> [i32; 3] {
@@ -442,7 +607,7 @@ impl<P: Projection> MeshTransform<P> {
     }
 
     /// The screen centre in sub-pixels.
-    pub fn centre(&self) -> [f32; 2] {
+    pub fn centre(&self) -> [i32; 2] {
         self.centre
     }
 }

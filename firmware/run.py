@@ -1,0 +1,231 @@
+#!/usr/bin/env python3
+"""Builds the showcase firmware (firmware/qemu) for every core and
+configuration, runs each image in QEMU, checks its checksum against the host
+reference, and prints the resources table of the README.
+
+    python3 firmware/run.py                 # build, run, print the table (about 2 min when built)
+    python3 firmware/run.py --check         # CI: also fail on any mismatch; last line "N passed, N failed"
+    python3 firmware/run.py --cores m0 --configs flat,blinn_phong
+    python3 firmware/run.py --no-build      # the images as they are (firmware/target/images/)
+    python3 firmware/run.py --profile release-z --cores m0   # the same at opt-level "z"
+
+Needs: qemu-system-arm (Debian: apt-get install qemu-system-arm), the rustup
+targets thumbv6m-none-eabi and thumbv7em-none-eabihf, pyelftools.
+
+Per image (one configuration, the standard scene, `fixshade-qemu` built at
+opt-level 3 with LTO):
+  * checksum: the Checksum display's value after one frame; must equal the
+    host's (`cargo run -p fixshade-qemu --profile host`, the same library
+    functions compiled for x86-64) and be the same in both frames the image
+    renders;
+  * instructions per frame: SysTick ticks of the frame, converted with a
+    calibration loop of 2^21 instructions; QEMU runs with `-icount shift=0`
+    (one instruction = 1 ns of virtual time), so the count is exact to one
+    tick (62.5 instructions on the microbit, 40 on the mps2) and
+    deterministic; the checker requires 62.5 / 40 instructions per tick;
+  * stack: the painted stack's low-water mark (cortex-m-rt `paint-stack`):
+    the image's peak (bytes below the top after start-up, set-up and both
+    frames) and the frame's own (below the SP at the call of the frame
+    function: the stack is painted again before the frames);
+  * flash and RAM: section and symbol sizes of the ELF (pyelftools).
+The stack sits below the statics (build.rs writes memory.x): an overflow
+faults and the image exits with status 1. `--check` proves it: it builds the
+M0 and M4F `lambert_gouraud` images with a 2 KiB stack and requires each to
+exit 1 with "stack overflow".
+"""
+
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+# cargo runs in firmware/: a relative CARGO_TARGET_DIR is relative to it
+TARGET_DIR = HERE / os.environ.get("CARGO_TARGET_DIR", "target")
+IMAGES = TARGET_DIR / "images"
+CONFIGS = ["lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat"]
+CORES = {
+    # core: (rust target, QEMU machine, instructions per SysTick tick, RAM bytes,
+    #        clock for frames per second, what that clock is)
+    "m0": ("thumbv6m-none-eabi", "microbit", 62.5, 16 * 1024, 133e6, "133 MHz"),
+    "m4f": ("thumbv7em-none-eabihf", "mps2-an386", 40.0, 4 * 1024 * 1024, 168e6, "168 MHz"),
+}
+QEMU_TIMEOUT = 120
+# function names (mangled) counted as "fixshade + scene code": fixshade, this
+# firmware's scene functions (fixshade_qemu) and fixshade's own dependencies
+OURS = ["fixshade", "4libm", "9micromath", "5fixed", "8heapless"]
+
+
+def cargo(args, env=None):
+    cmd = ["cargo"] + args
+    r = subprocess.run(cmd, cwd=HERE, env={**os.environ, **(env or {})}, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.stderr.write(r.stderr)
+        raise SystemExit(f"failed: {' '.join(cmd)}")
+    return r.stdout
+
+
+def build(core, config, profile="release", env=None, name=None):
+    target = CORES[core][0]
+    cargo(["build", "-q", "-p", "fixshade-qemu", "--profile", profile, "--target", target, "--features", config], env)
+    IMAGES.mkdir(parents=True, exist_ok=True)
+    dst = IMAGES / f"{name or core + '_' + config + '_' + profile}.elf"
+    shutil.copyfile(TARGET_DIR / target / profile / "showcase", dst)
+    return dst
+
+
+def qemu(core, elf):
+    machine = CORES[core][1]
+    cmd = ["timeout", str(QEMU_TIMEOUT), "qemu-system-arm", "-M", machine, "-nographic",
+           "-semihosting-config", "enable=on,target=native", "-icount", "shift=0", "-kernel", str(elf)]
+    t = time.time()
+    r = subprocess.run(cmd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
+    return r.returncode, r.stdout + r.stderr, time.time() - t
+
+
+def host_reference():
+    return json.loads(cargo(["run", "-q", "-p", "fixshade-qemu", "--profile", "host"]))
+
+
+def elf_sizes(path):
+    """Flash and RAM of the image, by section and by symbol."""
+    from elftools.elf.elffile import ELFFile
+
+    with open(path, "rb") as fh:
+        f = ELFFile(fh)
+        sec = {s.name: s for s in f.iter_sections()}
+        size = lambda n: sec[n]["sh_size"] if n in sec else 0
+        text_lo, text_hi = sec[".text"]["sh_addr"], sec[".text"]["sh_addr"] + size(".text")
+        code = {"fixshade": 0, "builtins": 0, "runtime": 0}
+        objects = {}
+        for s in f.get_section_by_name(".symtab").iter_symbols():
+            n, a, z = s.name, s["st_value"] & ~1, s["st_size"]
+            if z == 0:
+                continue
+            if s["st_info"]["type"] == "STT_FUNC" and text_lo <= a < text_hi:
+                if any(k in n for k in OURS):
+                    code["fixshade"] += z
+                elif "compiler_builtins" in n or n.startswith("__aeabi"):
+                    code["builtins"] += z
+                else:
+                    code["runtime"] += z
+            elif s["st_info"]["type"] == "STT_OBJECT":
+                objects[n] = z
+        # what no function symbol covers (padding, literal pools outside functions)
+        code["runtime"] += size(".text") - sum(code.values())
+        mesh = sum(z for n, z in objects.items() if "8standard6SPHERE" in n)
+        flash = size(".vector_table") + size(".text") + size(".rodata") + size(".data")
+        buffers = {n: objects.get(n, 0) for n in ["STRIP", "DEPTH", "CACHE", "BINS", "CARRY_RECORDS"]}
+        return {
+            "flash": flash,
+            "code_fixshade": code["fixshade"],
+            "code_builtins": code["builtins"],
+            "code_runtime": code["runtime"] + size(".vector_table"),
+            "mesh": mesh,
+            "rodata_other": size(".rodata") - mesh + size(".data"),
+            "ram_static": size(".data") + size(".bss") + size(".uninit"),
+            "ram_buffers": sum(buffers.values()),
+            "buffers": buffers,
+        }
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--check", action="store_true", help="exit 1 on any failure (CI)")
+    ap.add_argument("--cores", default="m0,m4f")
+    ap.add_argument("--configs", default=",".join(CONFIGS))
+    ap.add_argument("--no-build", action="store_true")
+    ap.add_argument("--profile", default="release", help="cargo profile: release (opt-level 3) or release-z")
+    ap.add_argument("--json", help="where to write the figures (default firmware/target/resources[-PROFILE].json)")
+    args = ap.parse_args()
+    cores = args.cores.split(",")
+    configs = args.configs.split(",")
+    passed, failed = 0, 0
+
+    def check(ok, what):
+        nonlocal passed, failed
+        if ok:
+            passed += 1
+        else:
+            failed += 1
+            print(f"FAILED: {what}", flush=True)
+        return ok
+
+    print("== host reference (cargo run -p fixshade-qemu --profile host)", flush=True)
+    host = host_reference()
+    rows = []
+    for core in cores:
+        target, machine, per_tick, ram, clock, _ = CORES[core]
+        for config in configs:
+            elf = IMAGES / f"{core}_{config}_{args.profile}.elf"
+            if not args.no_build:
+                elf = build(core, config, args.profile)
+            code, out, secs = qemu(core, elf)
+            line = next((l for l in out.splitlines() if l.startswith("RESULT ")), None)
+            what = f"{core} {config} ({machine})"
+            if not check(code == 0 and line is not None, f"{what}: exit {code}, output:\n{out.strip()}"):
+                continue
+            r = json.loads(line[len("RESULT "):])
+            want = host[config]["checksum"]
+            check(r["checksum"] == want, f"{what}: checksum {r['checksum']}, host {want}")
+            tick = r["calib_instructions"] / r["calib_ticks"]
+            check(abs(tick - per_tick) < 0.01 * per_tick,
+                  f"{what}: {tick:.3f} instructions per tick, not {per_tick}: is -icount shift=0 in effect?")
+            check(0 < r["stack_frame"] < r["stack_peak"] < r["stack_size"],
+                  f"{what}: stack: frame {r['stack_frame']}, peak {r['stack_peak']} of {r['stack_size']}")
+            r.update(elf_sizes(elf))
+            r.update(core=core, machine=machine, profile=args.profile, qemu_seconds=round(secs, 2),
+                     fps=clock / r["instructions"])
+            check(r["ram_static"] + r["stack_size"] <= ram, f"{what}: RAM {r['ram_static']} + stack over {ram}")
+            rows.append(r)
+            print(f"{what}: {r['checksum']} (host {want}), {r['instructions']} instructions/frame, "
+                  f"stack {r['stack_frame']} B (frame), {r['stack_peak']} B (image), {secs:.1f} s", flush=True)
+
+    if args.check:
+        # a stack overflow must fail loudly: 2 KiB is far too small for a frame
+        for core in cores:
+            elf = build(core, "lambert_gouraud", args.profile, {"FIXSHADE_STACK": "2048"}, f"{core}_overflow")
+            code, out, _ = qemu(core, elf)
+            check(code == 1 and "stack overflow" in out,
+                  f"{core}: a 2 KiB stack must exit 1 with 'stack overflow'; exit {code}, output:\n{out.strip()}")
+            print(f"{core} with a 2 KiB stack: exit {code}: {out.strip()}", flush=True)
+            # rebuild the regular image so that the next cargo build is a no-op
+            build(core, "lambert_gouraud", args.profile)
+
+    suffix = "" if args.profile == "release" else "-" + args.profile
+    out = Path(args.json or TARGET_DIR / f"resources{suffix}.json")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(rows, indent=1) + "\n")
+    print_table(rows)
+    print(f"{passed} passed, {failed} failed")
+    if args.check and failed:
+        sys.exit(1)
+
+
+def kib(b):
+    return f"{b / 1024:.1f}"
+
+
+def print_table(rows):
+    print()
+    print("| core (QEMU board), opt-level | configuration | band rows | instructions / frame | frames/s (clock) "
+          "| flash KiB | fixshade + scene code | compiler builtins | runtime | mesh "
+          "| static RAM KiB (frame buffers) | stack B: frame, image peak (reserved) | checksum |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|")
+    for r in rows:
+        opt = "z" if r["profile"] == "release-z" else "3"
+        print(f"| {r['core'].upper()} ({r['machine']}), {opt} | {r['config']} | {r['rows']} | {r['instructions']:,} "
+              f"| {r['fps']:.1f} @ {CORES[r['core']][5]} | {kib(r['flash'])} | {kib(r['code_fixshade'])} "
+              f"| {kib(r['code_builtins'])} | {kib(r['code_runtime'])} | {kib(r['mesh'])} "
+              f"| {kib(r['ram_static'])} ({kib(r['ram_buffers'])}) "
+              f"| {r['stack_frame']:,}, {r['stack_peak']:,} ({r['stack_size']:,}) "
+              f"| {r['checksum']} |")
+
+
+if __name__ == "__main__":
+    main()
