@@ -238,13 +238,21 @@ pub(crate) fn pow_frac_f32(x: f32, f: u16) -> f32 {
 
 /// `x^e` from [`Scalar::powi`] and the tier's fractional power.
 #[inline(always)]
+#[inline(always)]
 pub(crate) fn pow<S: Scalar>(x: S, e: Exponent) -> S {
     let p = x.powi(e.int);
     if e.frac == 0 {
         p
     } else {
-        p.mul(x.pow_frac(e.frac))
+        p.mul(pow_frac_out_of_line(x, e.frac))
     }
+}
+
+/// The fractional part's factor, kept out of the integer-exponent path (a
+/// scene with integer exponents pays one compare per power).
+#[inline(never)]
+fn pow_frac_out_of_line<S: Scalar>(x: S, f: u16) -> S {
+    x.pow_frac(f)
 }
 
 #[cfg(test)]
