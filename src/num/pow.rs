@@ -238,7 +238,6 @@ pub(crate) fn pow_frac_f32(x: f32, f: u16) -> f32 {
 
 /// `x^e` from [`Scalar::powi`] and the tier's fractional power.
 #[inline(always)]
-#[inline(always)]
 pub(crate) fn pow<S: Scalar>(x: S, e: Exponent) -> S {
     let p = x.powi(e.int);
     if e.frac == 0 {
