@@ -17,8 +17,8 @@ use fixshade::light::{DirectionalLight, LightColors, LightKind};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use fixshade::target::{DepthBuffer, SliceFramebuffer};
 use render::{
-    compare, config_scene, draw_prepared, prepare, render_reference, LightSet, Mode, LIGHT_SETS,
-    MODES,
+    compare, config_scene, draw_inc, draw_prepared, prepare, render_reference, LightSet, Mode,
+    LIGHT_SETS, MODES,
 };
 use std::fmt::Write;
 use std::time::Instant;
@@ -64,109 +64,57 @@ fn measure<S: Scalar>(key: &'static str, rows: &mut Vec<Row>) {
     }
 }
 
-/// Draws one object of a directional-light scene with `IncrementalPhongShading`
-/// in tier `S`; returns the shaded pixels.
-fn draw_inc<
-    S: fixshade::shade::IncrementalTier,
-    M: fixshade::lighting::Model,
-    C: fixshade::color::OutputColor + Default,
->(
-    scene: &render::Scene,
-    prepared: &[[render::Vert; 3]],
-    pixels: &mut [C],
-    depth: &mut [u16],
-) -> u64
-where
-    for<'a> fixshade::shade::Shader<
-        'a,
-        fixshade::shade::IncrementalPhongShading,
-        fixshade::lighting::Lighting<S, [DirectionalLight<S>; 1], M>,
-        fixshade::shade::Linear,
-        C,
-    >: fixshade::shade::Shading<S, Color = C>,
-    fixshade::shade::IncrementalPhongShading:
-        fixshade::shade::ModeState<fixshade::lighting::Lighting<S, [DirectionalLight<S>; 1], M>, C>,
-{
-    use fixshade::shade::Shading;
-    let d = &scene.lights[0];
-    let LightKind::Directional { towards_light } = d.kind else {
-        unreachable!("directional light sets only")
-    };
-    let light = DirectionalLight::<S>::new(
-        towards_light,
-        LightColors::new(d.ambient, d.diffuse, d.specular).unwrap(),
-    )
-    .unwrap();
-    let obj = &scene.objects[0];
-    let lighting = fixshade::lighting::Lighting::<S, _, M>::new(
-        [light],
-        fixshade::material::Material::new(&obj.material).unwrap(),
-    )
-    .with_global_ambient(fixshade::color::Rgb::from_f32(scene.global_ambient));
-    let mut fb = SliceFramebuffer::new(pixels, scene.width, scene.height).unwrap();
-    let mut db = DepthBuffer::new(depth, scene.width).unwrap();
-    let mut s = fixshade::shade::Shader::new(
-        fixshade::shade::IncrementalPhongShading,
-        &lighting,
-        fixshade::shade::Linear,
-    );
-    let o = fixshade::raster::RasterOptions {
-        cull: fixshade::raster::Cull::Back,
-        ..fixshade::raster::RasterOptions::default()
-    };
-    prepared
-        .iter()
-        .map(|t| {
-            let sv = t.each_ref().map(|v| {
-                fixshade::shade::ShadeVertex::<S>::new(
-                    [v.screen.x, v.screen.y],
-                    v.screen.z,
-                    v.screen.inv_w,
-                    v.pos,
-                    v.normal,
-                )
-            });
-            render::ok(s.draw(&mut fb, Some(&mut db), &sv, &o)).pixels as u64
-        })
-        .sum()
-}
-
-/// `IncrementalPhong` (directional light sets, every tier but Q30).
-fn measure_inc<S: fixshade::shade::IncrementalTier>(key: &'static str, rows: &mut Vec<Row>) {
-    use fixshade::lighting::{BlinnPhong, Lambert, Phong};
-    for lights in [LightSet::DirDiffuse, LightSet::DirBlinn, LightSet::DirPhong] {
+/// `IncrementalPhong` (Q14, directional light sets only).
+fn measure_inc<const NW: u8>(key: &'static str, rows: &mut Vec<Row>) {
+    use fixshade::lighting::{BlinnPhong, Lambert};
+    for lights in [LightSet::DirDiffuse, LightSet::DirBlinn] {
         let scene = config_scene(lights, Mode::Phong);
         let prepared = prepare(&scene);
         let n = (scene.width * scene.height) as usize;
         let reference = render_reference(&scene);
-        fn draw<S: fixshade::shade::IncrementalTier, C: fixshade::color::OutputColor + Default>(
-            lights: LightSet,
-            scene: &render::Scene,
-            prepared: &[[render::Vert; 3]],
-            pixels: &mut [C],
-            depth: &mut [u16],
-        ) -> u64 {
-            match lights {
-                LightSet::DirDiffuse => draw_inc::<S, Lambert, C>(scene, prepared, pixels, depth),
-                LightSet::DirBlinn => draw_inc::<S, BlinnPhong, C>(scene, prepared, pixels, depth),
-                _ => draw_inc::<S, Phong, C>(scene, prepared, pixels, depth),
+        let light = match scene.lights[0].kind {
+            LightKind::Directional { towards_light } => {
+                let d = &scene.lights[0];
+                DirectionalLight::new(
+                    towards_light,
+                    LightColors::new(d.ambient, d.diffuse, d.specular).unwrap(),
+                )
+                .unwrap()
             }
-        }
-        let mut rgb888 = vec![Rgb888::default(); n];
-        draw::<S, Rgb888>(
-            lights,
-            &scene,
-            &prepared[0],
-            &mut rgb888,
-            &mut vec![u16::MAX; n],
-        );
+            _ => unreachable!("directional light sets only"),
+        };
+        let draw = |pixels: &mut Vec<Rgb565>, depth: &mut Vec<u16>| {
+            let mut fb = SliceFramebuffer::new(pixels, scene.width, scene.height).unwrap();
+            let mut db = DepthBuffer::new(depth, scene.width).unwrap();
+            let obj = &scene.objects[0];
+            if lights == LightSet::DirDiffuse {
+                draw_inc::<NW, 1, Lambert, Rgb565>(
+                    &scene,
+                    obj,
+                    [light],
+                    &prepared[0],
+                    &mut fb,
+                    &mut db,
+                )
+            } else {
+                draw_inc::<NW, 1, BlinnPhong, Rgb565>(
+                    &scene,
+                    obj,
+                    [light],
+                    &prepared[0],
+                    &mut fb,
+                    &mut db,
+                )
+            }
+        };
+        let rgb888 = render::render_incremental::<NW, Rgb888>(&scene).expect("a supported scene");
         let mut rgb565 = vec![Rgb565::default(); n];
         let mut times = Vec::with_capacity(RUNS);
         let mut shaded = 0;
         for _ in 0..RUNS {
             let mut depth = vec![u16::MAX; n];
             let t = Instant::now();
-            shaded = draw::<S, Rgb565>(lights, &scene, &prepared[0], &mut rgb565, &mut depth);
+            shaded = draw(&mut rgb565, &mut depth);
             times.push(t.elapsed().as_secs_f64());
             std::hint::black_box(&rgb565);
         }
@@ -188,10 +136,8 @@ fn main() {
     measure::<Q30<3>>("q30", &mut rows);
     measure::<f32>("f32", &mut rows);
     measure::<F32Fast<2>>("f32fast", &mut rows);
-    measure_inc::<Q14<1>>("q14_1", &mut rows);
-    measure_inc::<Q14<2>>("q14_2", &mut rows);
-    measure_inc::<f32>("f32", &mut rows);
-    measure_inc::<F32Fast<2>>("f32fast", &mut rows);
+    measure_inc::<1>("q14_1", &mut rows);
+    measure_inc::<2>("q14_2", &mut rows);
     let base = rows
         .iter()
         .find(|r| r.tier == "f32" && r.mode == "phong" && r.lights == LightSet::DirBlinn)

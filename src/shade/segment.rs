@@ -1,4 +1,4 @@
-//! The span engine of [`IncrementalPhongShading`](super::IncrementalPhongShading):
+//! The span engine of [`QuadraticPhongShading`](super::QuadraticPhongShading):
 //! re-anchored quadratic interpolation of the lit colour along a span.
 //!
 //! A span of `n` pixels is cut into segments of `h = 2^j` pixels. At the two
@@ -27,6 +27,8 @@
 //! segment is halved until `(h·w)²` is below it. Segments where some light's
 //! `N·L` may change sign (a kink: no diffuse and no specular behind the
 //! surface) are halved too, down to single pixels evaluated exactly.
+// the span loops index several per-light and per-channel arrays at once
+#![allow(clippy::needless_range_loop)]
 
 use super::Encoder;
 use crate::color::OutputColor;
