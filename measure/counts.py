@@ -49,6 +49,9 @@ SHADINGS = ["flat", "gouraud", "phong"]
 SETS = ["dir_diffuse", "dir_blinn", "dir_phong", "point4_blinn", "spot_blinn"]
 # IncrementalPhong exists for the Q14 tiers and directional Lambert / Blinn-Phong only
 INCREMENTAL = [(t, "phong_inc", l) for t in ("q14_1", "q14_2") for l in ("dir_diffuse", "dir_blinn")]
+# QuadraticPhongShading: directional light sets (Lambert, Blinn-Phong, Phong) in every tier but Q30
+INCREMENTAL += [(t, "phong_quad", l) for t in ("q14_1", "q14_2", "f32", "f32fast")
+                for l in ("dir_diffuse", "dir_blinn", "dir_phong")]
 FB = 64  # framebuffer side of the triangle kernels
 BIG = 32  # triangle legs for the whole-triangle figure
 

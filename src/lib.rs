@@ -132,7 +132,7 @@ pub mod prelude {
     pub use crate::render::{bins_len, Bands, FullFrame, Layout, MeshBuffers, MeshDraw};
     pub use crate::shade::{
         Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Linear,
-        PhongShading, ShadeVertex, Shader, Shading,
+        PhongShading, QuadraticPhongShading, ShadeVertex, Shader, Shading,
     };
     pub use crate::target::{
         BandBuffer, Checksum, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer,

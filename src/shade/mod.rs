@@ -9,6 +9,7 @@
 //! | [`GouraudShading`] | at the three vertices | encoded colour channels | no (misses or smears it) |
 //! | [`PhongShading`] | at every pixel | normal (and position when the lighting needs it) | yes |
 //! | [`IncrementalPhongShading`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `\|N\|²` by differences | yes |
+//! | [`QuadraticPhongShading`] | at anchors 4–32 pixels apart, the colour quadratically in between, the specular power per pixel (Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong `R·V`; every encoder) | encoded colour by second differences, the specular table coordinate | yes |
 //!
 //! The mode names say *how the surface is interpolated*; the reflection models
 //! ([`Lambert`](crate::lighting::Lambert), [`Phong`](crate::lighting::Phong),
@@ -49,10 +50,13 @@ mod flat;
 mod gouraud;
 mod incremental;
 mod phong;
+mod quadratic;
+mod segment;
 mod vertex_colors;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
 pub use incremental::{DirectionalLighting, IncrementalModel};
+pub use quadratic::{QuadraticLighting, QuadraticModel, QuadraticTier};
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
@@ -90,8 +94,22 @@ pub struct PhongShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct IncrementalPhongShading;
 
-/// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`] or
-/// [`IncrementalPhongShading`].
+/// Per-pixel Phong shading by re-anchored quadratic interpolation along each
+/// span (see [`QuadraticModel`], [`QuadraticTier`] and [`QuadraticLighting`]):
+/// the lighting is evaluated exactly at anchors 4–32 pixels apart (segment
+/// lengths from bounds on the third derivatives, so the interpolation adds at
+/// most 0.3 + 0.3 steps of the 8-bit output), each encoded colour channel
+/// follows the quadratic through them, and the specular power `x^n` comes per
+/// pixel from a table. Directional lights and a viewer at infinity; Lambert,
+/// Blinn-Phong and Phong `R·V`; the `Q14` tiers, `f32` and [`F32Fast`](crate::num::F32Fast);
+/// any [`Encoder`]. Cheapest where the lighting is smooth: Lambert, and the FPU
+/// tiers; for `Q14` Blinn-Phong [`IncrementalPhongShading`] is cheaper
+/// (`docs/tradeoff.md`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct QuadraticPhongShading;
+
+/// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`],
+/// [`IncrementalPhongShading`] or [`QuadraticPhongShading`].
 pub trait Mode: Copy + Default + core::fmt::Debug + 'static {
     /// A short name for reports.
     const NAME: &'static str;
@@ -108,6 +126,9 @@ impl Mode for PhongShading {
 }
 impl Mode for IncrementalPhongShading {
     const NAME: &'static str = "phong_inc";
+}
+impl Mode for QuadraticPhongShading {
+    const NAME: &'static str = "phong_quad";
 }
 
 /// A shader: a shading mode `M` with a lighting `I`, writing colours `C`

@@ -23,19 +23,21 @@ use core::hint::black_box;
 use core::slice;
 
 use embedded_graphics_core::pixelcolor::Rgb565;
+use fixshade::camera::{Camera, MeshTransform, Orthographic};
 use fixshade::light::LightSet;
 use fixshade::lighting::Model;
+use fixshade::mesh::{Mat4, Mesh, Viewport};
 use fixshade::prelude::*;
+use fixshade::raster::Cull;
 use fixshade::raster::{SpanShader, ATTR_FRAC, SUBPIXEL_BITS};
+use fixshade::render::{
+    bins_len, CachedVertex, DrawOptions, FullFrame, Layout, MeshDraw, MeshMemory,
+};
+use fixshade::shade::Kernel;
 use fixshade::shade::{
     FlatShading, GouraudShading, IncrementalModel, IncrementalPhongShading, Linear, PhongShading,
-    ShadeVertex, Shader,
+    QuadraticModel, QuadraticPhongShading, ShadeVertex, Shader,
 };
-use fixshade::camera::{Camera, MeshTransform, Orthographic};
-use fixshade::mesh::{Mat4, Mesh, Viewport};
-use fixshade::raster::Cull;
-use fixshade::render::{bins_len, CachedVertex, DrawOptions, FullFrame, Layout, MeshDraw, MeshMemory};
-use fixshade::shade::Kernel;
 
 // `out` is handed to the library as `&mut [Rgb565]`: Rgb565 is a newtype of a
 // newtype of the raw 5:6:5 `u16`, so its only possible layout is that `u16`.
@@ -176,7 +178,10 @@ unsafe fn span_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
     let [v0, v1] = span_ends::<S>();
     let n = black_box(n);
     // the attributes `Shading::draw` gives the rasterizer: encoder values with ATTR_FRAC bits
-    let a = |v: &ShadeVertex<S>| sh.vertex_values(&v.position, v.normal).map(|c| c << ATTR_FRAC);
+    let a = |v: &ShadeVertex<S>| {
+        sh.vertex_values(&v.position, v.normal)
+            .map(|c| c << ATTR_FRAC)
+    };
     let (start, step) = ramp(a(&v0), a(&v1), n);
     SpanShader::<3>::shade_span(
         &mut sh,
@@ -254,13 +259,20 @@ fn l_dir<const NW: u8, M: Model>(
 /// mapping one model unit to one pixel (y up in the model, down on the screen).
 fn tri_transform() -> MeshTransform<Orthographic> {
     let s = FB as f32;
-    Camera::orthographic(0.0, s, -s, 0.0, 0.5, 10.0, Viewport::new(0, 0, FB as i32, FB as i32).unwrap())
-        .unwrap()
-        .with_view(Mat4::translate([0.0, 0.0, -1.0]))
-        .mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8)
-        .unwrap()
+    Camera::orthographic(
+        0.0,
+        s,
+        -s,
+        0.0,
+        0.5,
+        10.0,
+        Viewport::new(0, 0, FB as i32, FB as i32).unwrap(),
+    )
+    .unwrap()
+    .with_view(Mat4::translate([0.0, 0.0, -1.0]))
+    .mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8)
+    .unwrap()
 }
-
 
 /// Draws the triangle with legs of `scale` pixels (`scale = 0`: clears the
 /// frame and returns) through the mesh renderer: vertex stage, binning, set-up
@@ -274,7 +286,10 @@ where
     let s = black_box(scale);
     // SAFETY: the kernels run one at a time (single-threaded emulator); nothing
     // else references DEPTH
-    let depth = slice::from_raw_parts_mut(core::ptr::addr_of_mut!(DEPTH) as *mut u16, (FB * FB) as usize);
+    let depth = slice::from_raw_parts_mut(
+        core::ptr::addr_of_mut!(DEPTH) as *mut u16,
+        (FB * FB) as usize,
+    );
     let Ok(mut frame) = FullFrame::new(FB, FB, pixels(out, (FB * FB) as usize), Some(depth)) else {
         return 0;
     };
@@ -290,7 +305,11 @@ where
     let pos = [[o, -o, 0], [o + d, -o, 0], [o, -(o + d), 0]].map(|p| p.map(|c| c as i16));
     // a patch of the sphere: top-left, top-right, bottom-left: the unit vectors
     // along (∓0.5, ±0.4, 0.77) in Q14
-    let nrm: [[i16; 3]; 3] = [[-8180, 6544, 12597], [8180, 6544, 12597], [-8180, -6544, 12597]];
+    let nrm: [[i16; 3]; 3] = [
+        [-8180, 6544, 12597],
+        [8180, 6544, 12597],
+        [-8180, -6544, 12597],
+    ];
     let tris = [[0u16, 1, 2]];
     let (pos, nrm) = (black_box(pos), black_box(nrm));
     let Ok(mesh) = Mesh::new(&pos, &nrm, &tris, SUBPIXEL_BITS as u8) else {
@@ -299,7 +318,11 @@ where
     let layout = Layout::full(FB, FB).unwrap();
     let mut cache = [CachedVertex::<K::Vertex>::default(); 3];
     let mut bins = [0u16; bins_len(1, 1)];
-    let memory = MeshMemory { vertices: &mut cache, bins: &mut bins, carry: &mut [] };
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut [],
+    };
     let opts = DrawOptions { cull: Cull::None };
     let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
         return 0;
@@ -353,7 +376,11 @@ unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(
 #[inline(always)]
 unsafe fn tri_phong_inc<const NW: u8, M: IncrementalModel>(scale: u32, out: *mut u16) -> u32 {
     let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
-    draw(Shader::new(IncrementalPhongShading, &lit, Linear), scale, out)
+    draw(
+        Shader::new(IncrementalPhongShading, &lit, Linear),
+        scale,
+        out,
+    )
 }
 
 /// `span_<tier>_phong_inc_<set>` / `tri_…`: incremental Phong kernels (Q14 tiers,
@@ -466,4 +493,95 @@ kernels! {
         point4_blinn = (point4, BlinnPhong),
         spot_blinn = (spot, BlinnPhong),
     ]
+}
+
+// ---- QuadraticPhongShading ---------------------------------------------------------
+
+/// `QuadraticPhongShading` over the same span (one directional light, tier `S`).
+#[inline(always)]
+unsafe fn span_phong_quad<S: Scalar, M: QuadraticModel>(n: u32, out: *mut u16) -> u32
+where
+    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>:
+        SpanShader<5, Color = Rgb565>,
+    QuadraticPhongShading:
+        fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
+{
+    let lit = lighting::<S, _, M>([dir::<S>()]);
+    let mut sh = Shader::<_, _, _, Rgb565>::new(QuadraticPhongShading, &lit, Linear);
+    let [v0, v1] = span_ends::<S>();
+    let n = black_box(n);
+    // the attributes `Shading::draw` gives the rasterizer: N, N·L, N·H (Phong: N·V)
+    let l = lit.lights()[0].direction().to_f32();
+    let h = if M::SPECULAR == fixshade::lighting::Specular::Phong {
+        [0.0, 0.0, 1.0]
+    } else {
+        lit.lights()[0]
+            .prepared()
+            .half
+            .map(|h| h.to_f32())
+            .unwrap_or(l)
+    };
+    let attrs = |v: &ShadeVertex<S>| {
+        let a = normal_attrs(v);
+        let dot =
+            |d: [f32; 3]| (a[0] as f32 * d[0] + a[1] as f32 * d[1] + a[2] as f32 * d[2]) as i32;
+        [a[0], a[1], a[2], dot(l), dot(h)]
+    };
+    let (start, step) = ramp(attrs(&v0), attrs(&v1), n);
+    SpanShader::<5>::shade_span(
+        &mut sh,
+        black_box(0),
+        black_box(0),
+        &start,
+        &step,
+        pixels(out, n as usize),
+    );
+    n
+}
+
+#[inline(always)]
+unsafe fn tri_phong_quad<S: Scalar, M: QuadraticModel>(scale: u32, out: *mut u16) -> u32
+where
+    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>: Kernel<Color = Rgb565>,
+    for<'a> <Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565> as Kernel>::Vertex: fixshade::render::Lerp,
+    QuadraticPhongShading: fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
+{
+    let lit = lighting::<S, _, M>([dir::<S>()]);
+    draw(Shader::new(QuadraticPhongShading, &lit, Linear), scale, out)
+}
+
+/// `span_<tier>_phong_quad_<set>` / `tri_…`: quadratic Phong kernels (directional
+/// light sets only).
+macro_rules! quadratic {
+    ($($tier:ident = $S:ty, $set:ident = $M:ty;)*) => {
+        $(
+            const _: () = {
+                #[export_name = concat!("span_", stringify!($tier), "_phong_quad_", stringify!($set))]
+                pub unsafe extern "C" fn span(n: u32, out: *mut u16) -> u32 {
+                    span_phong_quad::<$S, $M>(n, out)
+                }
+                #[export_name = concat!("tri_", stringify!($tier), "_phong_quad_", stringify!($set))]
+                pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
+                    tri_phong_quad::<$S, $M>(scale, out)
+                }
+                #[used]
+                static KEEP_QUAD: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
+            };
+        )*
+    };
+}
+
+quadratic! {
+    q14_1 = Q14<1>, dir_diffuse = Lambert;
+    q14_1 = Q14<1>, dir_blinn = BlinnPhong;
+    q14_1 = Q14<1>, dir_phong = Phong;
+    q14_2 = Q14<2>, dir_diffuse = Lambert;
+    q14_2 = Q14<2>, dir_blinn = BlinnPhong;
+    q14_2 = Q14<2>, dir_phong = Phong;
+    f32 = f32, dir_diffuse = Lambert;
+    f32 = f32, dir_blinn = BlinnPhong;
+    f32 = f32, dir_phong = Phong;
+    f32fast = F32Fast<2>, dir_diffuse = Lambert;
+    f32fast = F32Fast<2>, dir_blinn = BlinnPhong;
+    f32fast = F32Fast<2>, dir_phong = Phong;
 }
