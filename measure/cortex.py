@@ -42,7 +42,7 @@ CORES = {  # core -> (Unicorn CPU model, Rust target)
     "m0": (A.UC_CPU_ARM_CORTEX_M0, "thumbv6m-none-eabi"),
     "m4f": (A.UC_CPU_ARM_CORTEX_M4, "thumbv7em-none-eabihf"),
 }
-FLASH, FLASH_SIZE = 0x0000_0000, 1 << 20  # as measure/kernels/memory.x
+FLASH, FLASH_SIZE = 0x0000_0000, 1 << 21  # as measure/kernels/memory.x (2 MiB: the kernels image outgrew 1 MiB)
 RAM, RAM_SIZE = 0x2000_0000, 256 << 10
 RETURN = 0x1000_0000  # LR target (mapped, outside the image); PC == RETURN ends a call
 
