@@ -88,7 +88,8 @@ impl<const N: usize, const PERSP: bool> Exact<N, PERSP> {
             zbase: z[0],
             dz: [z[1] - z[0], z[2] - z[0]],
             zlo: zlo << Z_FRAC,
-            zhi: (zhi << Z_FRAC) + (1 << Z_FRAC) - 1,
+            // (65535 << 15) + 2^15 − 1 = i32::MAX: add the low bits as one term (no overflow)
+            zhi: (zhi << Z_FRAC) + ((1 << Z_FRAC) - 1),
             q: [vt.inv_w, v1.inv_w, v2.inv_w].map(|q| q.max(1) as u32),
         }
     }
