@@ -69,3 +69,41 @@ fn a_vertex_at_the_far_plane() {
         assert!(depth.iter().all(|&d| d <= u16::MAX));
     }
 }
+
+/// fuzz target `constructors`, crash-25198181: an orthographic camera and
+/// matrices with `f32::MAX` and 32768 entries give a transform row whose
+/// output saturates at `i32::MAX` with one fraction bit; rounding it to whole
+/// units added 1 to `i32::MAX` in `Row::apply_round` ("attempt to add with
+/// overflow"). The rounding is now `(v >> f) + ((v >> (f − 1)) & 1)`: the same
+/// values, no overflow.
+#[test]
+fn orthographic_transform_rounding_at_i32_max() {
+    use fixshade::camera::Camera;
+    use fixshade::mesh::{Mat4, Viewport};
+    let vp = Viewport::new(0, 0, 64, 64).unwrap();
+    let view = Mat4 {
+        m: [
+            [1.0, 0.0, 0.0, 0.752_929_7],
+            [0.0, 1.0, 0.0, -0.0],
+            [0.0, 0.0, 1.0, f32::MAX],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+    };
+    let model = Mat4 {
+        m: [
+            [0.0, 0.0, 0.0, 32768.0],
+            [0.0, 0.0, 0.0, f32::MAX],
+            [0.0, 0.0, 32768.0, 32768.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+    };
+    let cam = Camera::orthographic(f32::MAX, -0.0, 0.619_873_05, 32768.0, 32768.0, -0.0, vp);
+    let Ok(cam) = cam else {
+        panic!("the fuzzer's camera is accepted: {cam:?}");
+    };
+    if let Ok(t) = cam.with_view(view).mesh_transform(&model, 4) {
+        for raw in [[6189, 0, 0], [i16::MAX; 3], [i16::MIN; 3], [0; 3]] {
+            let _ = t.project(raw);
+        }
+    }
+}
