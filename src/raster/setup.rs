@@ -74,8 +74,9 @@ pub(crate) fn scale(v: i32, s: i32) -> i32 {
         } else if r >= 31 {
             0
         } else {
-            // (v + half) >> r without overflow: floor(v / 2^r) + bit r − 1
-            (v >> r) + ((v >> (r - 1)) & 1)
+            // (v + half) >> r without overflow: halve first (callers pass
+            // |v| < 2^31 − 1: a sum of two products below 2^30 each)
+            ((v >> (r - 1)) + 1) >> 1
         }
     } else if s >= 30 {
         if v > 0 {
