@@ -10,6 +10,7 @@
 use super::{Camera, EyeRows, MeshTransform, NormalRows, Projection, Row};
 use crate::mesh::MeshError;
 use crate::num::wide::mul_u32;
+use crate::raster::setup::at3;
 use crate::raster::SUBPIXEL_BITS;
 use core::marker::PhantomData;
 
@@ -459,10 +460,10 @@ impl<P: Projection> FixedCamera<P> {
         // normal matrix (cofactors, sign-corrected as in `Mat4::normal_matrix`)
         // is σ²·Q: view·model itself, up to a positive factor
         let mut n = [[0i64; 3]; 3];
-        for (i, row) in n.iter_mut().enumerate() {
+        for (row, v3) in n.iter_mut().zip(&self.view3) {
             for (j, v) in row.iter_mut().enumerate() {
-                *v = (0..3)
-                    .map(|k| mul_i32(self.view3[i][k], model.linear[k][j]))
+                *v = (v3.iter().zip(&model.linear))
+                    .map(|(&a, m)| mul_i32(a, at3(m, j)))
                     .sum();
             }
         }

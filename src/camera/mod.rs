@@ -293,7 +293,9 @@ impl Row {
         let v = self.apply(p);
         if self.frac > 0 {
             let f = self.frac.min(31) as u32;
-            ((v >> (f - 1)) + 1) >> 1
+            // round half up: floor(v / 2^f) + bit f − 1 (`((v >> (f − 1)) + 1) >> 1`
+            // without its overflow at v = i32::MAX)
+            (v >> f) + ((v >> (f - 1)) & 1)
         } else {
             // a matrix scaling one raw unit beyond 2^13 sub-pixels: whole units,
             // saturated (without a 64-bit multiply)
@@ -384,7 +386,8 @@ impl EyeRows {
                 if s == 0 {
                     v
                 } else {
-                    ((v >> (s - 1)) + 1) >> 1
+                    // round half up without overflow at v = i32::MAX
+                    (v >> s) + ((v >> (s - 1)) & 1)
                 }
             } else {
                 let s = (-s).min(30) as u32;

@@ -167,7 +167,12 @@ pub struct MeshData<const V: usize, const T: usize> {
 }
 
 impl<const V: usize, const T: usize> MeshData<V, T> {
-    /// The mesh view of these arrays (checked when the data is built).
+    /// The mesh view of these arrays, checked by [`Mesh::checked`]: in a
+    /// `static` or `const` (`static M: Mesh = DATA.mesh();`) the check runs at
+    /// compile time and leaves no code in the image; called at run time it
+    /// checks every index again and panics if the (public) fields were made
+    /// invalid, so firmware that must be free of panic paths keeps the view in a
+    /// `static` (as `measure/frame` does), or uses [`Mesh::new`].
     pub const fn mesh(&self) -> Mesh<'_> {
         Mesh::checked(&self.positions, &self.normals, &self.triangles, self.frac)
     }

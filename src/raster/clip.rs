@@ -157,8 +157,10 @@ impl<V: ClipPoint> Polygon<V> {
     fn clip(&mut self, line: Line) {
         let mut out = [self.v[0]; MAX];
         let mut m = 0;
-        for i in 0..self.n {
-            let (p, q) = (self.v[i], self.v[(i + 1) % self.n]);
+        let n = self.n.min(MAX);
+        for i in 0..n {
+            // (i + 1) mod n without a division; indices below MAX (no panic path)
+            let (p, q) = (self.v[i], self.v[if i + 1 < n { i + 1 } else { 0 }]);
             let (pin, qin) = (line.inside(p.xy()), line.inside(q.xy()));
             if pin && m < MAX {
                 out[m] = p;
@@ -193,10 +195,12 @@ impl<V: ClipPoint> Polygon<V> {
 
     /// Triangle `k` of the fan from vertex 0; `false` when there is none.
     pub(crate) fn fan(&self, k: usize, tri: &mut [V; 3]) -> bool {
-        if k + 2 >= self.n {
-            return false;
+        match (self.v.get(k + 1), self.v.get(k + 2)) {
+            (Some(&b), Some(&c)) if k + 2 < self.n => {
+                *tri = [self.v[0], b, c];
+                true
+            }
+            _ => false,
         }
-        *tri = [self.v[0], self.v[k + 1], self.v[k + 2]];
-        true
     }
 }

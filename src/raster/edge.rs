@@ -11,7 +11,7 @@
 //! integers as evaluating `E` at every pixel) and costs one step per column the
 //! edge moves, so the whole walk of an edge costs its horizontal extent.
 
-use super::setup::{next3, Setup};
+use super::setup::{at3, next3, Setup};
 use super::SUBPIXEL_BITS;
 
 /// One non-horizontal edge of a triangle, positioned at a row.
@@ -77,7 +77,8 @@ impl Edge {
         let half = 1 << (SUBPIXEL_BITS - 1);
         let y = (row << SUBPIXEL_BITS) + half - a.1;
         // |y·dx| < 2^30
-        (a.0 + (y * dx) / dy) >> SUBPIXEL_BITS
+        // (dy ≠ 0 for an edge that walks: `checked_div` only drops the panic path)
+        (a.0 + (y * dx).checked_div(dy).unwrap_or(0)) >> SUBPIXEL_BITS
     }
 
     /// Walks the bound column until `0 ≤ e < pp`.
@@ -190,13 +191,14 @@ impl Walker {
         let [t, m, b] = s.tmb;
         let xy = s.xy;
         let half = 1 << (SUBPIXEL_BITS - 1);
-        let ym = xy[m].1;
+        let ym = at3(&xy, m).1;
         let below = ((ym - half) >> SUBPIXEL_BITS) + 1;
         let level = (ym - half) & ((1 << SUBPIXEL_BITS) - 1) == 0;
         // a horizontal edge a → b is a top edge (row included) iff dx > 0
         let flat = |i: usize, j: usize| {
             let (a, bb) = if next3(i) == j { (i, j) } else { (j, i) };
-            (xy[a].1 == xy[bb].1).then(|| xy[bb].0 <= xy[a].0)
+            let (pa, pb) = (at3(&xy, a), at3(&xy, bb));
+            (pa.1 == pb.1).then_some(pb.0 <= pa.0)
         };
         // the long edge as oriented: going down (t → b) it is a right edge
         let long_left = next3(t) != b;
@@ -220,7 +222,7 @@ impl Walker {
     /// within 4 columns of it, else from a division estimate.
     fn edge_near(&self, i: usize, j: usize, row: i32) -> Edge {
         let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
-        let (pa, pb) = (self.xy[a], self.xy[b]);
+        let (pa, pb) = (at3(&self.xy, a), at3(&self.xy, b));
         if pa.1 == pb.1 {
             // a horizontal edge bounds no column (its fill rule is applied
             // separately); an edge that never walks
@@ -241,10 +243,11 @@ impl Walker {
     /// The edge between `i` and `j` at `row`, searching from column `guess`.
     fn edge_from(&self, i: usize, j: usize, row: i32, guess: i32) -> Edge {
         let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
-        if self.xy[a].1 == self.xy[b].1 {
+        let (pa, pb) = (at3(&self.xy, a), at3(&self.xy, b));
+        if pa.1 == pb.1 {
             return Edge::default();
         }
-        Edge::new(self.xy[a], self.xy[b], row, guess)
+        Edge::new(pa, pb, row, guess)
     }
 
     /// Whether rows remain.

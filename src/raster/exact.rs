@@ -9,7 +9,7 @@
 //! one rounded to a unit (perspective weights keep at least 30 significant
 //! bits: within one unit).
 
-use super::setup::{bit_length, next3, Setup};
+use super::setup::{at3, bit_length, next3, Setup};
 use super::{fit, ClampTo, RasterVertex, SUBPIXEL_BITS};
 use crate::num::wide::{div_u64_u32, mul_u32};
 
@@ -66,10 +66,10 @@ impl<const N: usize, const PERSP: bool> Exact<N, PERSP> {
     pub(crate) fn new(s: &Setup, v: &[RasterVertex<N>; 3]) -> Self {
         let t = s.tmb[0];
         let (i1, i2) = (next3(t), next3(next3(t)));
-        let vt = v[s.order[t]];
-        let v1 = v[s.order[i1]];
-        let v2 = v[s.order[i2]];
-        let p = |i: usize| s.xy[i];
+        let vt = at3(v, at3(&s.order, t));
+        let v1 = at3(v, at3(&s.order, i1));
+        let v2 = at3(v, at3(&s.order, i2));
+        let p = |i: usize| at3(&s.xy, i);
         let d1 = (p(i1).0 - p(t).0, p(i1).1 - p(t).1);
         let d2 = (p(i2).0 - p(t).0, p(i2).1 - p(t).1);
         let area = d1.0 * d2.1 - d1.1 * d2.0;
@@ -88,7 +88,8 @@ impl<const N: usize, const PERSP: bool> Exact<N, PERSP> {
             zbase: z[0],
             dz: [z[1] - z[0], z[2] - z[0]],
             zlo: zlo << Z_FRAC,
-            zhi: (zhi << Z_FRAC) + (1 << Z_FRAC) - 1,
+            // (65535 << 15) + 2^15 − 1 = i32::MAX: add the low bits as one term (no overflow)
+            zhi: (zhi << Z_FRAC) + ((1 << Z_FRAC) - 1),
             q: [vt.inv_w, v1.inv_w, v2.inv_w].map(|q| q.max(1) as u32),
         }
     }

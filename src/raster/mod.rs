@@ -41,23 +41,40 @@
 //!
 //! # Attribute precision
 //!
-//! Attributes are interpolated from the plane through the three vertex values,
-//! with barycentric coefficients carrying 14 significant bits (the reciprocal
-//! of the area and the coordinate differences carry 15–16). The value handed to
-//! a shader for the first pixel of a run is the plane value rounded to a unit,
-//! within `½ + ε` units of the exact plane, where `ε` is about
-//! `2^−13·(|Δa₁| + |Δa₂|)` for a well-shaped triangle (`Δa` the differences of
-//! the vertex values) and grows with the triangle's aspect ratio (a bound is
-//! computed per triangle). The step is the per-pixel gradient rounded to a
-//! unit. Values are always clamped: `start + k·step` stays within the range of
-//! the three vertex values for every `k < len` of a run, so shaders may use
-//! plain `i32` arithmetic. Framebuffers that hand out a run in several pieces
-//! get `start + k·step` continued across the pieces: the image does not
-//! depend on how a framebuffer splits spans.
+//! [`draw_triangle`] evaluates the plane through the three vertex values
+//! exactly at the first and the last pixel of every run (barycentric
+//! numerators are exact edge-function values; products and the division in 64
+//! bits, rounded once), so the value handed to a shader for the first pixel of
+//! a run is the exact value rounded to a unit (at most ½ unit off). The step is
+//! the difference of the two end values divided by the run length, rounded,
+//! and shrunk towards zero where `start + k·step` would leave the range of the
+//! three vertex values: pixel `k` of a run is at most `½ + k` units off the
+//! exact plane (rounding alone gives `½ + k·(½ + 1/len)`; the shrink truncates).
+//! The worst case found by a search (thin triangles, attribute differences up
+//! to the 2^29 limit, runs of up to 200 pixels) is `½ + k` exactly:
+//! `tests/raster_precision.rs`. A shader that needs every pixel within a unit
+//! steps at most a few pixels or uses short runs. Values are always clamped:
+//! `start + k·step` stays within the range of the three vertex values for every
+//! `k < len` of a run, so shaders may use plain `i32` arithmetic. Framebuffers
+//! that hand out a run in several pieces get `start + k·step` continued across
+//! the pieces: the image does not depend on how a framebuffer splits spans
+//! (`tests/framebuffer_pieces.rs`).
+//!
+//! The mesh renderer ([`crate::render`]) interpolates from per-triangle planes
+//! whose barycentric coefficients carry 14 significant bits instead (one
+//! reciprocal per triangle, no 64-bit arithmetic per run).
 //!
 //! With [`draw_triangle_perspective`], attribute values are computed
 //! perspective-correctly at the ends of sub-spans of [`PERSPECTIVE_SPAN`]
-//! pixels and interpolated linearly in between.
+//! pixels and interpolated linearly in between. The weights `qᵢ·nᵢ` (`q` the
+//! [`RasterVertex::inv_w`], any positive `i32`: no truncation of `1/w`) are
+//! truncated to 30 significant bits, so a sub-span end is the exact value
+//! rounded, plus at most `5·2^−29·max|Δa|` units (a bound from the arithmetic:
+//! each of the three truncated weights is off by less than one part in 2^29 of
+//! their sum; 10 units at the ±2^29 attribute limit, under ½ unit for vertex
+//! differences below 2^25). Between the ends the extra error is about
+//! `¼·|Δa|·|Δq/q|` (`Δa`, `Δq/q`: the change of the attribute and the relative
+//! change of `1/w` across the sub-span).
 
 use crate::target::{DepthBuffer, Framebuffer};
 
@@ -83,7 +100,7 @@ pub const WINDOW_MIN: i32 = -(1 << 13);
 pub const WINDOW_MAX: i32 = (3 << 13) - 1;
 
 /// Length of the sub-spans whose ends are computed exactly by
-/// [`draw_triangle_perspective`] (16).
+/// [`draw_triangle_perspective`] (8).
 pub const PERSPECTIVE_SPAN: usize = 1 << PERSPECTIVE_SHIFT;
 const PERSPECTIVE_SHIFT: u32 = 3;
 
@@ -115,7 +132,8 @@ pub struct RasterVertex<const N: usize> {
     /// Depth for the depth test: smaller is nearer.
     pub z: u16,
     /// `1/w` of the vertex in any positive fixed-point scale shared by the
-    /// three vertices (only ratios matter; ratios beyond 2^15 lose precision).
+    /// three vertices (only ratios matter; any ratio of positive `i32`s is
+    /// used as given, see the module docs for the precision).
     /// Used only by [`draw_triangle_perspective`]; values `<= 0` count as the
     /// smallest positive value.
     pub inv_w: i32,

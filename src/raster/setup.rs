@@ -55,6 +55,14 @@ pub(crate) fn next3(i: usize) -> usize {
     }
 }
 
+/// `a[i]` for a vertex index `i < 3` (from [`next3`], `order`, `tmb`): the
+/// index is limited to 2 so that no bounds check (and no panic path) is left
+/// in the image; for `i < 3` it is `a[i]`.
+#[inline(always)]
+pub(crate) fn at3<T: Copy>(a: &[T; 3], i: usize) -> T {
+    a[i.min(2)]
+}
+
 /// `v · 2^s` for a signed shift `s`: a right shift rounds to nearest, a left
 /// shift saturates at ±2^30 (gradients of triangles smaller than a pixel).
 #[inline]
@@ -66,7 +74,8 @@ pub(crate) fn scale(v: i32, s: i32) -> i32 {
         } else if r >= 31 {
             0
         } else {
-            // (v + half) >> r without overflow: halve first
+            // (v + half) >> r without overflow: halve first (callers pass
+            // |v| < 2^31 − 1: a sum of two products below 2^30 each)
             ((v >> (r - 1)) + 1) >> 1
         }
     } else if s >= 30 {
@@ -181,9 +190,9 @@ impl Setup {
     pub(crate) fn prepare_planes(&mut self) {
         let t = self.tmb[0];
         let (i1, i2) = (next3(t), next3(next3(t)));
-        let o = self.xy[t];
-        let d1 = (self.xy[i1].0 - o.0, self.xy[i1].1 - o.1);
-        let d2 = (self.xy[i2].0 - o.0, self.xy[i2].1 - o.1);
+        let (o, p1, p2) = (at3(&self.xy, t), at3(&self.xy, i1), at3(&self.xy, i2));
+        let d1 = (p1.0 - o.0, p1.1 - o.1);
+        let d2 = (p2.0 - o.0, p2.1 - o.1);
         // A' = d1 × d2 = the doubled area (the orientation is kept by rotation)
         let a = d1.0 * d2.1 - d1.1 * d2.0;
         // 1/A' ≈ R·2^−(31 + sh) with a_n = A' / 2^sh in [2^15, 2^16)
@@ -191,7 +200,8 @@ impl Setup {
         let sh = bits - 16;
         let an = if sh >= 0 { a >> sh } else { a << -sh };
         // R in (2^15, 2^16]: relative error ≤ 2^−15 each for a_n and R
-        let r = ((1u32 << 31) / an as u32) as i32;
+        // (`an` ≥ 2^15 for a triangle with an area: `max(1)` only drops the panic path)
+        let r = ((1u32 << 31) / (an as u32).max(1)) as i32;
         // ∂β1/∂X = d2.y/A', ∂β2/∂X = −d1.y/A', ∂β1/∂Y = −d2.x/A', ∂β2/∂Y = d1.x/A'
         // |d|·R < 2^15·2^16 = 2^31
         let raw = [d2.1 * r, -(d1.1 * r), -(d2.0 * r), d1.0 * r];
@@ -215,10 +225,7 @@ impl Setup {
             rows: dys >> SUBPIXEL_BITS,
             rem: dys & ((1 << SUBPIXEL_BITS) - 1),
             w: {
-                let (x0, x1) = (
-                    o.0.min(self.xy[i1].0).min(self.xy[i2].0),
-                    o.0.max(self.xy[i1].0).max(self.xy[i2].0),
-                );
+                let (x0, x1) = (o.0.min(p1.0).min(p2.0), o.0.max(p1.0).max(p2.0));
                 ((x1 - x0) >> SUBPIXEL_BITS) as u32 + 2
             },
             h: (self.rows.1 - self.rows.0).max(0) as u32 + 3,
@@ -271,8 +278,9 @@ impl Setup {
         let b = &self.bary;
         let t = self.tmb[0];
         // differences may need 32 bits (attributes in ±2^30)
-        let d1 = a[b.other[0]].wrapping_sub(a[t]);
-        let d2 = a[b.other[1]].wrapping_sub(a[t]);
+        let at = at3(&a, t);
+        let d1 = at3(&a, b.other[0]).wrapping_sub(at);
+        let d2 = at3(&a, b.other[1]).wrapping_sub(at);
         let fits = |d: i32| (d as u32).wrapping_add(1 << 16) < (1 << 17);
         let sa = if fits(d1) && fits(d2) {
             0

@@ -57,8 +57,18 @@ pub(crate) fn sort<'a>(
             got: buf.len(),
         });
     }
-    let (heads, rest) = buf.split_at_mut(head_len);
-    let (cross, indices) = rest.split_at_mut(head_len);
+    let too_small = RenderError::BufferTooSmall {
+        buffer: "bins",
+        needed: 2 * head_len,
+        got: buf.len(),
+    };
+    // (checked above: the `else` arms only drop the panic paths)
+    let Some((heads, rest)) = buf.split_at_mut_checked(head_len) else {
+        return Err(too_small);
+    };
+    let Some((cross, indices)) = rest.split_at_mut_checked(head_len) else {
+        return Err(too_small);
+    };
     heads.fill(0);
     cross.fill(0);
     // pass 1: count per start band; crossings as a difference array (+1 at
@@ -104,7 +114,11 @@ pub(crate) fn sort<'a>(
     }
     // pass 2: place, stable (mesh order within each band); `cross` is reused
     // as the write cursor of every band
-    cross.copy_from_slice(heads);
+    // (both `head_len` long; a zip rather than `copy_from_slice`, whose length
+    // check is left in at opt-level z: no panic path)
+    for (c, h) in cross.iter_mut().zip(heads.iter()) {
+        *c = *h;
+    }
     for t in 0..n {
         if let Some((r0, _)) = classify(t) {
             let b0 = layout.band_of(r0) as usize;

@@ -8,6 +8,7 @@ use crate::camera::{Clip, MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
 use crate::num::wide::lerp_i32;
 use crate::raster::clip::{ClipPoint, Polygon};
+use crate::raster::setup::at3;
 use crate::raster::{Cull, Setup, Walker, ATTR_FRAC, SUBPIXEL_BITS};
 use crate::shade::Kernel;
 
@@ -293,12 +294,12 @@ where
         s.prepare_planes();
         let o = s.order;
         let row0 = s.rows.0;
-        let mut zp = s.plane(o.map(|i| i32::from(z[i])));
+        let mut zp = s.plane(o.map(|i| i32::from(at3(&z, i))));
         // depth with ATTR_FRAC bits, + ½ so that the shift rounds
-        let zbase = (i32::from(z[o[s.tmb[0]]]) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
-        let (mut t, kclamp) = self
-            .kernel
-            .triangle(&s, o.map(|i| pay[i]), o.map(|i| eye[i]));
+        let zbase = (i32::from(at3(&z, at3(&o, s.tmb[0]))) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
+        let (mut t, kclamp) =
+            self.kernel
+                .triangle(&s, o.map(|i| at3(&pay, i)), o.map(|i| at3(&eye, i)));
         // depth values must stay in 0..65536 (with ATTR_FRAC bits)
         let clamp =
             kclamp || !crate::shade::within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
@@ -441,20 +442,18 @@ where
         let (mut i, mut j) = (0, 0);
         // merge by triangle index: within the band, mesh order
         loop {
-            let take_old = match (old.get(i), new.get(j)) {
-                (Some(o), Some(&n)) => o.tri < n,
-                (Some(_), None) => true,
-                (None, Some(_)) => false,
+            let (c, t, take_old) = match (old.get(i), new.get(j)) {
+                (Some(&o), Some(&n)) => (o, n, o.tri < n),
+                (Some(&o), None) => (o, 0, true),
+                (None, Some(&n)) => (Carry::default(), n, false),
                 (None, None) => break,
             };
             let next = if take_old {
-                let c = old[i];
                 i += 1;
                 let resume =
                     (c.long != Carry::CLIPPED).then_some((i32::from(c.long), i32::from(c.short)));
                 self.triangle(c.tri, resume, band)
             } else {
-                let t = new[j];
                 j += 1;
                 self.triangle(t, None, band)
             };
@@ -643,9 +642,9 @@ fn classify<V, P: Projection>(
                 transform.clip_coords(pos(2)?),
             ])?
         } else {
-            let p = [0, 1, 2].map(|k| {
+            let p = idx.map(|i| {
                 mesh.positions()
-                    .get(idx[k])
+                    .get(i)
                     .and_then(|pos| transform.screen(*pos))
                     .map_or((0, 0), |s| (s.x, s.y))
             });

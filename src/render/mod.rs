@@ -156,7 +156,8 @@ impl Layout {
 
     /// Number of bands.
     pub fn bands(&self) -> u32 {
-        self.height.div_ceil(self.band_rows)
+        // band_rows ≥ 1 (the constructors): `max(1)` only drops the panic path
+        self.height.div_ceil(self.band_rows.max(1))
     }
 
     /// The rows of band `b`.
@@ -176,7 +177,7 @@ impl Layout {
         if self.band_rows.is_power_of_two() {
             y >> self.band_rows.trailing_zeros()
         } else {
-            y / self.band_rows
+            y / self.band_rows.max(1)
         }
     }
 }

@@ -7,6 +7,7 @@ use super::{
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
+use crate::raster::setup::at3;
 use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC};
 use crate::target::{DepthBuffer, Framebuffer};
 
@@ -121,7 +122,8 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     fn triangle(&self, s: &Setup, v: [&[u16; 3]; 3], _p: [[i32; 3]; 3]) -> (GouraudTriangle, bool) {
         let t = s.tmb[0];
         let planes = core::array::from_fn(|i| s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from)));
-        let base: [i32; 3] = core::array::from_fn(|i| i32::from(v[t][i]) << ATTR_FRAC);
+        let top = at3(&v, t);
+        let base: [i32; 3] = core::array::from_fn(|i| i32::from(top[i]) << ATTR_FRAC);
         let clamp = (0..3).any(|i| !super::within(s, &planes[i], base[i], E::safe(i)));
         (GouraudTriangle { planes, base }, clamp)
     }

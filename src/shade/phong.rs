@@ -6,7 +6,7 @@ use super::{
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
-use crate::raster::setup::bit_length;
+use crate::raster::setup::{at3, bit_length};
 use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC, ATTR_LIMIT};
 use crate::target::{DepthBuffer, Framebuffer};
 use crate::vector::{Point3, Vec3};
@@ -179,11 +179,12 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
     fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> (PhongTriangle, bool) {
         let t = s.tmb[0];
         let n = core::array::from_fn(|i| s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from)));
-        let n_base = core::array::from_fn(|i| i32::from(v[t][i]) << ATTR_FRAC);
+        let top = at3(&v, t);
+        let n_base = core::array::from_fn(|i| i32::from(top[i]) << ATTR_FRAC);
         let (pp, p_base) = if I::NEEDS_POSITION {
             (
                 core::array::from_fn(|i| s.plane([p[0][i], p[1][i], p[2][i]])),
-                p[t],
+                at3(&p, t),
             )
         } else {
             ([Plane::default(); 3], [0; 3])

@@ -29,6 +29,11 @@ use fixshade::render::{
 use fixshade::shade::{DirectionalLighting, Kernel};
 use fixshade::standard;
 
+/// The sphere's mesh view, validated at compile time (`MeshData::mesh` called
+/// at run time checks every index again, and has a panic path for data that
+/// fails the check: measure/panics.py).
+static SPHERE_MESH: Mesh<'static> = standard::SPHERE.mesh();
+
 /// Frame width and height.
 pub const W: usize = standard::SIZE as usize;
 /// Mesh vertices and triangles.
@@ -107,7 +112,7 @@ where
     let layout = Layout::full(W as u32, W as u32)?;
     let mut draw = MeshDraw::new(
         layout,
-        standard::SPHERE.mesh(),
+        SPHERE_MESH,
         t,
         kernel,
         MeshMemory {
@@ -138,7 +143,7 @@ where
     let layout = Layout::banded(W as u32, W as u32, BAND_ROWS as u32)?;
     let mut draw = MeshDraw::new(
         layout,
-        standard::SPHERE.mesh(),
+        SPHERE_MESH,
         t,
         kernel,
         MeshMemory {
