@@ -124,3 +124,93 @@ proptest! {
         }
     }
 }
+
+/// Issue 11, item 3: a negative base colour (global ambient −0.8, legal in OpenGL)
+/// must clamp to black like the general path, not wrap into garbage: every pixel of
+/// spans from shadowed to lit normals within the bound of the f64 reference, and the
+/// pixels the reference makes black exactly black.
+#[test]
+fn negative_base_colour_clamps_to_black() {
+    use fixshade::color::Rgb;
+    use fixshade::light::{LightDesc, LightKind};
+    use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
+    let l = [0.3f32, 0.4, 0.8];
+    let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, 16.0);
+    let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
+    let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap())
+        .with_global_ambient(Rgb::from_f32([-0.8, -0.8, -0.8]));
+    let (ld, hd) = (
+        light.direction(),
+        lighting.lights()[0].prepared().half.unwrap(),
+    );
+    let attrs = |v: [f32; 3]| {
+        let n = Vec3::<Q14<2>>::from_f32(v).normalize();
+        let a = [n.x.to_attr(), n.y.to_attr(), n.z.to_attr()];
+        let dot = |d: Vec3<Q14<2>>| {
+            ((a[0] as i64 * d.x.raw() as i64
+                + a[1] as i64 * d.y.raw() as i64
+                + a[2] as i64 * d.z.raw() as i64)
+                >> 14) as i32
+        };
+        [a[0], a[1], a[2], dot(ld), dot(hd)]
+    };
+    let lights = [LightDesc {
+        kind: LightKind::Directional { towards_light: l },
+        ambient: [0.0; 3],
+        diffuse: [1.0; 3],
+        specular: [1.0; 3],
+    }];
+    let r = Reference {
+        lights: &lights,
+        material: desc,
+        global_ambient: [-0.8; 3],
+        viewer: ViewerDesc::Infinite([0.0, 0.0, 1.0]),
+        fog: None,
+        model: ModelDesc::of::<BlinnPhong>(),
+    };
+    let lf = fixshade::reference::normalize(l.map(|c| c as f64));
+    let (mut black, mut lit) = (0, 0);
+    for (a, b) in [
+        ([-0.9f32, -0.3, 0.3], [0.3, 0.4, 0.8]),
+        ([0.0, -0.9, 0.4], [0.5, 0.5, 0.7]),
+        ([-0.5, 0.5, 0.7], [0.9, 0.1, 0.4]),
+    ] {
+        let len = 96;
+        let (start, end) = (attrs(a), attrs(b));
+        let step: [i32; 5] =
+            core::array::from_fn(|i| ((end[i] as i64 - start[i] as i64) / len as i64) as i32);
+        let mut fast = vec![Rgb888::WHITE; len];
+        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear)
+            .shade_span(0, 0, &start, &step, &mut fast);
+        for (k, f) in fast.iter().enumerate() {
+            let nk = [0, 1, 2].map(|i| start[i] as f64 + k as f64 * step[i] as f64);
+            let nl = fixshade::reference::normalize(nk)
+                .iter()
+                .zip(lf)
+                .map(|(a, b)| a * b)
+                .sum::<f64>();
+            if nl.abs() < 2.0e-3 {
+                continue;
+            }
+            let want = r.shade([0.0; 3], nk).map(to_u8);
+            let got = [f.r(), f.g(), f.b()];
+            if want == [0, 0, 0] {
+                black += 1;
+                assert_eq!(got, [0, 0, 0], "pixel {k}: reference black");
+            } else {
+                lit += 1;
+            }
+            let e = got
+                .iter()
+                .zip(want)
+                .map(|(g, w)| g.abs_diff(w))
+                .max()
+                .unwrap();
+            assert!(e as u32 <= bound(16.0), "pixel {k}: {got:?} vs {want:?}");
+        }
+    }
+    assert!(
+        black >= 30 && lit >= 30,
+        "black {black}, lit {lit}: the spans must cover both"
+    );
+}

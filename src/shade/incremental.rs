@@ -343,7 +343,7 @@ macro_rules! incremental_lights {
                 let t = s.tmb[0];
                 let tri = IncTriangle {
                     planes: core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]])),
-                    base: core::array::from_fn(|i| attrs[t][i] << ATTR_FRAC),
+                    base: core::array::from_fn(|i| crate::raster::setup::at3(&attrs, t)[i] << ATTR_FRAC),
                 };
                 // the span code checks |N|² itself; the values must only stay
                 // inside ±2 (Q14, with ATTR_FRAC bits) so that nothing wraps
@@ -437,9 +437,9 @@ where
                 dot[2] += dot[3];
             }
             *p = C::from_channels([
-                (acc[0] >> 8).clamp(0, max[0]) as u32,
-                (acc[1] >> 8).clamp(0, max[1]) as u32,
-                (acc[2] >> 8).clamp(0, max[2]) as u32,
+                (acc[0] >> 8).max(0).min(max[0]) as u32,
+                (acc[1] >> 8).max(0).min(max[1]) as u32,
+                (acc[2] >> 8).max(0).min(max[2]) as u32,
             ]);
             // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
             // seeded with this pixel's r
