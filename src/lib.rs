@@ -109,6 +109,7 @@ pub mod render;
 pub mod shade;
 pub mod standard;
 pub mod target;
+pub mod texture;
 pub mod vector;
 
 /// The types most programs need, for `use fixshade::prelude::*`.
