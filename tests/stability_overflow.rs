@@ -359,3 +359,14 @@ fn length_corrected_cosines() {
         assert!(worst[1] < rv_bound, "{off}: reflect_dot {worst:?}");
     }
 }
+
+/// `cargo test` runs with overflow checks on (the test profile is opt-level 2 but
+/// keeps `dev`'s debug assertions and overflow checks), so every test of the suite
+/// panics on a wrap-around instead of hiding it: proved here.
+#[test]
+fn overflow_checks_are_on_in_the_test_profile() {
+    let wrapped =
+        std::panic::catch_unwind(|| core::hint::black_box(i32::MAX) + core::hint::black_box(1));
+    assert!(wrapped.is_err(), "overflow checks are off in this profile");
+    assert!(cfg!(debug_assertions));
+}
