@@ -14,6 +14,11 @@ use super::error::MeshError;
 /// Unit normal components are stored in Q14: `16384` is 1.
 pub const NORMAL_ONE: i16 = 1 << 14;
 
+/// Fraction bits of per-vertex texture coordinates: `4096` is 1, so an `i16`
+/// coordinate spans `[−8, 8)` (textures repeat up to eight times across a
+/// mesh in each direction).
+pub const TEXCOORD_FRAC: u32 = 12;
+
 /// A triangle mesh in the renderer's compact format: `i16` positions with
 /// `frac` fraction bits, Q14 unit normals, `u16` triangles. The constructor checks that the slices agree and every index is in
 /// range, so the renderer can rely on it.
@@ -33,6 +38,8 @@ pub struct Mesh<'a> {
     positions: &'a [[i16; 3]],
     normals: &'a [[i16; 3]],
     triangles: &'a [[u16; 3]],
+    texcoords: &'a [[i16; 2]],
+    tangents: &'a [[i16; 4]],
     frac: u8,
 }
 
@@ -75,8 +82,59 @@ impl<'a> Mesh<'a> {
             positions,
             normals,
             triangles,
+            texcoords: &[],
+            tangents: &[],
             frac,
         })
+    }
+
+    /// The mesh with per-vertex texture coordinates `(u, v)` with
+    /// [`TEXCOORD_FRAC`] fraction bits (`u` across the texture, `v` down it),
+    /// one per vertex.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::BufferTooSmall`] when there are fewer coordinates than
+    /// positions.
+    pub const fn with_texcoords(mut self, texcoords: &'a [[i16; 2]]) -> Result<Self, MeshError> {
+        if texcoords.len() < self.positions.len() {
+            return Err(MeshError::BufferTooSmall {
+                needed: self.positions.len(),
+                got: texcoords.len(),
+            });
+        }
+        self.texcoords = texcoords;
+        Ok(self)
+    }
+
+    /// The mesh with per-vertex tangents: a Q14 unit vector along increasing
+    /// `u` in the surface, and in `[3]` the handedness (`±NORMAL_ONE`: the
+    /// bitangent is `handedness · (normal × tangent)`), one per vertex; see
+    /// the tangent helper in this module.
+    ///
+    /// # Errors
+    ///
+    /// [`MeshError::BufferTooSmall`] when there are fewer tangents than
+    /// positions.
+    pub const fn with_tangents(mut self, tangents: &'a [[i16; 4]]) -> Result<Self, MeshError> {
+        if tangents.len() < self.positions.len() {
+            return Err(MeshError::BufferTooSmall {
+                needed: self.positions.len(),
+                got: tangents.len(),
+            });
+        }
+        self.tangents = tangents;
+        Ok(self)
+    }
+
+    /// The texture coordinates (empty when the mesh has none).
+    pub const fn texcoords(&self) -> &'a [[i16; 2]] {
+        self.texcoords
+    }
+
+    /// The tangents (empty when the mesh has none).
+    pub const fn tangents(&self) -> &'a [[i16; 4]] {
+        self.tangents
     }
 
     /// [`Mesh::new`] for `static`s and `const`s: an invalid mesh is a

@@ -52,7 +52,7 @@ mod torus_knot;
 
 pub use clip::{clip_near, ClipVertex};
 pub(crate) use compact::sin_cos;
-pub use compact::{Mesh, MeshData, NORMAL_ONE};
+pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
 pub use error::MeshError;
 pub use matrix::Mat4;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};

@@ -24,7 +24,7 @@ impl Kernel for Count {
     type Triangle = ();
     const NEEDS_POSITION: bool = false;
 
-    fn vertex(&self, _: [i32; 3], _: [i32; 3]) {}
+    fn vertex(&self, _: &crate::shade::VertexIn) {}
 
     fn triangle(&self, _: &Setup, _: [&(); 3], _: [[i32; 3]; 3]) -> ((), bool) {
         ((), false)

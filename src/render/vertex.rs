@@ -4,7 +4,7 @@
 use crate::camera::{MeshTransform, Projection};
 use crate::mesh::Mesh;
 use crate::raster::{WINDOW_MAX, WINDOW_MIN};
-use crate::shade::Kernel;
+use crate::shade::{Kernel, VertexIn};
 
 /// What the vertex stage keeps of one vertex: its screen position (sub-pixels,
 /// within the set-up window, or [`CachedVertex::OUTSIDE`]), its depth and the
@@ -66,10 +66,13 @@ pub(crate) fn stage<K: Kernel, P: Projection>(
     kernel: &K,
     cache: &mut [CachedVertex<K::Vertex>],
 ) {
-    for ((slot, p), n) in cache
+    let uvs = mesh.texcoords();
+    let tangents = mesh.tangents();
+    for (i, ((slot, p), n)) in cache
         .iter_mut()
         .zip(mesh.positions().iter())
         .zip(mesh.normals().iter())
+        .enumerate()
     {
         let (x, y, z) = match t.screen(*p) {
             Some(s) => {
@@ -78,12 +81,29 @@ pub(crate) fn stage<K: Kernel, P: Projection>(
             }
             None => (CachedVertex::<K::Vertex>::OUTSIDE, 0, 0),
         };
-        let eye = if K::NEEDS_POSITION { t.eye(*p) } else { [0; 3] };
+        let mut input = VertexIn::new(
+            t.normal(*n),
+            if K::NEEDS_POSITION { t.eye(*p) } else { [0; 3] },
+        );
+        if K::NEEDS_TEXCOORD {
+            input.uv = uvs.get(i).map_or([0; 2], |c| c.map(i32::from));
+            input.w = if P::PERSPECTIVE {
+                t.clip_coords(*p).w
+            } else {
+                1
+            };
+        }
+        if K::NEEDS_TANGENT {
+            if let Some(g) = tangents.get(i) {
+                let d = t.normal([g[0], g[1], g[2]]);
+                input.tangent = [d[0], d[1], d[2], i32::from(g[3])];
+            }
+        }
         *slot = CachedVertex {
             x,
             y,
             z,
-            v: kernel.vertex(t.normal(*n), eye),
+            v: kernel.vertex(&input),
         };
     }
 }

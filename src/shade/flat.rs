@@ -130,8 +130,8 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
 
     #[inline]
-    fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
-        super::unit_q14(n)
+    fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
+        super::unit_q14(v.normal)
     }
 
     fn triangle(&self, _s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> (FlatTriangle<C>, bool) {

@@ -110,10 +110,11 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
 
     #[inline]
-    fn vertex(&self, n: [i32; 3], p: [i32; 3]) -> [u16; 3] {
-        let c = self
-            .lighting
-            .shade(&eye_point::<I::Scalar>(p), unit_normal::<I::Scalar>(n));
+    fn vertex(&self, v: &super::VertexIn) -> [u16; 3] {
+        let c = self.lighting.shade(
+            &eye_point::<I::Scalar>(v.eye),
+            unit_normal::<I::Scalar>(v.normal),
+        );
         // every value is in 0..2^15
         self.encoder.vertex(c).map(|v| v.clamp(0, 0x7FFF) as u16)
     }

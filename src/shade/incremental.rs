@@ -323,8 +323,8 @@ macro_rules! incremental_lights {
             const NEEDS_POSITION: bool = false;
 
             #[inline]
-            fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
-                super::unit_q14(n)
+            fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
+                super::unit_q14(v.normal)
             }
 
             fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], _p: [[i32; 3]; 3]) -> (IncTriangle<$n>, bool) {

@@ -258,6 +258,42 @@ pub trait Shading<S: Scalar> {
     ) -> Result<DrawStats, F::Error>;
 }
 
+/// What the vertex stage hands a [`Kernel`] for one vertex.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct VertexIn {
+    /// Eye-space normal, Q14, not normalised.
+    pub normal: [i32; 3],
+    /// Eye-space position, Q16.16 (zeros unless [`Kernel::NEEDS_POSITION`]).
+    pub eye: [i32; 3],
+    /// Texture coordinates with [`TEXCOORD_FRAC`](crate::mesh::TEXCOORD_FRAC)
+    /// fraction bits (zeros unless [`Kernel::NEEDS_TEXCOORD`] and the mesh has
+    /// them).
+    pub uv: [i32; 2],
+    /// Clip-space `w` of a perspective transform, in the unit of
+    /// [`Clip::w`](crate::camera::Clip::w) (1 for an orthographic transform,
+    /// or unless [`Kernel::NEEDS_TEXCOORD`]).
+    pub w: i32,
+    /// Eye-space tangent (Q14, not normalised; transformed like the normal,
+    /// exact for rotations and uniform scales) and in `[3]` the handedness
+    /// `±16384` (zeros unless [`Kernel::NEEDS_TANGENT`] and the mesh has them).
+    pub tangent: [i32; 4],
+}
+
+impl VertexIn {
+    /// A vertex with normal `normal` and eye position `eye`, no texture
+    /// coordinates, `w = 1`, no tangent.
+    pub const fn new(normal: [i32; 3], eye: [i32; 3]) -> Self {
+        VertexIn {
+            normal,
+            eye,
+            uv: [0; 2],
+            w: 1,
+            tangent: [0; 4],
+        }
+    }
+}
+
 /// What the mesh renderer needs from a shader: the vertex payload stored in the
 /// vertex cache, the per-triangle state and the span kernel.
 ///
@@ -275,10 +311,15 @@ pub trait Kernel {
     /// Whether [`Kernel::vertex`] or [`Kernel::triangle`] read eye-space
     /// positions (else the renderer passes zeros and skips computing them).
     const NEEDS_POSITION: bool;
+    /// Whether [`Kernel::vertex`] reads [`VertexIn::uv`] and [`VertexIn::w`]
+    /// (else the renderer passes zeros and ones).
+    const NEEDS_TEXCOORD: bool = false;
+    /// Whether [`Kernel::vertex`] reads [`VertexIn::tangent`] (else the
+    /// renderer passes zeros and skips transforming the mesh's tangents).
+    const NEEDS_TANGENT: bool = false;
 
-    /// The payload of a vertex with eye-space normal `n` (Q14, not normalised)
-    /// and eye-space position `p` (Q16.16).
-    fn vertex(&self, n: [i32; 3], p: [i32; 3]) -> Self::Vertex;
+    /// The payload of vertex `v`.
+    fn vertex(&self, v: &VertexIn) -> Self::Vertex;
 
     /// The state of set-up triangle `s` (its planes positioned at its first
     /// row), from the payloads and eye positions of its oriented vertices, and

@@ -172,8 +172,8 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
 
     #[inline]
-    fn vertex(&self, n: [i32; 3], _p: [i32; 3]) -> [i16; 3] {
-        super::unit_q14(n)
+    fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
+        super::unit_q14(v.normal)
     }
 
     fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], p: [[i32; 3]; 3]) -> (PhongTriangle, bool) {
