@@ -43,6 +43,7 @@
 
 mod clip;
 mod compact;
+mod displace;
 mod error;
 mod matrix;
 mod normals;
@@ -54,6 +55,7 @@ mod torus_knot;
 pub use clip::{clip_near, ClipVertex};
 pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
+pub use displace::{displace, to_compact, weld_by_position};
 pub use error::MeshError;
 pub use matrix::Mat4;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
