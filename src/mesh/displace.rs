@@ -220,6 +220,7 @@ pub fn to_compact(
 }
 
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 mod tests {
     use super::*;
     use crate::mesh::{textured_sphere_counts, TexturedMeshData};

@@ -146,7 +146,7 @@ pub fn vertex_normals(
     weighting: Weighting,
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
-    vertex_normals_mapped(positions, tris, weighting, |i| usize::from(i), out)
+    vertex_normals_mapped(positions, tris, weighting, usize::from, out)
 }
 
 /// [`vertex_normals`] with the vertices welded: vertex `i`'s faces count for
