@@ -276,24 +276,32 @@ fn silhouette(a: u16, b: u16) -> bool {
     !(a == b && a != 0)
 }
 
-/// `round(√(x² + y² + z²))`-normalised `v` in Q14 (`v` with components below
-/// 2^17), or `None` when it vanishes.
+/// `v / |v|` in Q14, rounded, or `None` when `v` vanishes.
 fn unit_q14(v: [i32; 3]) -> Option<[i16; 3]> {
-    // shift so that every component is below 2^14: squares sum below 2^30
+    // scale so that the largest component has 15 bits: squares sum below
+    // 3·2^30, and |v| ≥ 2^14 keeps the square root precise
     let m = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
     if m == 0 {
         return None;
     }
-    let s = (32 - m.leading_zeros()).saturating_sub(14);
-    let w = v.map(|c| c >> s);
+    let bits = 32 - m.leading_zeros();
+    let w = if bits > 15 {
+        v.map(|c| c >> (bits - 15))
+    } else {
+        // |c| < 2^bits: the shifted value stays below 2^15
+        v.map(|c| c << (15 - bits))
+    };
     let len2: u32 = w.iter().map(|&c| c.unsigned_abs() * c.unsigned_abs()).sum();
     let len = len2.isqrt();
     if len == 0 {
         return None;
     }
     let len = len as i32;
-    // |c| ≤ len, so c · 2^14 / len ≤ 2^14 (< 2^31 before the division)
-    Some(w.map(|c| ((c << 14) / len).clamp(-16384, 16384) as i16))
+    // |c| ≤ len < 2^16: c · 2^14 < 2^30, the rounded quotient ≤ 2^14
+    Some(w.map(|c| {
+        let q = ((c << 14) + if c < 0 { -(len >> 1) } else { len >> 1 }) / len;
+        q.clamp(-16384, 16384) as i16
+    }))
 }
 
 /// The data of the new vertex on the edge between mesh vertices `i` and `j`:
@@ -323,16 +331,19 @@ fn midpoint(
     // quadratic normal: n_ij = N_i + N_j − v·d, v = 2 d·(N_i + N_j) / |d|²
     let s: [i64; 3] = core::array::from_fn(|c| ni64[c] + nj64[c]);
     let dd = dot(d, d);
-    let mut h = s;
+    // h = s − v·d with 8 more fraction bits (its direction matters, and it is
+    // short where the normals nearly oppose each other)
+    let mut h = s.map(|c| c << 8);
     if dd > 0 {
-        // f = 2 (d·s) / |d|² in Q14, bounded so that f·d stays small
-        let f = ((2 * dot(d, s)) << 14) / dd;
-        let f = f.clamp(-(1 << 30), 1 << 30);
+        // f = 2 (d·s) / |d|² with 28 more fraction bits: |2 d·s| < 2^34, so
+        // the shift stays below 2^62; |f·d_c| ≤ 2^29·|s|·|d_c|/|d| < 2^46
+        let f = ((2 * dot(d, s)) << 28) / dd;
         for c in 0..3 {
-            h[c] -= (f * d[c]) >> 14;
+            h[c] -= (f * d[c]) >> 20;
         }
     }
-    let h = h.map(|c| c.clamp(-(1 << 16), 1 << 16) as i32);
+    // |h| ≤ 3|s| < 2^17, with 8 more bits below 2^25
+    let h = h.map(|c| c.clamp(-(1 << 28), 1 << 28) as i32);
     let nij = unit_q14(h).unwrap_or([0; 3]);
     let sum: [i32; 3] =
         core::array::from_fn(|c| i32::from(ni[c]) + i32::from(nj[c]) + 2 * i32::from(nij[c]));
@@ -541,4 +552,166 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
         triangles,
         stats,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::vec::Vec;
+
+    fn lcg(s: &mut u64) -> f64 {
+        *s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*s >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn unit(v: [f64; 3]) -> [f64; 3] {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        v.map(|c| c / l)
+    }
+
+    /// The PN midpoint and quadratic midpoint normal in f64 from the
+    /// quantised inputs (positions in raw units, normals as Q14 / 16384).
+    fn reference(p: [[f64; 3]; 2], n: [[f64; 3]; 2]) -> ([f64; 3], [f64; 3]) {
+        let d: [f64; 3] = core::array::from_fn(|c| p[1][c] - p[0][c]);
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let (wij, wji) = (dot(d, n[0]), -dot(d, n[1]));
+        let m = core::array::from_fn(|c| {
+            (p[0][c] + p[1][c]) / 2.0 - (wij * n[0][c] + wji * n[1][c]) / 8.0
+        });
+        let s: [f64; 3] = core::array::from_fn(|c| n[0][c] + n[1][c]);
+        let v = 2.0 * dot(d, s) / dot(d, d);
+        let h = unit(core::array::from_fn(|c| s[c] - v * d[c]));
+        let nm = unit(core::array::from_fn(|c| n[0][c] + n[1][c] + 2.0 * h[c]));
+        (m, nm)
+    }
+
+    fn two(p: [[i16; 3]; 2], n: [[i16; 3]; 2]) -> ([[i16; 3]; 2], [[i16; 3]; 2]) {
+        (p, n)
+    }
+
+    #[test]
+    fn midpoint_matches_the_f64_pn_formula_and_is_symmetric() {
+        let mut s = 99u64;
+        let mut worst = (0.0f64, 0.0f64);
+        for k in 0..20000 {
+            // edges from tiny to a quarter of the i16 range; normals from
+            // aligned to grazing (nearly along the edge) and opposed
+            let len = [8.0, 300.0, 4000.0, 8000.0][k % 4];
+            let a: [f64; 3] = core::array::from_fn(|_| (lcg(&mut s) - 0.5) * 16000.0);
+            let dir = unit(core::array::from_fn(|_| lcg(&mut s) - 0.5));
+            let b: [f64; 3] = core::array::from_fn(|c| a[c] + dir[c] * len);
+            let perp = unit([dir[1] - dir[2], dir[2] - dir[0], dir[0] - dir[1]]);
+            let tilt = [0.0, 0.3, 0.9, 1.4, 1.55][k % 5];
+            let ni = unit(core::array::from_fn(|c| {
+                perp[c] * libm::cos(tilt) - dir[c] * libm::sin(tilt)
+            }));
+            let nj = unit(core::array::from_fn(|c| {
+                perp[c] * libm::cos(tilt) + dir[c] * libm::sin(tilt) + (lcg(&mut s) - 0.5) * 0.4
+            }));
+            let q = |v: [f64; 3], k: f64| v.map(|c| libm::round(c * k) as i16);
+            let (p, n) = two([q(a, 1.0), q(b, 1.0)], [q(ni, 16384.0), q(nj, 16384.0)]);
+            let uv = [[0i16; 2]; 2];
+            let tris: [[u16; 3]; 0] = [];
+            let mesh = Mesh::new(&p, &n, &tris, 0)
+                .unwrap()
+                .with_texcoords(&uv)
+                .unwrap();
+            let (mp, mn, _, _) = midpoint(&mesh, 0, 1).unwrap();
+            assert_eq!(
+                midpoint(&mesh, 1, 0).unwrap(),
+                midpoint(&mesh, 0, 1).unwrap(),
+                "not symmetric"
+            );
+            let (rp, rn) = reference(
+                [p[0].map(f64::from), p[1].map(f64::from)],
+                [
+                    n[0].map(|c| f64::from(c) / 16384.0),
+                    n[1].map(|c| f64::from(c) / 16384.0),
+                ],
+            );
+            for c in 0..3 {
+                let e = (f64::from(mp[c]) - rp[c]).abs();
+                worst.0 = worst.0.max(e);
+                assert!(e <= 0.5 + 1e-6, "{k}: position {mp:?} vs {rp:?}");
+                let e = (f64::from(mn[c]) / 16384.0 - rn[c]).abs();
+                worst.1 = worst.1.max(e);
+                assert!(e < 2.5e-4, "{k}: normal {mn:?} vs {rn:?} p {p:?} n {n:?}");
+            }
+        }
+        std::println!("worst: position {:.3} raw, normal {:.2e}", worst.0, worst.1);
+    }
+
+    #[test]
+    fn sphere_midpoints_land_on_the_sphere() {
+        for deg in [5.0f64, 11.25, 15.0, 30.0, 60.0] {
+            let t = deg.to_radians();
+            let pi = [0.0, 0.0, 1.0];
+            let pj = [libm::sin(t), 0.0, libm::cos(t)];
+            let q = |v: [f64; 3]| v.map(|c| libm::round(c * 16384.0) as i16);
+            let (p, n) = two([q(pi), q(pj)], [q(pi), q(pj)]);
+            let tris: [[u16; 3]; 0] = [];
+            let mesh = Mesh::new(&p, &n, &tris, 14).unwrap();
+            let (mp, mn, _, _) = midpoint(&mesh, 0, 1).unwrap();
+            let r = mp.map(|c| f64::from(c) / 16384.0);
+            let r = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+            let want = libm::cos(t / 2.0) * (1.0 + (1.0 - libm::cos(t)) / 4.0);
+            assert!((r - want).abs() < 1e-4, "{deg}: {r} vs {want}");
+            assert!(
+                (1.0 - r) < 0.2 * (1.0 - libm::cos(t / 2.0)),
+                "{deg}: not rounder than the chord"
+            );
+            // the normal is the sphere's at the new point
+            let dir = mp.map(|c| f64::from(c)).map(|c| c / (r * 16384.0));
+            for c in 0..3 {
+                // the quadratic term amplifies the Q14 rounding of the
+                // positions by about |N_i + N_j| / |P_j − P_i| (23 at 5°)
+                assert!(
+                    (f64::from(mn[c]) / 16384.0 - dir[c]).abs() < 1e-3,
+                    "{deg}: {mn:?} {dir:?} {mp:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn classes_and_the_edge_rule() {
+        use crate::camera::{Orthographic, Perspective};
+        // orthographic: the sign of n.z, with τ a band around 0
+        assert_eq!(class::<Orthographic>([0, 0, 5], [0; 3], 0), FRONT);
+        assert_eq!(class::<Orthographic>([0, 0, -5], [0; 3], 0), BACK);
+        assert_eq!(class::<Orthographic>([16384, 0, 0], [0; 3], 0), 0);
+        // n·V = 0.2 against τ = 0.25 and 0.15 (unnormalised n: length 2)
+        let n = [
+            0,
+            (2.0 * 16384.0 * 0.979_795_9f64) as i32,
+            (2.0 * 16384.0 * 0.2f64) as i32,
+        ];
+        assert_eq!(class::<Orthographic>(n, [0; 3], 4096), 0);
+        assert_eq!(class::<Orthographic>(n, [0; 3], 2458), FRONT);
+        // perspective: towards the eye at the origin from e
+        let e = [0, 0, -5 << 16];
+        assert_eq!(class::<Perspective>([0, 0, 16384], e, 0), FRONT);
+        assert_eq!(class::<Perspective>([0, 0, -16384], e, 4000), BACK);
+        assert_eq!(
+            class::<Perspective>([16384, 0, 0], [1 << 16, 0, -5 << 16], 0),
+            BACK
+        );
+        assert_eq!(
+            class::<Perspective>([16384, 0, 0], [1 << 16, 0, -5 << 16], 8192),
+            0
+        );
+        let rule: Vec<bool> = [
+            (FRONT, FRONT),
+            (BACK, BACK),
+            (FRONT, BACK),
+            (0, FRONT),
+            (0, 0),
+        ]
+        .iter()
+        .map(|&(a, b)| silhouette(a, b))
+        .collect();
+        assert_eq!(rule, [false, false, true, true, true]);
+    }
 }
