@@ -321,7 +321,7 @@ where
         };
         let classify = |t: usize| {
             if t < nt {
-                if refined.replaced(t) {
+                if refined.replaced(t, *mesh.triangles().get(t)?) {
                     return None;
                 }
                 classify(&mesh, transform, cache, &layout, opts.cull, t)

@@ -12,9 +12,11 @@
 //!    for an orthographic transform, towards the eye for a perspective one):
 //!    *front* when `N·V > τ`, *back* when `N·V < −τ`, *near* otherwise
 //!    (`τ` = [`Refine::threshold`], Q14; `τ = 0` is the plain sign test);
-//! 2. an edge is a *silhouette edge* unless both its vertices are front or
-//!    both are back (its normals straddle `N·V = 0`, or one of them lies
-//!    within `τ` of it);
+//! 2. an edge is a *silhouette edge* when one vertex is front and the other
+//!    back (its normals straddle the band `|N·V| ≤ τ`), or both are near
+//!    (it runs along the silhouette); an edge from a near vertex to a front or
+//!    back one leaves the silhouette and is not split (a vertex exactly on
+//!    the silhouette would otherwise split every edge around it);
 //! 3. a silhouette edge is split at its midpoint, in the order the triangles
 //!    of the mesh meet it, while the budget lasts: the first triangle that
 //!    meets it creates its vertex, the second finds it again (a short list per
@@ -190,6 +192,8 @@ pub struct RefineStats {
 /// The refinement's results, borrowed by the `MeshDraw`.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Refined<'a, V> {
+    /// The mesh vertices' words (classes in the top bits).
+    pub words: &'a [u16],
     pub vertices: &'a [CachedVertex<V>],
     pub positions: &'a [[i16; 3]],
     pub triangles: &'a [[u16; 4]],
@@ -197,11 +201,20 @@ pub(crate) struct Refined<'a, V> {
 }
 
 impl<V> Refined<'_, V> {
-    /// Whether mesh triangle `t` is replaced (binary search over the parents,
-    /// which increase).
+    /// Whether mesh triangle `tri` (with vertices `idx`) is replaced: only
+    /// if it has a silhouette edge, then by a binary search over the parents
+    /// (which increase).
     #[inline]
-    pub(crate) fn replaced(&self, t: usize) -> bool {
+    pub(crate) fn replaced(&self, t: usize, idx: [u16; 3]) -> bool {
         if self.triangles.is_empty() {
+            return false;
+        }
+        let c = idx.map(|i| {
+            self.words
+                .get(usize::from(i))
+                .map_or(0, |w| w >> CLASS_SHIFT)
+        });
+        if !(silhouette(c[0], c[1]) || silhouette(c[1], c[2]) || silhouette(c[2], c[0])) {
             return false;
         }
         self.triangles
@@ -270,10 +283,11 @@ fn sign_class(s: i32) -> u16 {
 }
 
 /// Whether an edge between vertices of classes `a` and `b` is a silhouette
-/// edge.
+/// edge: its normals cross the band `|N·V| ≤ τ` (front to back) or stay in
+/// it (near to near).
 #[inline]
 fn silhouette(a: u16, b: u16) -> bool {
-    !(a == b && a != 0)
+    a | b == FRONT | BACK || (a == 0 && b == 0)
 }
 
 /// `v / |v|` in Q14, rounded, or `None` when `v` vanishes.
@@ -416,7 +430,8 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
     for (ti, tri) in mesh.triangles().iter().enumerate() {
         let idx = tri.map(usize::from);
         let cls = idx.map(|i| words.get(i).map_or(0, |w| w >> CLASS_SHIFT));
-        if cls[0] == cls[1] && cls[1] == cls[2] && cls[0] != 0 {
+        if !(silhouette(cls[0], cls[1]) || silhouette(cls[1], cls[2]) || silhouette(cls[2], cls[0]))
+        {
             continue;
         }
         // the new vertex of each edge k = (idx[k], idx[k+1]), if split
@@ -544,9 +559,11 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
         vertex::stage(&sub, t, kernel, vertices);
     }
     let vertices: &'a [CachedVertex<K::Vertex>] = vertices;
+    let words: &'a [u16] = words;
     let triangles: &'a [[u16; 4]] = m.triangles;
     let triangles = triangles.get(..nt).unwrap_or(&[]);
     Ok(Refined {
+        words,
         vertices,
         positions,
         triangles,
@@ -706,12 +723,14 @@ mod tests {
             (FRONT, FRONT),
             (BACK, BACK),
             (FRONT, BACK),
+            (BACK, FRONT),
             (0, FRONT),
+            (BACK, 0),
             (0, 0),
         ]
         .iter()
         .map(|&(a, b)| silhouette(a, b))
         .collect();
-        assert_eq!(rule, [false, false, true, true, true]);
+        assert_eq!(rule, [false, false, true, true, false, false, true]);
     }
 }
