@@ -680,7 +680,7 @@ mod tests {
                 "{deg}: not rounder than the chord"
             );
             // the normal is the sphere's at the new point
-            let dir = mp.map(|c| f64::from(c)).map(|c| c / (r * 16384.0));
+            let dir = mp.map(f64::from).map(|c| c / (r * 16384.0));
             for c in 0..3 {
                 // the quadratic term amplifies the Q14 rounding of the
                 // positions by about |N_i + N_j| / |P_j − P_i| (23 at 5°)
