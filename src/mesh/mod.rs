@@ -1,6 +1,7 @@
 //! Mesh preparation and the per-vertex stage: vertex normals by face averaging,
-//! sphere generators, transforms, projection to the rasterizer and near-plane
-//! clipping.
+//! sphere generators (plain, and textured with texture coordinates and
+//! tangents: [`TexturedMeshData`]), displacement mapping ([`displace`]),
+//! transforms, projection to the rasterizer and near-plane clipping.
 //!
 //! Everything writes into caller-owned arrays (no allocation) and reports bad
 //! sizes, indices and parameters as a [`MeshError`] instead of panicking.
