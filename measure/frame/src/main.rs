@@ -98,7 +98,7 @@ mod firmware {
                     static TYPES: [u32; 3] = fixshade_frame::$name::TYPE_BYTES;
                     #[export_name = concat!("CARRY_BAND_", stringify!($name))]
                     static mut CARRY8: [Carry; CARRY_BAND] = unsafe { zeroed() };
-                    // used (and linked) by the `_refine` configurations only
+                    // passed to every configuration, read by the `_refine` ones only
                     #[export_name = concat!("REFINE_", stringify!($name))]
                     static mut REFINE: fixshade_frame::RefineStore<fixshade_frame::$name::Vertex> =
                         unsafe { zeroed() };
