@@ -49,7 +49,8 @@ FRAME_DIR = HERE / "frame"
 OUT = HERE / "out" / "frame.json"
 BOUNDS = HERE / "frame_bounds.json"
 RAM_SIZE = 1 << 20  # measure/frame/memory.x
-CONFIGS = ["lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat"]
+CONFIGS = ["lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat",
+           "lambert_gouraud_refine"]
 ENTRIES = [c + k for c in CONFIGS for k in ("", "_band8")]
 # section -> (core, cargo profile, entries measured)
 SECTIONS = {
@@ -498,8 +499,10 @@ def measure_section(section: str, host: dict, profile: set[str]) -> tuple[dict, 
             "cache": emu.object(f"CACHE_{cfg}")[1],
             "bins": emu.object(f"{'BINS_BAND' if band else 'BINS_FULL'}_{cfg}")[1],
             "carry": emu.object(f"CARRY_BAND_{cfg}")[1] if band else 0,
+            # silhouette refinement's memory (linked by the `_refine` configurations only)
+            "refine": emu.object(f"REFINE_{cfg}")[1] if cfg.endswith("_refine") else 0,
         }
-        ram_min = (ram["color"] + ram["depth"] + ram["cache"] + 2 * host[ent]["bins_needed"]
+        ram_min = (ram["color"] + ram["depth"] + ram["cache"] + ram["refine"] + 2 * host[ent]["bins_needed"]
                    + 6 * host[ent]["carry_needed"])
         code, code_lib = emu.size_of(parent)
         code_frame, code_frame_lib = emu.size_of(frame_parent)

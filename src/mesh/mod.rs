@@ -1,6 +1,7 @@
 //! Mesh preparation and the per-vertex stage: vertex normals by face averaging,
-//! sphere generators, transforms, projection to the rasterizer and near-plane
-//! clipping.
+//! sphere generators (plain, and textured with texture coordinates and
+//! tangents: [`TexturedMeshData`]), displacement mapping ([`displace`]),
+//! transforms, projection to the rasterizer and near-plane clipping.
 //!
 //! Everything writes into caller-owned arrays (no allocation) and reports bad
 //! sizes, indices and parameters as a [`MeshError`] instead of panicking.
@@ -43,19 +44,23 @@
 
 mod clip;
 mod compact;
+mod displace;
 mod error;
 mod matrix;
 mod normals;
 mod screen;
 mod sphere;
+mod textured;
 mod torus_knot;
 
 pub use clip::{clip_near, ClipVertex};
 pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
+pub use displace::{displace, to_compact, weld_by_position};
 pub use error::MeshError;
 pub use matrix::Mat4;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
 pub use screen::{EyeTransform, FixedMat4, ScreenTransform, ScreenVertex, Viewport, INV_W_ONE};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
+pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
 pub use torus_knot::{torus_knot_counts, TorusKnot};

@@ -3,7 +3,8 @@
 //! checksums, lit pixels) and in the firmware image (emulated Cortex-M0/M4F).
 //!
 //! One module per configuration (`lambert_gouraud`, `blinn_gouraud`,
-//! `blinn_phong`, `blinn_phong_inc`, `flat`), each with
+//! `blinn_phong`, `blinn_phong_inc`, `flat`, and `lambert_gouraud_refine`:
+//! `lambert_gouraud` with silhouette refinement), each with
 //!
 //! * `full(t, buffers, display)`: a 240 × 240 [`FullFrame`] (colour + depth
 //!   buffer) rendered and flushed to `display`;
@@ -23,8 +24,8 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::prelude::*;
 use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, Lerp, MeshDraw, MeshMemory,
-    RenderError,
+    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, Lerp, MeshDraw,
+    MeshMemory, Refine, RefineBuffers, RenderError,
 };
 use fixshade::shade::{DirectionalLighting, Kernel};
 use fixshade::standard;
@@ -50,6 +51,15 @@ pub const BINS_BAND: usize = bins_len(NT, BANDS);
 /// `MeshDraw::carry_needed()` = 48 (the host run prints it; a smaller
 /// array makes every banded frame fail with status `Fail::Buffer`).
 pub const CARRY_BAND: usize = 64;
+
+/// Silhouette refinement's budget in the `_refine` configurations: new
+/// vertices and replacing triangles (`4·REFINE_V` never runs out on a closed
+/// mesh). The standard view needs 192 and 544 (`RefineStats`, printed by the
+/// host run).
+pub const REFINE_V: usize = 192;
+pub const REFINE_T: usize = 4 * REFINE_V;
+/// The refinement memory of one configuration.
+pub type RefineStore<V> = RefineBuffers<V, NV, REFINE_V, REFINE_T>;
 
 /// Why a frame was not drawn (the firmware returns it in the upper word).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -93,6 +103,8 @@ pub struct Buffers<'a, V> {
     pub carry: &'a mut [Carry],
     pub color: &'a mut [Rgb565],
     pub depth: &'a mut [u16],
+    /// Silhouette refinement's memory (the `_refine` configurations).
+    pub refine: Option<&'a mut RefineStore<V>>,
 }
 
 /// The per-frame path of a whole frame: vertex stage and bins, clear, draw,
@@ -159,6 +171,81 @@ where
         .map_err(|_| Fail::Render)
 }
 
+/// [`draw_full`] with silhouette refinement (`MeshDraw::with_refinement`,
+/// threshold 0: the edges whose vertex normals straddle `N·V = 0`).
+#[inline(never)]
+pub fn draw_full_refine<K, D>(
+    kernel: K,
+    t: &MeshTransform<Orthographic>,
+    b: Buffers<'_, K::Vertex>,
+    display: &mut D,
+) -> Result<(), Fail>
+where
+    K: Kernel<Color = Rgb565>,
+    K::Vertex: Lerp,
+    D: DrawTarget<Color = Rgb565>,
+{
+    let layout = Layout::full(W as u32, W as u32)?;
+    let refine = b.refine.ok_or(Fail::Render)?;
+    let mut draw = MeshDraw::with_refinement(
+        layout,
+        SPHERE_MESH,
+        t,
+        kernel,
+        DrawOptions::default(),
+        MeshMemory {
+            vertices: b.cache,
+            bins: b.bins,
+            carry: b.carry,
+        },
+        Refine {
+            memory: refine.memory(),
+            threshold: 0,
+        },
+    )?;
+    let mut frame = FullFrame::new(W as u32, W as u32, b.color, Some(b.depth))?;
+    frame.render(Rgb565::BLACK, &mut [&mut draw]);
+    frame.flush(display).map_err(|_| Fail::Render)
+}
+
+/// [`draw_bands`] with silhouette refinement.
+#[inline(never)]
+pub fn draw_bands_refine<K, D>(
+    kernel: K,
+    t: &MeshTransform<Orthographic>,
+    b: Buffers<'_, K::Vertex>,
+    display: &mut D,
+) -> Result<(), Fail>
+where
+    K: Kernel<Color = Rgb565>,
+    K::Vertex: Lerp,
+    D: DrawTarget<Color = Rgb565>,
+{
+    let layout = Layout::banded(W as u32, W as u32, BAND_ROWS as u32)?;
+    let refine = b.refine.ok_or(Fail::Render)?;
+    let mut draw = MeshDraw::with_refinement(
+        layout,
+        SPHERE_MESH,
+        t,
+        kernel,
+        DrawOptions::default(),
+        MeshMemory {
+            vertices: b.cache,
+            bins: b.bins,
+            carry: b.carry,
+        },
+        Refine {
+            memory: refine.memory(),
+            threshold: 0,
+        },
+    )?;
+    let mut bands = Bands::new(layout, b.color, Some(b.depth))?;
+    let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
+    bands
+        .render(display, Rgb565::BLACK, items)
+        .map_err(|_| Fail::Render)
+}
+
 /// The lighting of `blinn_phong_inc`: one directional light in an array, as
 /// `IncrementalPhongShading` requires.
 pub fn inc_lighting() -> Result<DirectionalLighting<2, 1, BlinnPhong>, ParamError> {
@@ -171,7 +258,7 @@ pub fn inc_lighting() -> Result<DirectionalLighting<2, 1, BlinnPhong>, ParamErro
 }
 
 macro_rules! configs {
-    ($($name:ident: $v:ty, $l:ty, $m:ty = $lighting:expr, $mode:expr;)*) => {
+    ($($name:ident: $v:ty, $l:ty, $m:ty = $lighting:expr, $mode:expr => $full:ident, $bands:ident;)*) => {
         /// Configuration names, in order.
         pub const CONFIGS: &[&str] = &[$(stringify!($name)),*];
         $(
@@ -203,7 +290,7 @@ macro_rules! configs {
                     b: Buffers<'_, Vertex>,
                     display: &mut D,
                 ) -> Result<(), Fail> {
-                    draw_full(Shader::new($mode, lighting, Linear), t, b, display)
+                    $full(Shader::new($mode, lighting, Linear), t, b, display)
                 }
                 /// The shader, then [`draw_bands`].
                 pub fn band8<D: DrawTarget<Color = Rgb565>>(
@@ -212,7 +299,7 @@ macro_rules! configs {
                     b: Buffers<'_, Vertex>,
                     display: &mut D,
                 ) -> Result<(), Fail> {
-                    draw_bands(Shader::new($mode, lighting, Linear), t, b, display)
+                    $bands(Shader::new($mode, lighting, Linear), t, b, display)
                 }
             }
         )*
@@ -231,7 +318,8 @@ macro_rules! configs {
             $(
                 if name == stringify!($name) {
                     let mut c = [CachedVertex::<$v>::default(); NV];
-                    let b = Buffers { cache: &mut c, bins, carry, color, depth };
+                    let mut r = RefineStore::<$v>::new();
+                    let b = Buffers { cache: &mut c, bins, carry, color, depth, refine: Some(&mut r) };
                     let l = match $name::lighting() {
                         Ok(l) => l,
                         Err(e) => return Some(Err(e)),
@@ -252,13 +340,15 @@ type Dir = DirectionalLight<Q14>;
 
 configs! {
     lambert_gouraud: [u16; 3], Lighting<Q14, Dir, Lambert>, GouraudShading
-        = standard::lambert::<Q14>(), GouraudShading;
+        = standard::lambert::<Q14>(), GouraudShading => draw_full, draw_bands;
     blinn_gouraud: [u16; 3], Lighting<Q14, Dir, BlinnPhong>, GouraudShading
-        = standard::blinn::<Q14>(), GouraudShading;
+        = standard::blinn::<Q14>(), GouraudShading => draw_full, draw_bands;
     blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>, PhongShading
-        = standard::blinn::<Q14>(), PhongShading;
+        = standard::blinn::<Q14>(), PhongShading => draw_full, draw_bands;
     blinn_phong_inc: [i16; 3], DirectionalLighting<2, 1, BlinnPhong>, IncrementalPhongShading
-        = inc_lighting(), IncrementalPhongShading;
+        = inc_lighting(), IncrementalPhongShading => draw_full, draw_bands;
     flat: [i16; 3], Lighting<Q14, Dir, Lambert>, FlatShading
-        = standard::lambert::<Q14>(), FlatShading;
+        = standard::lambert::<Q14>(), FlatShading => draw_full, draw_bands;
+    lambert_gouraud_refine: [u16; 3], Lighting<Q14, Dir, Lambert>, GouraudShading
+        = standard::lambert::<Q14>(), GouraudShading => draw_full_refine, draw_bands_refine;
 }

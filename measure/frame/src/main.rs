@@ -98,6 +98,10 @@ mod firmware {
                     static TYPES: [u32; 3] = fixshade_frame::$name::TYPE_BYTES;
                     #[export_name = concat!("CARRY_BAND_", stringify!($name))]
                     static mut CARRY8: [Carry; CARRY_BAND] = unsafe { zeroed() };
+                    // passed to every configuration, read by the `_refine` ones only
+                    #[export_name = concat!("REFINE_", stringify!($name))]
+                    static mut REFINE: fixshade_frame::RefineStore<fixshade_frame::$name::Vertex> =
+                        unsafe { zeroed() };
                     static mut LIGHT: MaybeUninit<fixshade_frame::$name::Light> = MaybeUninit::uninit();
 
                     /// Builds the lighting (from `init`). 0: done.
@@ -126,6 +130,7 @@ mod firmware {
                             carry: &mut [],
                             color: &mut *addr_of_mut!(FRAME_COLOR),
                             depth: &mut *addr_of_mut!(FRAME_DEPTH),
+                            refine: Some(&mut *addr_of_mut!(REFINE)),
                         };
                         let r = match transform() {
                             Some(t) => fixshade_frame::$name::full(&t, lighting(), b, &mut d),
@@ -144,6 +149,7 @@ mod firmware {
                             carry: &mut *addr_of_mut!(CARRY8),
                             color: &mut *addr_of_mut!(STRIP_COLOR),
                             depth: &mut *addr_of_mut!(STRIP_DEPTH),
+                            refine: Some(&mut *addr_of_mut!(REFINE)),
                         };
                         let r = match transform() {
                             Some(t) => fixshade_frame::$name::band8(&t, lighting(), b, &mut d),
@@ -182,7 +188,8 @@ mod firmware {
         blinn_gouraud,
         blinn_phong,
         blinn_phong_inc,
-        flat
+        flat,
+        lambert_gouraud_refine
     );
 
     #[entry]
