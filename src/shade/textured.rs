@@ -394,67 +394,120 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, TexturedGouraudSha
         });
         raster_draw(fb, depth, &v, opts, self, perspective)
     }
+}
 
-    /// The texture coordinates (Q24) of the pixels of one sub-span after
-    /// another: `f(k0, len, u, du, v, dv)` for pixels `k0..k0 + len` of the
-    /// run of `n` pixels from column `x`, pixel `k0 + j` at `u + j·du`.
+
+/// Pixels per piece of an affine run: the packed 16-bit coordinates of the
+/// fast path are re-anchored this often (their rounded steps drift by at most
+/// `2^−17` of a texture per pixel).
+const AFFINE_CHUNK: usize = 32;
+
+/// The texture coordinates of a run, piece by piece: [`CoordGen::next`]
+/// gives `(len, u, du, v, dv)` (Q24) for the next `len` pixels, pixel `j` of
+/// the piece at `u + j·du` — perspective: sub-spans of 8 pixels between
+/// divided ends; affine: pieces of [`AFFINE_CHUNK`] pixels.
+#[derive(Clone, Copy, Debug)]
+struct CoordGen<'t> {
+    t: &'t TexturedTriangle,
+    n: usize,
+    k0: usize,
+    /// Perspective: plane values at the current piece's start; affine: `q`
+    /// unused.
+    q: i32,
+    a: i32,
+    b: i32,
+    dq: i32,
+    da: i32,
+    db: i32,
+    /// Coordinates at the current piece's start (Q24) and, affine, the steps.
+    u: i32,
+    v: i32,
+    du: i32,
+    dv: i32,
+}
+
+impl<'t> CoordGen<'t> {
+    /// The run of `n` pixels from column `x` of the current row.
     #[inline(always)]
-    fn subspans<const CLAMP: bool>(
-        t: &TexturedTriangle,
-        x: i32,
-        n: usize,
-        mut f: impl FnMut(usize, usize, i32, i32, i32, i32),
-    ) {
-        let (su, du) = start::<CLAMP>(&t.pu, x, n);
-        let (sv, dv) = start::<CLAMP>(&t.pv, x, n);
-        if !t.persp {
-            f(
-                0,
-                n,
-                t.u0.wrapping_add(q12_plane_to_q24(su, t.pu.sa)),
-                q12_plane_to_q24(du, t.pu.sa),
-                t.v0.wrapping_add(q12_plane_to_q24(sv, t.pv.sa)),
-                q12_plane_to_q24(dv, t.pv.sa),
-            );
-            return;
+    fn new<const CLAMP: bool>(t: &'t TexturedTriangle, x: i32, n: usize) -> Self {
+        let (a, da) = start::<CLAMP>(&t.pu, x, n);
+        let (b, db) = start::<CLAMP>(&t.pv, x, n);
+        let mut g = CoordGen {
+            t,
+            n,
+            k0: 0,
+            q: 0,
+            a,
+            b,
+            dq: 0,
+            da,
+            db,
+            u: 0,
+            v: 0,
+            du: 0,
+            dv: 0,
+        };
+        if t.persp {
+            let (q, dq) = start::<CLAMP>(&t.pq, x, n);
+            let sh = crate::raster::PERSPECTIVE_SPAN.trailing_zeros();
+            g.q = t.qbase.wrapping_add(q);
+            (g.dq, g.da, g.db) = (dq << sh, da << sh, db << sh);
+            (g.u, g.v) = t.coord(g.q, a, b);
+        } else {
+            g.u = t.u0.wrapping_add(q12_plane_to_q24(a, t.pu.sa));
+            g.v = t.v0.wrapping_add(q12_plane_to_q24(b, t.pv.sa));
+            g.du = q12_plane_to_q24(da, t.pu.sa);
+            g.dv = q12_plane_to_q24(db, t.pv.sa);
         }
-        let (sq, dq) = start::<CLAMP>(&t.pq, x, n);
-        let (mut q, mut a, mut b) = (t.qbase.wrapping_add(sq), su, sv);
+        g
+    }
+
+    /// The next piece: `(len, u, du, v, dv)`.
+    #[inline(always)]
+    fn next(&mut self) -> Option<(usize, i32, i32, i32, i32)> {
+        let k0 = self.k0;
+        if k0 >= self.n {
+            return None;
+        }
+        let t = self.t;
+        if !t.persp {
+            let len = (self.n - k0).min(AFFINE_CHUNK);
+            let r = (len, self.u, self.du, self.v, self.dv);
+            // the values at the next piece's start, as if stepped
+            self.u = self.u.wrapping_add(self.du.wrapping_mul(len as i32));
+            self.v = self.v.wrapping_add(self.dv.wrapping_mul(len as i32));
+            self.k0 = k0 + len;
+            return Some(r);
+        }
         let sub = crate::raster::PERSPECTIVE_SPAN;
         let sh = sub.trailing_zeros();
-        let (dq8, da8, db8) = (dq << sh, du << sh, dv << sh);
-        let (mut u0, mut v0) = t.coord(q, a, b);
-        let mut k0 = 0;
-        while k0 < n {
-            q = q.wrapping_add(dq8);
-            a = a.wrapping_add(da8);
-            b = b.wrapping_add(db8);
-            let k1 = k0 + sub;
-            let (u1, v1) = if k1 < n {
-                t.coord(q, a, b)
-            } else {
-                // beyond the run: the planes clamped to their vertex ranges
-                t.coord(
-                    q.clamp_to(
-                        t.qbase.wrapping_add(t.pq.lo),
-                        t.qbase.wrapping_add(t.pq.hi),
-                    ),
-                    a.clamp_to(t.pu.lo, t.pu.hi),
-                    b.clamp_to(t.pv.lo, t.pv.hi),
-                )
-            };
-            let len = (n - k0).min(sub);
-            f(
-                k0,
-                len,
-                u0,
-                u1.wrapping_sub(u0) >> sh,
-                v0,
-                v1.wrapping_sub(v0) >> sh,
-            );
-            (u0, v0) = (u1, v1);
-            k0 = k1;
-        }
+        self.q = self.q.wrapping_add(self.dq);
+        self.a = self.a.wrapping_add(self.da);
+        self.b = self.b.wrapping_add(self.db);
+        let k1 = k0 + sub;
+        let (u1, v1) = if k1 < self.n {
+            t.coord(self.q, self.a, self.b)
+        } else {
+            // beyond the run: the planes clamped to their vertex ranges
+            t.coord(
+                self.q.clamp_to(
+                    t.qbase.wrapping_add(t.pq.lo),
+                    t.qbase.wrapping_add(t.pq.hi),
+                ),
+                self.a.clamp_to(t.pu.lo, t.pu.hi),
+                self.b.clamp_to(t.pv.lo, t.pv.hi),
+            )
+        };
+        let r = (
+            (self.n - k0).min(sub),
+            self.u,
+            u1.wrapping_sub(self.u) >> sh,
+            self.v,
+            v1.wrapping_sub(self.v) >> sh,
+        );
+        (self.u, self.v) = (u1, v1);
+        self.k0 = k1;
+        Some(r)
     }
 }
 
@@ -625,7 +678,6 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
         if !t.has_spec && self.fast() {
             if let Texels::Rgb565(words) = self.state.texture.texels() {
                 let black = self.encoder.vertex(Rgb::<I::Scalar>::BLACK);
-                let (lw, lh) = self.state.texture.log2_size();
                 for i in 0..3 {
                     a[i] = a[i].wrapping_add(black[i] << ATTR_FRAC);
                 }
@@ -636,21 +688,17 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
                 let drb = (((d[0] + half) >> sh) as u32)
                     .wrapping_shl(16)
                     .wrapping_add(((d[2] + half) >> sh) as u32);
-                let (g, dg) = (a[1] as u32, d[1] as u32);
-                Self::subspans::<CLAMP>(t, x, n, |k0, len, u, du, v, dv| {
-                    let k = k0 as u32;
-                    if let Some(out) = color.get_mut(k0..k0 + len) {
-                        fill_tex565(
-                            words,
-                            (u32::from(lw), u32::from(lh)),
-                            [(u as u32) << 8, (du as u32) << 8],
-                            [(v as u32) << 8, (dv as u32) << 8],
-                            [rb.wrapping_add(drb.wrapping_mul(k)), drb],
-                            [g.wrapping_add(dg.wrapping_mul(k)), dg],
-                            out,
-                        );
-                    }
-                });
+                let c = [rb, drb, a[1] as u32, d[1] as u32];
+                let gen = CoordGen::new::<CLAMP>(t, x, n);
+                let (lw, lh) = self.state.texture.log2_size();
+                match (lw, lh) {
+                    (4, 4) => fast_run::<C, 4, 4, 256>(words, gen, c, color),
+                    (5, 5) => fast_run::<C, 5, 5, 1024>(words, gen, c, color),
+                    (6, 6) => fast_run::<C, 6, 6, 4096>(words, gen, c, color),
+                    (7, 7) => fast_run::<C, 7, 7, 16384>(words, gen, c, color),
+                    (8, 8) => fast_run::<C, 8, 8, 65536>(words, gen, c, color),
+                    _ => fast_run_any(words, (u32::from(lw), u32::from(lh)), gen, c, color),
+                }
                 return;
             }
         }
@@ -661,66 +709,134 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
             sa[i] = t.sbase[i].wrapping_add(s);
             sd[i] = if t.has_spec { st } else { 0 };
         }
-        Self::subspans::<CLAMP>(t, x, n, |k0, len, u, du, v, dv| {
-            let k = k0 as i32;
-            let mut p: [i32; 3] = core::array::from_fn(|i| a[i].wrapping_add(d[i].wrapping_mul(k)));
-            let mut s: [i32; 3] =
-                core::array::from_fn(|i| sa[i].wrapping_add(sd[i].wrapping_mul(k)));
-            let (mut u, mut v) = (u, v);
-            let mut px = x + k;
-            if let Some(out) = color.get_mut(k0..k0 + len) {
-                for c in out.iter_mut() {
-                    let tc = TexCoord {
-                        u: u >> (24 - TEX_FRAC),
-                        v: v >> (24 - TEX_FRAC),
-                    };
-                    *c = self.pixel(p, s, tc, px, y);
-                    for i in 0..3 {
-                        p[i] = p[i].wrapping_add(d[i]);
-                        s[i] = s[i].wrapping_add(sd[i]);
-                    }
-                    u = u.wrapping_add(du);
-                    v = v.wrapping_add(dv);
-                    px += 1;
-                    super::no_unroll();
+        let mut gen = CoordGen::new::<CLAMP>(t, x, n);
+        let mut rest = color;
+        let mut px = x;
+        while let Some((len, mut u, du, mut v, dv)) = gen.next() {
+            let (part, tail) = rest.split_at_mut(len.min(rest.len()));
+            for c in part.iter_mut() {
+                let tc = TexCoord {
+                    u: u >> (24 - TEX_FRAC),
+                    v: v >> (24 - TEX_FRAC),
+                };
+                *c = self.pixel(a, sa, tc, px, y);
+                for i in 0..3 {
+                    a[i] = a[i].wrapping_add(d[i]);
+                    sa[i] = sa[i].wrapping_add(sd[i]);
                 }
+                u = u.wrapping_add(du);
+                v = v.wrapping_add(dv);
+                px += 1;
+                super::no_unroll();
             }
-        });
+            rest = tail;
+        }
     }
 }
 
-/// The fast path's loop (see the [module docs](self)): `Rgb565` texels at Q32
-/// coordinates `u`, `v` (`[value, step]`; a whole texture is 2^32, so the
-/// wrapping addition is [`Wrap::Repeat`]), the Gouraud channels packed as in
-/// the Gouraud kernel (red and blue in `rb`, 16 bits each with 11 fraction
-/// bits; green in `g` with 23), modulated as `⌊(t + 1)·A / 2^k⌋`.
+/// Q24 coordinates and steps packed for the fast path: `v` in the top 15
+/// bits (2^15 per texture), a guard bit, `u` in the low 16 bits (2^16 per
+/// texture). The guard bit takes `u`'s carry (or borrow, for a negative
+/// step: then it starts set) when `u` wraps once within a piece, so that `v`
+/// is not disturbed.
+#[inline(always)]
+fn pack(u: i32, du: i32, v: i32, dv: i32) -> (u32, u32) {
+    let u16 = ((u >> 8) as u32) & 0xFFFF;
+    let v15 = ((v >> 9) as u32) << 17;
+    let guard = if du < 0 { 1 << 16 } else { 0 };
+    // steps rounded to nearest
+    let du16 = (du.wrapping_add(128) >> 8) as u32;
+    let dv15 = ((dv.wrapping_add(256) >> 9) as u32) << 17;
+    (v15 | guard | u16, dv15.wrapping_add(du16))
+}
+
+/// The 5-6-5 fast path for a `2^LW × 2^LH` texture of `N` texels (see
+/// [`fill_tex565`]).
 #[inline(never)]
+fn fast_run<C: OutputColor, const LW: u32, const LH: u32, const N: usize>(
+    words: &[u16],
+    mut gen: CoordGen<'_>,
+    mut c: [u32; 4],
+    color: &mut [C],
+) {
+    let Ok(words) = <&[u16; N]>::try_from(words) else {
+        return;
+    };
+    let mut rest = color;
+    while let Some((len, u, du, v, dv)) = gen.next() {
+        let uv = pack(u, du, v, dv);
+        let (part, tail) = rest.split_at_mut(len.min(rest.len()));
+        tex565_const::<C, LW, LH, N>(words, uv, &mut c, part);
+        rest = tail;
+    }
+}
+
+/// [`fill_tex565`] for constant sizes: the index is provably in the array.
+#[inline(never)]
+fn tex565_const<C: OutputColor, const LW: u32, const LH: u32, const N: usize>(
+    words: &[u16; N],
+    uv: (u32, u32),
+    c: &mut [u32; 4],
+    out: &mut [C],
+) {
+    let [rb, drb, g, dg] = *c;
+    let (rb, g) = fill_tex565::<C>(words.as_slice(), (LW, LH), [uv.0, uv.1], [rb, drb], [g, dg], out);
+    c[0] = rb;
+    c[2] = g;
+}
+
+/// [`fast_run`] for any texture size (run-time shifts).
+#[inline(never)]
+fn fast_run_any<C: OutputColor>(
+    words: &[u16],
+    size: (u32, u32),
+    mut gen: CoordGen<'_>,
+    c: [u32; 4],
+    color: &mut [C],
+) {
+    let [mut rb, drb, mut g, dg] = c;
+    let (lw, lh) = (size.0.clamp(1, 15), size.1.clamp(1, 15));
+    let mut rest = color;
+    while let Some((len, u, du, v, dv)) = gen.next() {
+        let (uv, duv) = pack(u, du, v, dv);
+        let (part, tail) = rest.split_at_mut(len.min(rest.len()));
+        (rb, g) = fill_tex565(words, (lw, lh), [uv, duv], [rb, drb], [g, dg], part);
+        rest = tail;
+    }
+}
+
+/// The fast path's loop (see the [module docs](self)): `Rgb565` texels at the
+/// packed coordinates `uv` (see [`pack`]; the wrapping addition is
+/// [`Wrap::Repeat`]), the Gouraud channels packed as in the Gouraud kernel
+/// (red and blue in `rb`, 16 bits each with 11 fraction bits; green in `g`
+/// with 23), modulated as `⌊(t + 1)·A / 2^k⌋`; `lw`, `lh` (1 to 15): the
+/// texture's `log2` sides. Returns `rb`, `g` after the last pixel.
+#[inline(always)]
 fn fill_tex565<C: OutputColor>(
     words: &[u16],
     (lw, lh): (u32, u32),
-    [mut u, du]: [u32; 2],
-    [mut v, dv]: [u32; 2],
+    [mut uv, duv]: [u32; 2],
     [mut rb, drb]: [u32; 2],
     [mut g, dg]: [u32; 2],
     out: &mut [C],
-) {
-    // sides of at least 2 texels: shifts below 32
-    let (su, sv) = (32 - lw.max(1), 32 - lh.max(1));
+) -> (u32, u32) {
     for c in out.iter_mut() {
-        let i = (((v >> sv) << lw) | (u >> su)) as usize;
-        let t = u32::from(words.get(i).copied().unwrap_or(0));
-        // (t + 1)·A < 2^16 for every channel: the result's top bits are the channel
-        let r = (((t >> 11) + 1) * (rb >> 21)) & 0xF800;
-        let gr = (((((t >> 5) & 63) + 1) * (g >> 19)) >> 5) & 0x07E0;
-        let b = (((t & 31) + 1) * ((rb << 16) >> 21)) >> 11;
+        let col = (uv << 16) >> (32 - lw);
+        let row = uv >> (32 - lh);
+        let t = u32::from(words.get(((row << lw) | col) as usize).copied().unwrap_or(0));
+        // (t + 1)·A < 2^16 for every channel: the product's top bits are the
+        // channel (shift pairs instead of masks: no constants to hold)
+        let r = ((((t >> 11) + 1) * (rb >> 21)) >> 11) << 11;
+        let gr = (((((t << 21) >> 26) + 1) * (g >> 19)) >> 10) << 5;
+        let b = ((((t << 27) >> 27) + 1) * ((rb << 16) >> 21)) >> 11;
         *c = C::from_rgb565_raw((r | gr | b) as u16);
         // the values after the last pixel are not used: wrapping is harmless
-        u = u.wrapping_add(du);
-        v = v.wrapping_add(dv);
+        uv = uv.wrapping_add(duv);
         rb = rb.wrapping_add(drb);
         g = g.wrapping_add(dg);
         super::no_unroll();
     }
+    (rb, g)
 }
 
 impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, TexturedGouraudShading, I, E, C> {
