@@ -758,6 +758,9 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
             sa[i] = t.sbase[i].wrapping_add(s);
             sd[i] = if t.has_spec { st } else { 0 };
         }
+        let packed = C::IS_RGB565 && E::LINEAR;
+        let mut prim = Steps::new(a, d, packed);
+        let mut spec = Steps::new(sa, sd, packed);
         let mut gen = CoordGen::new::<CLAMP>(t, x, n);
         let mut rest = color;
         let mut px = x;
@@ -768,11 +771,9 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
                     u: u >> (24 - TEX_FRAC),
                     v: v >> (24 - TEX_FRAC),
                 };
-                *c = self.pixel(a, sa, tc, px, y);
-                for i in 0..3 {
-                    a[i] = a[i].wrapping_add(d[i]);
-                    sa[i] = sa[i].wrapping_add(sd[i]);
-                }
+                *c = self.pixel(prim.get(), spec.get(), tc, px, y);
+                prim.step();
+                spec.step();
                 u = u.wrapping_add(du);
                 v = v.wrapping_add(dv);
                 px += 1;
@@ -780,6 +781,57 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
             }
             rest = tail;
         }
+    }
+}
+
+/// Encoder values stepped along a run: three channels, or (`packed`, linear
+/// 5-6-5 output) red and blue packed as the Gouraud kernel steps them
+/// (`fill565`), so that a white texture gives its pixels bit for bit.
+#[derive(Clone, Copy, Debug)]
+struct Steps {
+    a: [i32; 3],
+    d: [i32; 3],
+    packed: bool,
+    rb: u32,
+    drb: u32,
+}
+
+impl Steps {
+    #[inline(always)]
+    fn new(a: [i32; 3], d: [i32; 3], packed: bool) -> Self {
+        let sh = ATTR_FRAC - 1;
+        let half = 1 << (sh - 1);
+        Steps {
+            a,
+            d,
+            packed,
+            rb: (((a[0] >> sh) as u32) << 16) | ((a[2] >> sh) as u32 & 0xFFFF),
+            drb: (((d[0].wrapping_add(half)) >> sh) as u32)
+                .wrapping_shl(16)
+                .wrapping_add(((d[2].wrapping_add(half)) >> sh) as u32),
+        }
+    }
+
+    #[inline(always)]
+    fn get(&self) -> [i32; 3] {
+        if self.packed {
+            let sh = ATTR_FRAC - 1;
+            [
+                ((self.rb >> 16) << sh) as i32,
+                self.a[1],
+                ((self.rb & 0xFFFF) << sh) as i32,
+            ]
+        } else {
+            self.a
+        }
+    }
+
+    #[inline(always)]
+    fn step(&mut self) {
+        for i in 0..3 {
+            self.a[i] = self.a[i].wrapping_add(self.d[i]);
+        }
+        self.rb = self.rb.wrapping_add(self.drb);
     }
 }
 
