@@ -30,7 +30,11 @@ fn lcg(seed: &mut u64) -> u32 {
 /// A random `2^lw × 2^lh` Rgb565 texture.
 fn random_texture(lw: u8, lh: u8, wrap: Wrap, seed: u64) -> Texture<'static> {
     let mut s = seed;
-    let d = leak((0..1usize << (lw + lh)).map(|_| lcg(&mut s) as u16).collect());
+    let d = leak(
+        (0..1usize << (lw + lh))
+            .map(|_| lcg(&mut s) as u16)
+            .collect(),
+    );
     Texture::new(Texels::Rgb565(d), lw, lh, wrap).unwrap()
 }
 
@@ -75,20 +79,34 @@ fn blinn(kd: f32) -> Lighting<Q14, DirectionalLight<Q14>, BlinnPhong> {
 /// One model unit per pixel, y up in the model (as the measure kernels).
 fn ortho() -> MeshTransform<Orthographic> {
     let s = W as f32;
-    Camera::orthographic(0.0, s, -s, 0.0, 0.5, 10.0, Viewport::new(0, 0, W as i32, W as i32).unwrap())
-        .unwrap()
-        .with_view(Mat4::translate([0.0, 0.0, -1.0]))
-        .mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8)
-        .unwrap()
+    Camera::orthographic(
+        0.0,
+        s,
+        -s,
+        0.0,
+        0.5,
+        10.0,
+        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+    )
+    .unwrap()
+    .with_view(Mat4::translate([0.0, 0.0, -1.0]))
+    .mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8)
+    .unwrap()
 }
 
 /// A perspective view of a plane tilted away (the far edge at about 3× the depth).
 fn persp(tilt: f32) -> MeshTransform<Perspective> {
-    Camera::perspective(1.2, 1.0, 0.5, 200.0, Viewport::new(0, 0, W as i32, W as i32).unwrap())
-        .unwrap()
-        .with_view(Mat4::translate([-32.0, 32.0, -40.0]))
-        .mesh_transform(&Mat4::rotate_x(tilt), SUBPIXEL_BITS as u8)
-        .unwrap()
+    Camera::perspective(
+        1.2,
+        1.0,
+        0.5,
+        200.0,
+        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+    )
+    .unwrap()
+    .with_view(Mat4::translate([-32.0, 32.0, -40.0]))
+    .mesh_transform(&Mat4::rotate_x(tilt), SUBPIXEL_BITS as u8)
+    .unwrap()
 }
 
 /// A grid of `n × n` quads over `size` model units (z = 0, y down as
@@ -101,7 +119,12 @@ struct Grid {
 }
 
 fn grid(n: usize, size: f32, origin: [f32; 2], uv0: [i32; 2], uv1: [i32; 2], curved: bool) -> Grid {
-    let mut g = Grid { pos: vec![], nrm: vec![], uv: vec![], tris: vec![] };
+    let mut g = Grid {
+        pos: vec![],
+        nrm: vec![],
+        uv: vec![],
+        tris: vec![],
+    };
     let f = (1 << SUBPIXEL_BITS) as f32;
     for j in 0..=n {
         for i in 0..=n {
@@ -119,11 +142,13 @@ fn grid(n: usize, size: f32, origin: [f32; 2], uv0: [i32; 2], uv1: [i32; 2], cur
                 [0.0, 0.0, 1.0]
             };
             g.nrm.push(nn.map(|c| (c * 16384.0) as i16));
-            g.uv.push([
-                uv0[0] + ((uv1[0] - uv0[0]) as f32 * a) as i32,
-                uv0[1] + ((uv1[1] - uv0[1]) as f32 * b) as i32,
-            ]
-            .map(|c| c.clamp(-32768, 32767) as i16));
+            g.uv.push(
+                [
+                    uv0[0] + ((uv1[0] - uv0[0]) as f32 * a) as i32,
+                    uv0[1] + ((uv1[1] - uv0[1]) as f32 * b) as i32,
+                ]
+                .map(|c| c.clamp(-32768, 32767) as i16),
+            );
         }
     }
     let k = |i: usize, j: usize| (j * (n + 1) + i) as u16;
@@ -154,14 +179,20 @@ where
     let mut cache = vec![CachedVertex::<K::Vertex>::default(); g.pos.len()];
     let mut bins = vec![0u16; bins_len(g.tris.len(), layout.bands() as usize)];
     let mut carry = vec![Carry::default(); 2 * g.tris.len() + 2];
-    let memory = MeshMemory { vertices: &mut cache, bins: &mut bins, carry: &mut carry };
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut carry,
+    };
     let opts = fixshade::render::DrawOptions { cull: Cull::None };
     let mut draw = MeshDraw::with_options(layout, mesh, t, kernel, opts, memory).unwrap();
     let mut strip = vec![Rgb565::BLACK; (W * rows) as usize];
     let mut depth = vec![0u16; (W * rows) as usize];
     let mut bands = Bands::new(layout, &mut strip, Some(&mut depth)).unwrap();
     let mut sink = Sink(vec![Rgb565::BLACK; (W * W) as usize]);
-    bands.render(&mut sink, Rgb565::BLACK, &mut [&mut draw]).unwrap();
+    bands
+        .render(&mut sink, Rgb565::BLACK, &mut [&mut draw])
+        .unwrap();
     sink.0
 }
 
@@ -174,7 +205,10 @@ impl OriginDimensions for Sink {
 impl DrawTarget for Sink {
     type Color = Rgb565;
     type Error = core::convert::Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, it: I) -> Result<(), Self::Error> {
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        it: I,
+    ) -> Result<(), Self::Error> {
         for Pixel(p, c) in it {
             if let Some(s) = self.0.get_mut((p.y as u32 * W + p.x as u32) as usize) {
                 *s = c;
@@ -196,15 +230,23 @@ fn tex_shader<'l, I: fixshade::lighting::Illuminate>(
 fn same(a: &[Rgb565], b: &[Rgb565], what: &str) {
     let diff = a.iter().zip(b).filter(|(p, q)| p != q).count();
     let first = a.iter().zip(b).position(|(p, q)| p != q);
-    assert_eq!(diff, 0, "{what}: {diff} pixels differ, first at {first:?}: {:?} vs {:?}",
-        first.map(|i| a[i]), first.map(|i| b[i]));
+    assert_eq!(
+        diff,
+        0,
+        "{what}: {diff} pixels differ, first at {first:?}: {:?} vs {:?}",
+        first.map(|i| a[i]),
+        first.map(|i| b[i])
+    );
 }
 
 fn max_delta(a: &[Rgb565], b: &[Rgb565]) -> u8 {
     a.iter()
         .zip(b)
         .map(|(p, q)| {
-            p.r().abs_diff(q.r()).max(p.g().abs_diff(q.g())).max(p.b().abs_diff(q.b()))
+            p.r()
+                .abs_diff(q.r())
+                .max(p.g().abs_diff(q.g()))
+                .max(p.b().abs_diff(q.b()))
         })
         .max()
         .unwrap_or(0)
@@ -236,7 +278,8 @@ fn texel_centres_return_the_texels_nearest_and_bilinear() {
                 [v(0, 0, 0, 0), v(0, 8, 0, one), v(8, 0, one, 0)],
                 [v(8, 0, one, 0), v(0, 8, 0, one), v(8, 8, one, one)],
             ] {
-                sh.draw_textured(&mut fb, None, &tri, &RasterOptions::default(), false).unwrap();
+                sh.draw_textured(&mut fb, None, &tri, &RasterOptions::default(), false)
+                    .unwrap();
             }
             for y in 0..8 {
                 for x in 0..8 {
@@ -257,14 +300,29 @@ fn a_white_texture_is_the_untextured_gouraud_output() {
     let white = texture_of(vec![0xFFFF; 16], 2, 2, Wrap::Repeat);
     let g = grid(6, 56.0, [4.0, 4.0], [-5000, 300], [9000, 7000], true);
     for rows in [W, 7] {
-        let gouraud = render(Shader::new(GouraudShading, &lit, Linear), &g, &ortho(), rows);
+        let gouraud = render(
+            Shader::new(GouraudShading, &lit, Linear),
+            &g,
+            &ortho(),
+            rows,
+        );
         for filter in [Filter::Nearest, Filter::Bilinear] {
             let tex = render(tex_shader(&lit, white, filter), &g, &ortho(), rows);
             same(&tex, &gouraud, &format!("{filter:?}, {rows}-row bands"));
         }
         // perspective: the colours are screen-linear in both
-        let gp = render(Shader::new(GouraudShading, &lit, Linear), &g, &persp(0.9), rows);
-        let tp = render(tex_shader(&lit, white, Filter::Nearest), &g, &persp(0.9), rows);
+        let gp = render(
+            Shader::new(GouraudShading, &lit, Linear),
+            &g,
+            &persp(0.9),
+            rows,
+        );
+        let tp = render(
+            tex_shader(&lit, white, Filter::Nearest),
+            &g,
+            &persp(0.9),
+            rows,
+        );
         same(&tp, &gp, &format!("perspective, {rows}-row bands"));
         assert!(gp.iter().filter(|p| **p != Rgb565::BLACK).count() > 500);
     }
@@ -278,7 +336,12 @@ fn separate_specular_adds_after_modulation() {
     let full = blinn(0.8);
     let black = texture_of(vec![0; 16], 2, 2, Wrap::Repeat);
     let g = grid(6, 56.0, [4.0, 4.0], [0, 0], [8192, 8192], true);
-    let want = render(Shader::new(GouraudShading, &spec_only, Linear), &g, &ortho(), W);
+    let want = render(
+        Shader::new(GouraudShading, &spec_only, Linear),
+        &g,
+        &ortho(),
+        W,
+    );
     let got = render(tex_shader(&full, black, Filter::Nearest), &g, &ortho(), W);
     same(&got, &want, "black texture");
     assert!(want.iter().any(|p| p.r() > 20), "a highlight");
@@ -292,13 +355,20 @@ fn separate_specular_adds_after_modulation() {
     let sum = render(Shader::new(GouraudShading, &soft, Linear), &g, &ortho(), W);
     for filter in [Filter::Nearest, Filter::Bilinear] {
         let tex = render(tex_shader(&soft, white, filter), &g, &ortho(), W);
-        assert!(max_delta(&sum, &tex) <= 1, "{filter:?}: {}", max_delta(&sum, &tex));
+        assert!(
+            max_delta(&sum, &tex) <= 1,
+            "{filter:?}: {}",
+            max_delta(&sum, &tex)
+        );
     }
     // a mid-grey texture halves the primary colour but not the highlight
     let grey = texture_of(vec![0x8410; 16], 2, 2, Wrap::Repeat);
     let half = render(tex_shader(&full, grey, Filter::Nearest), &g, &ortho(), W);
     let brightest = |px: &[Rgb565]| px.iter().map(|p| p.r()).max().unwrap();
-    assert!(brightest(&half) >= brightest(&want), "the highlight survives");
+    assert!(
+        brightest(&half) >= brightest(&want),
+        "the highlight survives"
+    );
 }
 
 #[test]
@@ -323,9 +393,17 @@ fn modulation_is_within_one_step_of_the_f64_product() {
                 for x in 0..32 {
                     let t = tex.texel(x, y);
                     let p = px[(y as u32 * W + x as u32) as usize];
-                    let want = |t8: u8, max: f64| (f64::from(t8) / 255.0 * f64::from(level) * max).round();
-                    for (got, w) in [(p.r(), want(t[0], 31.0)), (p.g(), want(t[1], 63.0)), (p.b(), want(t[2], 31.0))] {
-                        assert!((f64::from(got) - w).abs() <= 1.0, "{level} {filter:?} ({x},{y}): {got} vs {w}");
+                    let want =
+                        |t8: u8, max: f64| (f64::from(t8) / 255.0 * f64::from(level) * max).round();
+                    for (got, w) in [
+                        (p.r(), want(t[0], 31.0)),
+                        (p.g(), want(t[1], 63.0)),
+                        (p.b(), want(t[2], 31.0)),
+                    ] {
+                        assert!(
+                            (f64::from(got) - w).abs() <= 1.0,
+                            "{level} {filter:?} ({x},{y}): {got} vs {w}"
+                        );
                     }
                 }
             }
@@ -365,7 +443,11 @@ fn repeat_wraps_and_clamp_holds_the_edge() {
                 };
                 let t = tex.texel(i, 0);
                 let want = Rgb565::new(t[0] >> 3, t[1] >> 2, t[2] >> 3);
-                assert_eq!(px[(5 * W + x) as usize], want, "{filter:?} {wrap:?} x = {x} u = {u}");
+                assert_eq!(
+                    px[(5 * W + x) as usize],
+                    want,
+                    "{filter:?} {wrap:?} x = {x} u = {u}"
+                );
             }
         }
     }
@@ -397,10 +479,20 @@ fn mesh_renderer_matches_the_per_triangle_path() {
                 let n = g.nrm[i].map(|c| f32::from(c) / 16384.0);
                 TexturedVertex::new(
                     ShadeVertex::<Q14>::new([s.x, s.y], s.z, 1, [0.0; 3], n),
-                    TexCoord { u: i32::from(g.uv[i][0]) << 4, v: i32::from(g.uv[i][1]) << 4 },
+                    TexCoord {
+                        u: i32::from(g.uv[i][0]) << 4,
+                        v: i32::from(g.uv[i][1]) << 4,
+                    },
                 )
             });
-            sh.draw_textured(&mut fb, Some(&mut depth), &v, &RasterOptions::default(), false).unwrap();
+            sh.draw_textured(
+                &mut fb,
+                Some(&mut depth),
+                &v,
+                &RasterOptions::default(),
+                false,
+            )
+            .unwrap();
         }
         let covered = |p: &[Rgb565]| p.iter().filter(|c| **c != Rgb565::BLACK).count();
         assert_eq!(covered(&mesh), covered(&pt));
@@ -422,11 +514,19 @@ fn bands_equal_full_frame_bit_for_bit() {
             let full = render(tex_shader(&lam, tex, filter), &g, &t, W);
             assert!(full.iter().filter(|p| **p != Rgb565::BLACK).count() > 300);
             for rows in [1, 5, 16] {
-                same(&render(tex_shader(&lam, tex, filter), &g, &t, rows), &full, "lambert");
+                same(
+                    &render(tex_shader(&lam, tex, filter), &g, &t, rows),
+                    &full,
+                    "lambert",
+                );
             }
             let full = render(tex_shader(&lit, odd, filter), &g, &t, W);
             for rows in [3, 8] {
-                same(&render(tex_shader(&lit, odd, filter), &g, &t, rows), &full, "blinn");
+                same(
+                    &render(tex_shader(&lit, odd, filter), &g, &t, rows),
+                    &full,
+                    "blinn",
+                );
             }
         }
     }
@@ -440,20 +540,42 @@ fn extremes_never_panic() {
     let tiny = texture_of(vec![0x1234], 0, 0, Wrap::Repeat);
     // uv at the i16 extremes (±8), a plane through the near plane and far
     // beyond the window, tiny and huge grids
-    for (uv0, uv1) in [([-32768, -32768], [32767, 32767]), ([32767, -32768], [-32768, 32767]), ([0, 0], [0, 0])] {
-        for (n, size, origin) in [(1, 0.2, [10.0, 10.0]), (3, 60.0, [2.0, 2.0]), (2, 3000.0, [-1500.0, -1500.0]), (5, 1.0, [30.0, 30.0])] {
+    for (uv0, uv1) in [
+        ([-32768, -32768], [32767, 32767]),
+        ([32767, -32768], [-32768, 32767]),
+        ([0, 0], [0, 0]),
+    ] {
+        for (n, size, origin) in [
+            (1, 0.2, [10.0, 10.0]),
+            (3, 60.0, [2.0, 2.0]),
+            (2, 3000.0, [-1500.0, -1500.0]),
+            (5, 1.0, [30.0, 30.0]),
+        ] {
             let g = grid(n, size, origin, uv0, uv1, true);
-            for t in [texture_of(vec![0xFFFF; 4], 1, 1, Wrap::Clamp), tex, big, tiny] {
+            for t in [
+                texture_of(vec![0xFFFF; 4], 1, 1, Wrap::Clamp),
+                tex,
+                big,
+                tiny,
+            ] {
                 for filter in [Filter::Nearest, Filter::Bilinear] {
                     render(tex_shader(&lit, t, filter), &g, &ortho(), 7);
-                    for tilt in [0.0, 1.2, 1.5707] {
+                    for tilt in [0.0, 1.2, core::f32::consts::FRAC_PI_2] {
                         render(tex_shader(&lit, t, filter), &g, &persp(tilt), 9);
                     }
                     // a camera inside the plane's depth range: the near plane cuts it
-                    let cam = Camera::perspective(1.2, 1.0, 0.5, 200.0, Viewport::new(0, 0, W as i32, W as i32).unwrap())
-                        .unwrap()
-                        .with_view(Mat4::translate([-32.0, 32.0, -2.0]));
-                    let tn = cam.mesh_transform(&Mat4::rotate_x(1.2), SUBPIXEL_BITS as u8).unwrap();
+                    let cam = Camera::perspective(
+                        1.2,
+                        1.0,
+                        0.5,
+                        200.0,
+                        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+                    )
+                    .unwrap()
+                    .with_view(Mat4::translate([-32.0, 32.0, -2.0]));
+                    let tn = cam
+                        .mesh_transform(&Mat4::rotate_x(1.2), SUBPIXEL_BITS as u8)
+                        .unwrap();
                     render(tex_shader(&lit, t, filter), &g, &tn, W);
                 }
             }
@@ -463,16 +585,24 @@ fn extremes_never_panic() {
     let mut px = vec![Rgb565::BLACK; (W * W) as usize];
     let mut fb = SliceFramebuffer::new(&mut px, W, W).unwrap();
     let mut sh = tex_shader(&lit, tex, Filter::Bilinear);
-    for (inv_w, uv) in [([1, 1, 1], i32::MAX), ([0, -5, i32::MAX], i32::MIN), ([i32::MAX, 1, 1], 1 << 20)] {
+    for (inv_w, uv) in [
+        ([1, 1, 1], i32::MAX),
+        ([0, -5, i32::MAX], i32::MIN),
+        ([i32::MAX, 1, 1], 1 << 20),
+    ] {
         let v = |k: usize, x: i32, y: i32| {
             TexturedVertex::new(
                 ShadeVertex::<Q14>::new([x << 4, y << 4], 0, inv_w[k], [0.0; 3], [0.0, 0.6, 0.8]),
-                TexCoord { u: uv, v: uv.wrapping_neg() },
+                TexCoord {
+                    u: uv,
+                    v: uv.wrapping_neg(),
+                },
             )
         };
         let tri = [v(0, -3000, 5), v(1, 40, 9000), v(2, 60, 0)];
         for persp in [false, true] {
-            sh.draw_textured(&mut fb, None, &tri, &RasterOptions::default(), persp).unwrap();
+            sh.draw_textured(&mut fb, None, &tri, &RasterOptions::default(), persp)
+                .unwrap();
         }
     }
 }
