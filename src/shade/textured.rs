@@ -1,60 +1,4 @@
-//! Textured Gouraud shading: OpenGL's `GL_MODULATE` with
-//! `GL_SEPARATE_SPECULAR_COLOR`.
-//!
-//! Each vertex is lit once ([`Illuminate::shade_parts`]): the **primary** colour
-//! (emission + ambient + diffuse) and the **secondary** colour (specular), each
-//! clamped to [0, 1] and encoded like a Gouraud vertex colour. Both are
-//! interpolated across the triangle (Gouraud), the texture coordinates
-//! perspective-correctly, and every pixel gets
-//!
-//! `out = clamp(texel × primary + secondary)`
-//!
-//! # Texture coordinates
-//!
-//! The mesh renderer interpolates, per triangle, the planes of `u/w`, `v/w` and
-//! `1/w` (32-bit set-up planes, see [`crate::render`]) and divides once per
-//! sub-span of [`PERSPECTIVE_SPAN`](crate::raster::PERSPECTIVE_SPAN) = 8 pixels
-//! (a 32-bit reciprocal: a 256-entry seed table and one Newton step, no
-//! division instruction, no 64-bit arithmetic), `u` and `v` stepping linearly
-//! inside the sub-span. Sub-span `j` of a run starting at column `x` runs from
-//! `x + 8j` to `x + 8j + 7` and interpolates between the divided values at
-//! `x + 8j` and `x + 8j + 8` (the last end, beyond the run, has its planes
-//! clamped to their vertex ranges). A triangle whose three `w` are equal (an
-//! orthographic transform: `w = 1`) interpolates `u`, `v` directly, without a
-//! division.
-//!
-//! Precision (`perspective_coordinates_match_the_f64_method` in this module):
-//! against an `f64` evaluation of the same method (the planes' values at every
-//! sub-span end divided exactly, linear in between), on squares receding in
-//! depth (tilts up to 85°, depth ratios up to about 20 across a triangle,
-//! texture coordinates up to ±8, 22.9 million pixels), the texture coordinates
-//! are within `2^−9` of a texture (largest found: `1.65·10^−3`), the error of
-//! the 32-bit set-up planes (14-bit coefficients) amplified by the depth
-//! ratio. Triangles whose coordinate planes carry a larger error bound
-//! (slivers, tiny triangles spanning several textures) are clamped per run:
-//! their coordinates stay within the vertices' range. The 5-6-5 fast path
-//! packs the coordinates in 16 bits (`v` 15) per texture: `2^−16` more, plus
-//! a drift of at most `2^−17` per pixel of a piece.
-//!
-//! The clipping paths interpolate the payload (`u`, `v`, `w` and the colours)
-//! linearly: exact in clip space at the near plane; at the set-up window's
-//! edges (triangles reaching more than 512 pixels beyond the frame)
-//! screen-linearly, so the cut points of such triangles carry the affine
-//! texture coordinates of the cut.
-//!
-//! # Modulation
-//!
-//! The general path reads the texel through [`Texture::sample`] (any format,
-//! filter and wrap), weighs it `w(t) = t + t/128` (`t` 8-bit: 0 → 0, 255 → 256)
-//! and computes `(primary·w(t))/256 + secondary` on the encoder values (so any
-//! [`Encoder`]: plain rounding, dithering, gamma). The fast path (`Rgb565`
-//! texels, [`Filter::Nearest`], [`Wrap::Repeat`], sides of at least 2 texels,
-//! [`Linear`](super::Linear) `Rgb565` output, no specular light on the
-//! triangle) multiplies the 5- and 6-bit texel channels `t` by the primary
-//! channel `A` (5 or 6 integer and 6 or 4 fraction bits, the Gouraud value
-//! including its rounding half) as `⌊(t + 1)·A / 32⌋` (`/64` for green): a
-//! white texel gives exactly the untextured Gouraud pixel, a black one 0, and
-//! any other is within 1 step of the exactly rounded `t/31·p` (tested).
+//! Textured Gouraud shading (see [`TexturedGouraudShading`]).
 
 use super::{eye_point, raster_draw, start, unit_normal, within, Encoder, Kernel, Mode};
 use super::{ModeState, ShadeVertex, Shader, VertexIn};
@@ -68,9 +12,66 @@ use crate::render::Lerp;
 use crate::target::{DepthBuffer, Framebuffer};
 use crate::texture::{Filter, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
 
-/// Textured Gouraud shading (`GL_MODULATE`, `GL_SEPARATE_SPECULAR_COLOR`):
-/// lit per vertex in a primary and a secondary colour, both interpolated, and
-/// per pixel `texel × primary + secondary` (see the [module docs](self)).
+/// Textured Gouraud shading: OpenGL's `GL_MODULATE` with
+/// `GL_SEPARATE_SPECULAR_COLOR`.
+/// `GL_SEPARATE_SPECULAR_COLOR`.
+///
+/// Each vertex is lit once ([`Illuminate::shade_parts`]): the **primary** colour
+/// (emission + ambient + diffuse) and the **secondary** colour (specular), each
+/// clamped to [0, 1] and encoded like a Gouraud vertex colour. Both are
+/// interpolated across the triangle (Gouraud), the texture coordinates
+/// perspective-correctly, and every pixel gets
+///
+/// `out = clamp(texel × primary + secondary)`
+///
+/// # Texture coordinates
+///
+/// The mesh renderer interpolates, per triangle, the planes of `u/w`, `v/w` and
+/// `1/w` (32-bit set-up planes, see [`crate::render`]) and divides once per
+/// sub-span of [`PERSPECTIVE_SPAN`](crate::raster::PERSPECTIVE_SPAN) = 8 pixels
+/// (a 32-bit reciprocal: a 256-entry seed table and one Newton step, no
+/// division instruction, no 64-bit arithmetic), `u` and `v` stepping linearly
+/// inside the sub-span. Sub-span `j` of a run starting at column `x` runs from
+/// `x + 8j` to `x + 8j + 7` and interpolates between the divided values at
+/// `x + 8j` and `x + 8j + 8` (the last end, beyond the run, has its planes
+/// clamped to their vertex ranges). A triangle whose three `w` are equal (an
+/// orthographic transform: `w = 1`) interpolates `u`, `v` directly, without a
+/// division.
+///
+/// Precision (`perspective_coordinates_match_the_f64_method` in this module):
+/// against an `f64` evaluation of the same method (the planes' values at every
+/// sub-span end divided exactly, linear in between), on squares receding in
+/// depth (tilts up to 85°, depth ratios up to about 20 across a triangle,
+/// texture coordinates up to ±8, 22.9 million pixels), the texture coordinates
+/// are within `2^−9` of a texture (largest found: `1.65·10^−3`), the error of
+/// the 32-bit set-up planes (14-bit coefficients) amplified by the depth
+/// ratio. Triangles whose coordinate planes carry a larger error bound
+/// (slivers, tiny triangles spanning several textures) are clamped per run:
+/// their coordinates stay within the vertices' range. The 5-6-5 fast path
+/// packs the coordinates in 16 bits (`v` 15) per texture: `2^−16` more, plus
+/// a drift of at most `2^−17` per pixel of a piece.
+///
+/// The clipping paths interpolate the payload (`u`, `v`, `w` and the colours)
+/// linearly: exact in clip space at the near plane; at the set-up window's
+/// edges (triangles reaching more than 512 pixels beyond the frame)
+/// screen-linearly, so the cut points of such triangles carry the affine
+/// texture coordinates of the cut.
+///
+/// # Modulation
+///
+/// The general path reads the texel through [`Texture::sample`] (any format,
+/// filter and wrap), weighs it `w(t) = t + t/128` (`t` 8-bit: 0 → 0, 255 → 256)
+/// and computes `(primary·w(t))/256 + secondary` on the encoder values (so any
+/// [`Encoder`]: plain rounding, dithering, gamma). The fast path (`Rgb565`
+/// texels, [`Filter::Nearest`], [`Wrap::Repeat`], sides of at least 2 texels,
+/// [`Linear`](super::Linear) `Rgb565` output, no specular light on the
+/// triangle) multiplies the 5- and 6-bit texel channels `t` by the primary
+/// channel `A` (5 or 6 integer and 6 or 4 fraction bits, the Gouraud value
+/// including its rounding half) as `⌊(t + 1)·A / 32⌋` (`/64` for green): a
+/// white texel gives exactly the untextured Gouraud pixel, a black one 0, and
+/// any other is within 1 step of the exactly rounded `t/31·p` (tested).
+///
+/// # Use
 ///
 /// A shader of this mode samples the white 1 × 1 texture until
 /// [`Shader::with_texture`] gives it one. Mesh renderer:
@@ -80,7 +81,7 @@ use crate::texture::{Filter, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
 /// Measured texture-coordinate error of the mesh renderer's perspective path
 /// against an `f64` evaluation of the same method (squares receding in depth,
 /// grazing angles, every sub-span position): below `2^−9` of a texture
-/// (see the [module docs](self)).
+/// (see *Texture coordinates* above).
 ///
 /// ```
 /// use fixshade::prelude::*;
@@ -162,7 +163,7 @@ pub struct TexPayload {
 
 /// Interpolated linearly by the clipping paths: exact in clip space (near
 /// plane), screen-linear at the set-up window's edges (see the
-/// [module docs](self)).
+/// [`TexturedGouraudShading`] docs).
 impl Lerp for TexPayload {
     fn lerp(&self, o: &Self, num: u32, den: u32) -> Self {
         let l = |a: i32, b: i32| lerp_i32(a, b, num, den);
@@ -396,7 +397,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, TexturedGouraudSha
     /// [`draw_triangle_perspective`](crate::raster::draw_triangle_perspective)
     /// (colours too: exact at the ends of every 8-pixel sub-span, 64-bit
     /// arithmetic). Every pixel takes the general path of the
-    /// [module docs](self). Never panics; returns the framebuffer's first
+    /// [`TexturedGouraudShading`] docs. Never panics; returns the framebuffer's first
     /// error.
     pub fn draw_textured<F: Framebuffer<Color = C>>(
         &mut self,
@@ -912,7 +913,7 @@ fn fast_run_any<C: OutputColor>(
     }
 }
 
-/// The fast path's loop (see the [module docs](self)): `Rgb565` texels at the
+/// The fast path's loop (see the [`TexturedGouraudShading`] docs): `Rgb565` texels at the
 /// packed coordinates `uv` (see [`pack`]; the wrapping addition is
 /// [`Wrap::Repeat`]), the Gouraud channels packed as in the Gouraud kernel
 /// (red and blue in `rb`, 16 bits each with 11 fraction bits; green in `g`
