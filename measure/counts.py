@@ -52,6 +52,11 @@ INCREMENTAL = [(t, "phong_inc", l) for t in ("q14_1", "q14_2") for l in ("dir_di
 # QuadraticPhongShading: directional light sets (Lambert, Blinn-Phong, Phong) in every tier but Q30
 INCREMENTAL += [(t, "phong_quad", l) for t in ("q14_1", "q14_2", "f32", "f32fast")
                 for l in ("dir_diffuse", "dir_blinn", "dir_phong")]
+# TexturedGouraudShading (Q14<1>): nearest / bilinear, perspective / affine; dir_diffuse takes
+# the 5-6-5 fast path (nearest, no specular), dir_blinn the general path (secondary colour)
+INCREMENTAL += [("q14_1", f"tex_{f}_{p}", "dir_diffuse") for f in ("nearest", "bilinear")
+                for p in ("persp", "affine")]
+INCREMENTAL += [("q14_1", f"tex_nearest_{p}", "dir_blinn") for p in ("persp", "affine")]
 FB = 64  # framebuffer side of the triangle kernels
 BIG = 32  # triangle legs for the whole-triangle figure
 

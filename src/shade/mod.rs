@@ -9,6 +9,7 @@
 //! | [`GouraudShading`] | at the three vertices | encoded colour channels | no (misses or smears it) |
 //! | [`PhongShading`] | at every pixel | normal (and position when the lighting needs it) | yes |
 //! | [`IncrementalPhongShading`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `\|N\|²` by differences | yes |
+//! | [`TexturedGouraudShading`] | at the three vertices, primary and secondary colour apart | both colours and the texture coordinates (perspective-correct) | no (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
 //! | [`QuadraticPhongShading`] | at anchors 4–32 pixels apart, the colour quadratically in between, the specular power per pixel (Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong `R·V`; every encoder) | encoded colour by second differences, the specular table coordinate | yes |
 //!
 //! The mode names say *how the surface is interpolated*; the reflection models
@@ -52,11 +53,15 @@ mod incremental;
 mod phong;
 mod quadratic;
 mod segment;
+mod textured;
 mod vertex_colors;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
 pub use incremental::{DirectionalLighting, IncrementalModel};
 pub use quadratic::{QuadraticLighting, QuadraticModel, QuadraticTier};
+pub use textured::{
+    TexPayload, TextureBinding, TexturedGouraudShading, TexturedTriangle, TexturedVertex,
+};
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
@@ -109,7 +114,8 @@ pub struct IncrementalPhongShading;
 pub struct QuadraticPhongShading;
 
 /// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`],
-/// [`IncrementalPhongShading`] or [`QuadraticPhongShading`].
+/// [`IncrementalPhongShading`], [`QuadraticPhongShading`] or
+/// [`TexturedGouraudShading`].
 pub trait Mode: Copy + Default + core::fmt::Debug + 'static {
     /// A short name for reports.
     const NAME: &'static str;

@@ -585,3 +585,177 @@ quadratic! {
     f32fast = F32Fast<2>, dir_blinn = BlinnPhong;
     f32fast = F32Fast<2>, dir_phong = Phong;
 }
+
+// ---- TexturedGouraudShading ------------------------------------------------------
+//
+// `span_q14_1_tex_<filter>_<persp|affine>_<set>(n, out)`: the mesh kernel
+// (`Kernel::shade` through `Shader::shade_ramp`, a triangle set up for the span)
+// on the reference span's normals, texture coordinates from (0.1, 0.2) to
+// (2.3, 0.9) across `max(n, 64)` pixels of a 64 × 64 Rgb565 texture (repeat);
+// `persp`: clip w from 1 to 3 along the span (a division per 8 pixels);
+// `affine`: equal w (no division). `dir_diffuse` takes the 5-6-5 fast path
+// (nearest, no specular light); `dir_blinn` the general path (the secondary
+// colour). `tri_…`: a triangle with legs of `scale` pixels through the mesh
+// renderer (orthographic: the affine path; `persp` rows: a perspective camera,
+// the corner at (0, 2) in uv pushed back to about 3× the depth of the others).
+
+use fixshade::camera::Perspective;
+use fixshade::shade::{TexturedGouraudShading, VertexIn};
+use fixshade::texture::{Filter, Texels, Texture, Wrap};
+
+/// A procedural 64 × 64 Rgb565 texture: a checker of two colour ramps.
+static TEX64: [u16; 64 * 64] = {
+    let mut t = [0u16; 64 * 64];
+    let mut i = 0;
+    while i < 64 * 64 {
+        let (x, y) = ((i % 64) as u16, (i / 64) as u16);
+        let c = if ((x >> 3) ^ (y >> 3)) & 1 == 0 {
+            ((x >> 1) << 11) | (y << 5) | (31 - (x >> 1))
+        } else {
+            ((31 - (y >> 1)) << 11) | ((63 - x) << 5) | (y >> 1)
+        };
+        t[i] = c;
+        i += 1;
+    }
+    t
+};
+
+fn tex64() -> Texture<'static> {
+    black_box(Texture::new(Texels::Rgb565(&TEX64), 6, 6, Wrap::Repeat).unwrap())
+}
+
+fn q14(n: [f32; 3]) -> [i32; 3] {
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    n.map(|c| (c / l * 16384.0) as i32)
+}
+
+#[inline(always)]
+unsafe fn span_tex<M: Model>(filter: Filter, persp: bool, n: u32, out: *mut u16) -> u32 {
+    let lit = lighting::<Q14<1>, _, M>([dir::<Q14<1>>()]);
+    let sh = Shader::<_, _, _, Rgb565>::new(TexturedGouraudShading, &lit, Linear)
+        .with_texture(tex64(), filter);
+    let n = black_box(n);
+    let mut a = VertexIn::new(q14([-0.6, 0.1, 0.79]), [0; 3]);
+    let mut b = VertexIn::new(q14([0.6, 0.1, 0.79]), [0; 3]);
+    a.uv = [410, 819];
+    b.uv = [9421, 3686];
+    a.w = 1 << 16;
+    b.w = if persp { 3 << 16 } else { 1 << 16 };
+    let (a, b) = (black_box(a), black_box(b));
+    sh.shade_ramp(&a, &b, SPAN, pixels(out, n as usize));
+    n
+}
+
+/// [`draw`] with texture coordinates: the same triangle, uv (0, 0), (2, 0),
+/// (0, 2); `persp`: a perspective camera, the corner at (0, 2) 3× as far.
+#[inline(always)]
+unsafe fn tri_tex<M: Model>(filter: Filter, persp: bool, scale: u32, out: *mut u16) -> u32 {
+    let lit = lighting::<Q14<1>, _, M>([dir::<Q14<1>>()]);
+    let sh = Shader::<_, _, _, Rgb565>::new(TexturedGouraudShading, &lit, Linear)
+        .with_texture(tex64(), filter);
+    if !persp {
+        return draw_tex(sh, tri_transform(), scale, out, 0);
+    }
+    // 90° field of view: at depth d the frame spans 2d model units
+    let cam = Camera::perspective(
+        core::f32::consts::FRAC_PI_2,
+        1.0,
+        0.5,
+        100.0,
+        Viewport::new(0, 0, FB as i32, FB as i32).unwrap(),
+    )
+    .unwrap()
+    .with_view(Mat4::translate([-32.0, 32.0, -32.0]));
+    let t: MeshTransform<Perspective> = cam.mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8).unwrap();
+    draw_tex(sh, t, scale, out, 1)
+}
+
+#[inline(always)]
+unsafe fn draw_tex<K: Kernel<Color = Rgb565>, P: fixshade::camera::Projection>(
+    sh: K,
+    t: MeshTransform<P>,
+    scale: u32,
+    out: *mut u16,
+    far: i32,
+) -> u32
+where
+    K::Vertex: fixshade::render::Lerp,
+{
+    let t = black_box(t);
+    let s = black_box(scale);
+    let depth = slice::from_raw_parts_mut(
+        core::ptr::addr_of_mut!(DEPTH) as *mut u16,
+        (FB * FB) as usize,
+    );
+    let Ok(mut frame) = FullFrame::new(FB, FB, pixels(out, (FB * FB) as usize), Some(depth)) else {
+        return 0;
+    };
+    if s == 0 {
+        frame.render(Rgb565::BLACK, &mut []);
+        drop(frame);
+        return covered();
+    }
+    let (o, d) = (9 << (SUBPIXEL_BITS - 2), (s as i32) << SUBPIXEL_BITS);
+    // `far`: the third corner pushed back (perspective rows); the camera looks at z = 0
+    // (a leg of one pixel stays in the plane: the one-pixel triangle of `setup`)
+    let z2 = -far * 32 * (s as i32 - 1);
+    let pos = [[o, -o, 0], [o + d, -o, 0], [o, -(o + d), z2.max(-32000)]]
+        .map(|p| p.map(|c| c as i16));
+    let nrm: [[i16; 3]; 3] = [
+        [-8180, 6544, 12597],
+        [8180, 6544, 12597],
+        [-8180, -6544, 12597],
+    ];
+    let uvs: [[i16; 2]; 3] = [[0, 0], [8192, 0], [0, 8192]];
+    let tris = [[0u16, 1, 2]];
+    let (pos, nrm, uvs) = (black_box(pos), black_box(nrm), black_box(uvs));
+    let Ok(mesh) = Mesh::new(&pos, &nrm, &tris, SUBPIXEL_BITS as u8) else {
+        return 0;
+    };
+    let Ok(mesh) = mesh.with_texcoords(&uvs) else {
+        return 0;
+    };
+    let layout = Layout::full(FB, FB).unwrap();
+    let mut cache = [CachedVertex::<K::Vertex>::default(); 3];
+    let mut bins = [0u16; bins_len(1, 1)];
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut [],
+    };
+    let opts = DrawOptions { cull: Cull::None };
+    let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
+        return 0;
+    };
+    frame.render(Rgb565::BLACK, &mut [&mut tri]);
+    drop(frame);
+    covered()
+}
+
+macro_rules! textured {
+    ($($name:literal = ($filter:ident, $persp:expr, $M:ty);)*) => {
+        $(
+            const _: () = {
+                #[export_name = concat!("span_q14_1_", $name)]
+                pub unsafe extern "C" fn span(n: u32, out: *mut u16) -> u32 {
+                    span_tex::<$M>(Filter::$filter, $persp, n, out)
+                }
+                #[export_name = concat!("tri_q14_1_", $name)]
+                pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
+                    tri_tex::<$M>(Filter::$filter, $persp, scale, out)
+                }
+                #[used]
+                static KEEP_TEX: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
+            };
+        )*
+    };
+}
+
+textured! {
+    "tex_nearest_persp_dir_diffuse" = (Nearest, true, Lambert);
+    "tex_nearest_affine_dir_diffuse" = (Nearest, false, Lambert);
+    "tex_bilinear_persp_dir_diffuse" = (Bilinear, true, Lambert);
+    "tex_bilinear_affine_dir_diffuse" = (Bilinear, false, Lambert);
+    "tex_nearest_persp_dir_blinn" = (Nearest, true, BlinnPhong);
+    "tex_nearest_affine_dir_blinn" = (Nearest, false, BlinnPhong);
+}
