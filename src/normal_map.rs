@@ -311,7 +311,10 @@ mod tests {
         );
         assert_eq!(
             NormalMap::new(&t, 3, 2, Wrap::Repeat),
-            Err(NormalMapError::BufferTooSmall { needed: 32, got: 16 })
+            Err(NormalMapError::BufferTooSmall {
+                needed: 32,
+                got: 16
+            })
         );
         let mut out = [[0i16; 3]; 4];
         assert_eq!(

@@ -256,7 +256,6 @@ impl<'l, 'm, S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor
     }
 }
 
-
 impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor, const N: usize>
     SpanShader<N> for NormalMapShader<'_, '_, I, E, C>
 {
@@ -586,15 +585,18 @@ fn tangent_space(n: [i32; 3], t: [i32; 3], hand: i32, l: &[i32; 3], h: &[i32; 3]
     let n = unit_q14(n).map(i32::from);
     let t = unit_q14(t).map(i32::from);
     // Gram–Schmidt: t − (t·n)n, |t·n| ≤ 2^14
-    let tn = (t[0] * n[0] + t[1] * n[1] + t[2] * n[2]) >> 14;
-    let t = unit_q14(core::array::from_fn(|i| t[i] - ((tn * n[i]) >> 14))).map(i32::from);
+    // products rounded to nearest (a floor would bias n·H low: 2^-14 is
+    // 1.3 % of a highlight of exponent 128)
+    let q = |v: i32| (v + 8192) >> 14;
+    let tn = q(t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
+    let t = unit_q14(core::array::from_fn(|i| t[i] - q(tn * n[i]))).map(i32::from);
     let s = if hand < 0 { -1 } else { 1 };
     let b = [
-        s * ((n[1] * t[2] - n[2] * t[1]) >> 14),
-        s * ((n[2] * t[0] - n[0] * t[2]) >> 14),
-        s * ((n[0] * t[1] - n[1] * t[0]) >> 14),
+        s * q(n[1] * t[2] - n[2] * t[1]),
+        s * q(n[2] * t[0] - n[0] * t[2]),
+        s * q(n[0] * t[1] - n[1] * t[0]),
     ];
-    let dot = |a: &[i32; 3], d: &[i32; 3]| sat16((a[0] * d[0] + a[1] * d[1] + a[2] * d[2]) >> 14);
+    let dot = |a: &[i32; 3], d: &[i32; 3]| sat16(q(a[0] * d[0] + a[1] * d[1] + a[2] * d[2]));
     [
         dot(&t, l),
         dot(&b, l),
@@ -634,11 +636,14 @@ fn length_squared_diffs(v: [i32; 3], d: [i32; 3]) -> (i64, i64, i64) {
     (s0, 2 * nd + dd, 2 * dd)
 }
 
-/// Whether the quadratic `|v(k)|²` (first value `s0`, differences `ds0`,
-/// `dds`) over `n` pixels stays in `[¼, 1.07]` (Q28) and changes by at most
-/// 1/16 of its smallest value per pixel: then one Newton step per pixel
-/// from the previous `1/|v|` is enough.
-fn newton_ok(s0: i64, ds0: i64, dds: i64, n: i64) -> bool {
+/// How many Newton steps per pixel keep `1/|v|` at the Q14 resolution for
+/// the quadratic `|v(k)|²` (first value `s0`, differences `ds0`, `dds`, Q28)
+/// over `n` pixels: one step from the previous pixel's value leaves a
+/// relative error of `1.5·e²`, `e` the relative change of `|v|` per pixel.
+/// 1 when `|v|²` stays in `[¼, 1.07]` and changes by at most 2^-8 of its
+/// smallest value per pixel, 2 up to 2^-4, else 0 (an exact inverse square
+/// root per pixel).
+fn newton_steps(s0: i64, ds0: i64, dds: i64, n: i64) -> u32 {
     let k = (n - 1).max(0);
     // s(k) = s0 + k·ds0 + k(k−1)/2·dds
     let s_end = s0 + k * ds0 + k * (k - 1) / 2 * dds;
@@ -648,19 +653,29 @@ fn newton_ok(s0: i64, ds0: i64, dds: i64, n: i64) -> bool {
     let interior = dd > 0 && nd2 < 0 && nd2 + 2 * k * dd > 0;
     let mut lo = s0.min(s_end);
     if interior {
-        // min = s0 − (v·d)²/|d|² ≥ ¼ ⇔ s0·dd − (nd2/2)² ≥ ¼·dd
+        // min = s0 − (v·d)²/|d|² ≥ ¼ ⇔ s0·dd − (v·d)² ≥ ¼·dd
         let nd = nd2 / 2;
         if s0 * dd - nd * nd < dd << 26 {
-            return false;
+            return 0;
         }
         lo = lo.min(1 << 26);
     }
     let hi = s0.max(s_end);
     let ds_max = ds0.abs().max((ds0 + k * dds).abs());
-    lo >= 1 << 26 && hi <= (1 << 28) + (1 << 24) && ds_max <= lo >> 4 && dd <= 1 << 24
+    if lo < 1 << 26 || hi > (1 << 28) + (1 << 24) || dd > 1 << 24 {
+        0
+    } else if ds_max <= lo >> 8 {
+        1
+    } else if ds_max <= lo >> 4 {
+        2
+    } else {
+        0
+    }
 }
 
-impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor> FastNormalMapShader<'l, 'm, NW, M, C> {
+impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
+    FastNormalMapShader<'l, 'm, NW, M, C>
+{
     /// The fast shader for `lighting` and `map` (the tables are built here,
     /// in `f32`: once per material, not per frame).
     pub fn new(lighting: &'l DirectionalLighting<NW, 1, M>, map: NormalMap<'m>) -> Self {
@@ -766,8 +781,12 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor> FastNormalMapSha
         let n = out.len() as i64;
         let l = length_squared_diffs([lh[0], lh[1], lh[2]], [dlh[0], dlh[1], dlh[2]]);
         let h = length_squared_diffs([lh[3], lh[4], lh[5]], [dlh[3], dlh[4], dlh[5]]);
-        let fast = newton_ok(l.0, l.1, l.2, n)
-            && (M::SPECULAR != Specular::BlinnPhong || newton_ok(h.0, h.1, h.2, n));
+        let spec = M::SPECULAR == Specular::BlinnPhong;
+        let steps = newton_steps(l.0, l.1, l.2, n).max(if spec {
+            newton_steps(h.0, h.1, h.2, n)
+        } else {
+            0
+        });
         let (wl, hl) = self.map.size_log2();
         let st = Span {
             lh,
@@ -783,19 +802,22 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor> FastNormalMapSha
             ds: [l.1 as i32, h.1 as i32],
             dds: [l.2 as i32, h.2 as i32],
         };
-        match (fast, self.map.wrap()) {
-            (true, Wrap::Repeat) => self.run::<true, true>(st, out),
-            (true, Wrap::Clamp) => self.run::<true, false>(st, out),
-            (false, Wrap::Repeat) => self.run::<false, true>(st, out),
-            (false, Wrap::Clamp) => self.run::<false, false>(st, out),
+        match (steps, self.map.wrap()) {
+            (1, Wrap::Repeat) => self.run::<1, true>(st, out),
+            (1, Wrap::Clamp) => self.run::<1, false>(st, out),
+            (2, Wrap::Repeat) => self.run::<2, true>(st, out),
+            (2, Wrap::Clamp) => self.run::<2, false>(st, out),
+            (_, Wrap::Repeat) => self.run::<0, true>(st, out),
+            (_, Wrap::Clamp) => self.run::<0, false>(st, out),
         }
     }
 
-    /// The per-pixel loop: `FAST` tracks `1/|L|`, `1/|H|` by Newton steps (else
-    /// an exact inverse square root per pixel), `REPEAT` wraps the texture
+    /// The per-pixel loop: `NEWTON` = 1 or 2 tracks `1/|L|`, `1/|H|` by that
+    /// many Newton steps per pixel from the previous pixel's value (0: an
+    /// exact inverse square root per pixel), `REPEAT` wraps the texture
     /// coordinates (else clamps).
     #[inline(always)]
-    fn run<const FAST: bool, const REPEAT: bool>(&self, st: Span, out: &mut [C]) {
+    fn run<const NEWTON: u32, const REPEAT: bool>(&self, st: Span, out: &mut [C]) {
         let Span {
             mut lh,
             dlh,
@@ -827,9 +849,10 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor> FastNormalMapSha
                 .unwrap_or(crate::normal_map::FLAT_NORMAL)
                 .map(i32::from);
             let mut acc = self.base;
-            // n·L/|L|: Q14 · (Q24 ≫ 8 = Q16) = Q30, ≫ 16 = Q14; |n·L| ≤ |L| ≤ 1.07
-            let dl = (m[0] * (lh[0] >> 8) + m[1] * (lh[1] >> 8) + m[2] * (lh[2] >> 8)) >> 16;
-            let d = (dl * r[0]) >> 14;
+            // n·L/|L|: Q14 · (Q24 ≫ 8 = Q16) = Q30, ≫ 14 = Q16; |n·L| ≤ |L|, and
+            // (n·L)·(1/|L|) ≤ |n| ≈ 1: the Q30 product fits, rounded to Q14
+            let dl = (m[0] * (lh[0] >> 8) + m[1] * (lh[1] >> 8) + m[2] * (lh[2] >> 8)) >> 14;
+            let d = (dl * r[0] + (1 << 15)) >> 16;
             if d > 0 {
                 let d = d.min(16384);
                 acc[0] += (d * self.kd[0]) >> 14;
@@ -837,8 +860,8 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor> FastNormalMapSha
                 acc[2] += (d * self.kd[2]) >> 14;
                 if spec {
                     let dh =
-                        (m[0] * (lh[3] >> 8) + m[1] * (lh[4] >> 8) + m[2] * (lh[5] >> 8)) >> 16;
-                    let sp = self.pow.get((dh * r[1]) >> 14);
+                        (m[0] * (lh[3] >> 8) + m[1] * (lh[4] >> 8) + m[2] * (lh[5] >> 8)) >> 14;
+                    let sp = self.pow.get((dh * r[1] + (1 << 15)) >> 16);
                     acc[0] += (sp * self.ks[0]) >> 14;
                     acc[1] += (sp * self.ks[1]) >> 14;
                     acc[2] += (sp * self.ks[2]) >> 14;
@@ -860,13 +883,14 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor> FastNormalMapSha
             for j in 0..k {
                 s[j] = s[j].wrapping_add(ds[j]);
                 ds[j] = ds[j].wrapping_add(dds[j]);
-                if FAST {
-                    // r ← r·(3 − s·r²)/2, seeded with this pixel's r
+                if NEWTON == 0 {
+                    r[j] = inv_len_q14(s[j]);
+                }
+                for _ in 0..NEWTON {
+                    // r ← r·(3 − s·r²)/2, seeded with the previous pixel's r
                     let r2 = (r[j] * r[j]) >> 14;
                     let sr2 = ((s[j] >> 14) * r2) >> 14;
                     r[j] = (r[j] * (49152 - sr2)) >> 15;
-                } else {
-                    r[j] = inv_len_q14(s[j]);
                 }
             }
             super::no_unroll();
@@ -980,13 +1004,7 @@ impl<const NW: u8, M: IncrementalModel, C: OutputColor> Kernel
         }
     }
 
-    fn shade<const CLAMP: bool>(
-        &self,
-        t: &TangentLightTriangle,
-        x: i32,
-        _y: i32,
-        color: &mut [C],
-    ) {
+    fn shade<const CLAMP: bool>(&self, t: &TangentLightTriangle, x: i32, _y: i32, color: &mut [C]) {
         let len = color.len();
         let mut a = [0i32; 8];
         let mut d = [0i32; 8];
