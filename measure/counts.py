@@ -52,6 +52,10 @@ INCREMENTAL = [(t, "phong_inc", l) for t in ("q14_1", "q14_2") for l in ("dir_di
 # QuadraticPhongShading: directional light sets (Lambert, Blinn-Phong, Phong) in every tier but Q30
 INCREMENTAL += [(t, "phong_quad", l) for t in ("q14_1", "q14_2", "f32", "f32fast")
                 for l in ("dir_diffuse", "dir_blinn", "dir_phong")]
+# NormalMapShading: the Q14 fast path (one directional light, Lambert / Blinn-Phong)
+# and the general path (Q14 and f32, a directional light and four point lights)
+NORMAL_MAP = [("q14_1", "nmap", "dir_diffuse"), ("q14_1", "nmap", "dir_blinn")]
+NORMAL_MAP += [(t, "nmap_general", l) for t in ("q14_1", "f32") for l in ("dir_blinn", "point4_blinn")]
 FB = 64  # framebuffer side of the triangle kernels
 BIG = 32  # triangle legs for the whole-triangle figure
 
@@ -252,7 +256,7 @@ def main(argv=None) -> int:
         return check(res, bounds)
     if not a.no_build:
         build(a.profile)
-    res = run([(t, s, l) for t in TIERS for s in SHADINGS for l in SETS] + INCREMENTAL, a.profile)
+    res = run([(t, s, l) for t in TIERS for s in SHADINGS for l in SETS] + INCREMENTAL + NORMAL_MAP, a.profile)
     OUT.parent.mkdir(exist_ok=True)
     doc = {
         "about": __doc__.split("\n\n", 2)[2].strip().splitlines(),

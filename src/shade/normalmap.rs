@@ -651,22 +651,20 @@ fn newton_steps(s0: i64, ds0: i64, dds: i64, n: i64) -> u32 {
     // the vertex of the parabola: s'(k) = ds0 − dd + 2k·dd = 0
     let nd2 = ds0 - dd; // = 2·(v·d)
     let interior = dd > 0 && nd2 < 0 && nd2 + 2 * k * dd > 0;
-    let mut lo = s0.min(s_end);
-    if interior {
-        // min = s0 − (v·d)²/|d|² ≥ ¼ ⇔ s0·dd − (v·d)² ≥ ¼·dd
-        let nd = nd2 / 2;
-        if s0 * dd - nd * nd < dd << 26 {
-            return 0;
-        }
-        lo = lo.min(1 << 26);
-    }
+    let ends = s0.min(s_end);
     let hi = s0.max(s_end);
     let ds_max = ds0.abs().max((ds0 + k * dds).abs());
-    if lo < 1 << 26 || hi > (1 << 28) + (1 << 24) || dd > 1 << 24 {
+    // min s ≥ m, without a division: at the ends, and at the vertex
+    // (min = s0 − (v·d)²/|d|², i.e. s0·dd − (v·d)² ≥ m·dd)
+    let nd = nd2 / 2;
+    let vertex_excess = s0.saturating_mul(dd).saturating_sub(nd.saturating_mul(nd));
+    let min_at_least =
+        |m: i64| ends >= m && (!interior || vertex_excess >= m.saturating_mul(dd));
+    if !min_at_least(1 << 26) || hi > (1 << 28) + (1 << 24) || dd > 1 << 24 {
         0
-    } else if ds_max <= lo >> 8 {
+    } else if min_at_least(ds_max.saturating_mul(256)) {
         1
-    } else if ds_max <= lo >> 4 {
+    } else if min_at_least(ds_max.saturating_mul(16)) {
         2
     } else {
         0
