@@ -640,8 +640,9 @@ fn length_squared_diffs(v: [i32; 3], d: [i32; 3]) -> (i64, i64, i64) {
 /// the quadratic `|v(k)|²` (first value `s0`, differences `ds0`, `dds`, Q28)
 /// over `n` pixels: one step from the previous pixel's value leaves a
 /// relative error of `1.5·e²`, `e` the relative change of `|v|` per pixel.
-/// 1 when `|v|²` stays in `[¼, 1.07]` and changes by at most 2^-8 of its
-/// smallest value per pixel, 2 up to 2^-4, else 0 (an exact inverse square
+/// 1 when `|v|²` stays in `[¼, 1.07]` and changes by at most 2^-6 of its
+/// smallest value per pixel (`e ≤ 2^-7`: `1.5·e² < 2^-13`, 1.5 Q14 steps),
+/// 2 up to 2^-4 (`1.5·(1.5·e²)² < 2^-20`), else 0 (an exact inverse square
 /// root per pixel).
 fn newton_steps(s0: i64, ds0: i64, dds: i64, n: i64) -> u32 {
     let k = (n - 1).max(0);
@@ -662,7 +663,7 @@ fn newton_steps(s0: i64, ds0: i64, dds: i64, n: i64) -> u32 {
         |m: i64| ends >= m && (!interior || vertex_excess >= m.saturating_mul(dd));
     if !min_at_least(1 << 26) || hi > (1 << 28) + (1 << 24) || dd > 1 << 24 {
         0
-    } else if min_at_least(ds_max.saturating_mul(256)) {
+    } else if min_at_least(ds_max.saturating_mul(64)) {
         1
     } else if min_at_least(ds_max.saturating_mul(16)) {
         2
