@@ -740,7 +740,13 @@ def main(argv=None) -> int:
     d = Data(counts, host, profile)
     MD.parent.mkdir(parents=True, exist_ok=True)
     SVG.parent.mkdir(parents=True, exist_ok=True)
-    MD.write_text(markdown(d, command, not args.no_run))
+    # hand-written sections at the end (from "## Normal mapping") are kept
+    kept = ""
+    if MD.exists():
+        old = MD.read_text()
+        i = old.find("\n## Normal mapping\n")
+        kept = old[i:] if i >= 0 else ""
+    MD.write_text(markdown(d, command, not args.no_run).rstrip("\n") + "\n" + kept)
     SVG.write_text(svg(d, "python3 measure/tradeoff.py"))  # the same file either way
     only_c = sorted(set(counts) - set(host))
     only_h = sorted(set(host) - set(counts))

@@ -659,8 +659,7 @@ fn newton_steps(s0: i64, ds0: i64, dds: i64, n: i64) -> u32 {
     // (min = s0 − (v·d)²/|d|², i.e. s0·dd − (v·d)² ≥ m·dd)
     let nd = nd2 / 2;
     let vertex_excess = s0.saturating_mul(dd).saturating_sub(nd.saturating_mul(nd));
-    let min_at_least =
-        |m: i64| ends >= m && (!interior || vertex_excess >= m.saturating_mul(dd));
+    let min_at_least = |m: i64| ends >= m && (!interior || vertex_excess >= m.saturating_mul(dd));
     if !min_at_least(1 << 26) || hi > (1 << 28) + (1 << 24) || dd > 1 << 24 {
         0
     } else if min_at_least(ds_max.saturating_mul(64)) {
