@@ -4,6 +4,8 @@
 //! (the same interpolation, evaluated in f64), worst cases searched; the mesh
 //! renderer's kernels.
 
+#![allow(clippy::needless_range_loop)] // index loops over [_; 3] read as the formulas
+
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use fixshade::light::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{Illuminate, Model};

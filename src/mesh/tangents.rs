@@ -268,7 +268,9 @@ pub fn tangents_to_q14(tangents: &[[f32; 4]], out: &mut [[i16; 4]]) -> Result<()
 mod tests {
     use super::*;
 
-    fn sq() -> ([[f32; 3]; 4], [[f32; 3]; 4], [[u16; 3]; 2]) {
+    type Square = ([[f32; 3]; 4], [[f32; 3]; 4], [[u16; 3]; 2]);
+
+    fn sq() -> Square {
         let pos = [
             [0.0, 0.0, 0.0],
             [2.0, 0.0, 0.0],

@@ -74,7 +74,7 @@ const TRI_UV_FRAC: u32 = 24;
 ///
 /// static MAP: [[i16; 3]; 4] = [FLAT_NORMAL, [0, 11585, 11585], FLAT_NORMAL, [11585, 0, 11585]];
 /// let map = NormalMap::new(&MAP, 1, 1, Wrap::Repeat).unwrap();
-/// let light = PointLight::<f32>::white([0.0, 0.0, 2.0]).unwrap();
+/// let light = PointLight::<f32>::new([0.0, 0.0, 2.0], Attenuation::none::<f32>(), LightColors::white()).unwrap();
 /// let mat = Material::new(&MaterialDesc::classic([0.2, 0.6, 1.0], AmbientSource::Object, 0.1, 0.7, 0.4, 16.0)).unwrap();
 /// let lighting = Lighting::<f32, _, BlinnPhong>::new(light, mat);
 /// let v = |x: i32, y: i32, uv: [f32; 2]| NormalMapVertex::new(
