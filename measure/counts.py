@@ -57,6 +57,10 @@ INCREMENTAL += [(t, "phong_quad", l) for t in ("q14_1", "q14_2", "f32", "f32fast
 INCREMENTAL += [("q14_1", f"tex_{f}_{p}", "dir_diffuse") for f in ("nearest", "bilinear")
                 for p in ("persp", "affine")]
 INCREMENTAL += [("q14_1", f"tex_nearest_{p}", "dir_blinn") for p in ("persp", "affine")]
+# NormalMapShading: the Q14 fast path (one directional light, Lambert / Blinn-Phong)
+# and the general path (Q14 and f32, a directional light and four point lights)
+NORMAL_MAP = [("q14_1", "nmap", "dir_diffuse"), ("q14_1", "nmap", "dir_blinn")]
+NORMAL_MAP += [(t, "nmap_general", l) for t in ("q14_1", "f32") for l in ("dir_blinn", "point4_blinn")]
 FB = 64  # framebuffer side of the triangle kernels
 BIG = 32  # triangle legs for the whole-triangle figure
 
@@ -257,7 +261,7 @@ def main(argv=None) -> int:
         return check(res, bounds)
     if not a.no_build:
         build(a.profile)
-    res = run([(t, s, l) for t in TIERS for s in SHADINGS for l in SETS] + INCREMENTAL, a.profile)
+    res = run([(t, s, l) for t in TIERS for s in SHADINGS for l in SETS] + INCREMENTAL + NORMAL_MAP, a.profile)
     OUT.parent.mkdir(exist_ok=True)
     doc = {
         "about": __doc__.split("\n\n", 2)[2].strip().splitlines(),

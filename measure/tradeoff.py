@@ -724,6 +724,9 @@ def svg(d: Data, command: str) -> str:
 # ----------------------------------------------------------------------------- main
 
 
+HAND_WRITTEN = "<!-- hand-written sections below: kept by measure/tradeoff.py -->"
+
+
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--no-run", action="store_true",
@@ -740,7 +743,13 @@ def main(argv=None) -> int:
     d = Data(counts, host, profile)
     MD.parent.mkdir(parents=True, exist_ok=True)
     SVG.parent.mkdir(parents=True, exist_ok=True)
-    MD.write_text(markdown(d, command, not args.no_run))
+    # the hand-written sections at the end (from the HAND_WRITTEN marker on) are kept
+    kept = ""
+    if MD.exists():
+        old = MD.read_text()
+        i = old.find("\n" + HAND_WRITTEN)
+        kept = old[i:] if i >= 0 else ""
+    MD.write_text(markdown(d, command, not args.no_run).rstrip("\n") + "\n" + kept)
     SVG.write_text(svg(d, "python3 measure/tradeoff.py"))  # the same file either way
     only_c = sorted(set(counts) - set(host))
     only_h = sorted(set(host) - set(counts))

@@ -51,6 +51,7 @@ mod normals;
 mod screen;
 mod sphere;
 mod textured;
+mod tangents;
 mod torus_knot;
 
 pub use clip::{clip_near, ClipVertex};
@@ -63,4 +64,5 @@ pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_norm
 pub use screen::{EyeTransform, FixedMat4, ScreenTransform, ScreenVertex, Viewport, INV_W_ONE};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
 pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
+pub use tangents::{tangents_to_q14, vertex_tangents};
 pub use torus_knot::{torus_knot_counts, TorusKnot};

@@ -759,3 +759,224 @@ textured! {
     "tex_nearest_persp_dir_blinn" = (Nearest, true, BlinnPhong);
     "tex_nearest_affine_dir_blinn" = (Nearest, false, BlinnPhong);
 }
+
+// ---- NormalMapShading --------------------------------------------------------------
+
+/// The normal map of the normal-mapping kernels: 16 × 16 texels of five
+/// procedural unit normals (flat, and tilted by 36.87° towards ±T, ±B) in a
+/// diagonal pattern, in flash.
+static NMAP: [[i16; 3]; 256] = {
+    let mut t = [[0i16; 3]; 256];
+    let mut i = 0;
+    while i < 256 {
+        let (x, y) = (i % 16, i / 16);
+        t[i] = match (x + 2 * y) % 5 {
+            0 => [0, 0, 16384],
+            1 => [9830, 0, 13107],
+            2 => [0, 9830, 13107],
+            3 => [-9830, 0, 13107],
+            _ => [0, -9830, 13107],
+        };
+        i += 1;
+    }
+    t
+};
+
+fn nmap() -> fixshade::normal_map::NormalMap<'static> {
+    fixshade::normal_map::NormalMap::new(black_box(&NMAP), 4, 4, fixshade::normal_map::Wrap::Repeat)
+        .unwrap()
+}
+
+/// The tangent along the parallel of unit normal `n`: `(nz, 0, −nx)/|…|`.
+fn parallel(n: [f32; 3]) -> [f32; 3] {
+    fixshade::vector::Vec3::<f32>::from_f32([n[2], 0.0, -n[0]])
+        .normalize()
+        .to_f32()
+}
+
+/// The span ends of the normal-mapping kernels: the sphere span of the other
+/// kernels, tangents along the parallels, `u` from 0 to 2 (two map widths),
+/// `v` = 0.3.
+fn nm_ends<S: Scalar>() -> [(ShadeVertex<S>, [f32; 3], [f32; 2]); 2] {
+    let [a, b] = span_ends::<S>();
+    [
+        (a, parallel(a.normal.to_f32()), [0.0, 0.3]),
+        (b, parallel(b.normal.to_f32()), [2.0, 0.3]),
+    ]
+}
+
+/// `span_q14_1_nmap_<set>`: the Q14 fast path (`FastNormalMapShader`), one
+/// directional light. Attributes as `FastNormalMapShader::draw` gives them: `L`,
+/// `H` in each end's tangent frame (Q26), `u`, `v` (Q24).
+#[inline(always)]
+unsafe fn span_nmap_fast<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u16) -> u32 {
+    let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
+    let mut sh = fixshade::shade::FastNormalMapShader::<_, _, Rgb565>::new(&lit, nmap());
+    let l = lit.lights()[0].direction().to_f32();
+    let h = lit.lights()[0].prepared().half.map(|h| h.to_f32()).unwrap_or(l);
+    let attrs = |(v, t, uv): &(ShadeVertex<Q14<NW>>, [f32; 3], [f32; 2])| {
+        let nn = v.normal.to_f32();
+        let b = [
+            nn[1] * t[2] - nn[2] * t[1],
+            nn[2] * t[0] - nn[0] * t[2],
+            nn[0] * t[1] - nn[1] * t[0],
+        ];
+        let d = |a: &[f32; 3], c: &[f32; 3]| ((a[0] * c[0] + a[1] * c[1] + a[2] * c[2]) * 67108864.0) as i32;
+        [
+            d(t, &l),
+            d(&b, &l),
+            d(&nn, &l),
+            d(t, &h),
+            d(&b, &h),
+            d(&nn, &h),
+            (uv[0] * 16777216.0) as i32,
+            (uv[1] * 16777216.0) as i32,
+        ]
+    };
+    let [e0, e1] = nm_ends::<Q14<NW>>();
+    let n = black_box(n);
+    let (start, step) = ramp(attrs(&e0), attrs(&e1), n);
+    SpanShader::<8>::shade_span(&mut sh, black_box(0), black_box(0), &start, &step, pixels(out, n as usize));
+    n
+}
+
+/// `span_<tier>_nmap_general_<set>`: the general path (`NormalMapShader`).
+/// Attributes as `NormalMapShader::draw` gives them: normal, tangent (the
+/// tier's attribute scale), `u`, `v` (Q24), and the position when the
+/// lighting needs it.
+#[inline(always)]
+unsafe fn span_nmap_general<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
+    let lit = lighting::<S, L, M>(lights);
+    let mut sh = fixshade::shade::NormalMapShader::<_, _, Rgb565>::new(&lit, nmap(), Linear);
+    let attrs = |(v, t, uv): &(ShadeVertex<S>, [f32; 3], [f32; 2])| {
+        let a = normal_pos_attrs(v);
+        let t = t.map(|c| S::from_f32(c).to_attr());
+        [
+            a[0],
+            a[1],
+            a[2],
+            t[0],
+            t[1],
+            t[2],
+            (uv[0] * 16777216.0) as i32,
+            (uv[1] * 16777216.0) as i32,
+            a[3],
+            a[4],
+            a[5],
+        ]
+    };
+    let [e0, e1] = nm_ends::<S>();
+    let n = black_box(n);
+    let (x, y, px) = (black_box(0), black_box(0), pixels(out, n as usize));
+    let (start, step) = ramp(attrs(&e0), attrs(&e1), n);
+    if Lighting::<S, L, M>::NEEDS_POSITION {
+        SpanShader::<11>::shade_span(&mut sh, x, y, &start, &step, px);
+    } else {
+        let s8: [i32; 8] = core::array::from_fn(|i| start[i]);
+        let d8: [i32; 8] = core::array::from_fn(|i| step[i]);
+        SpanShader::<8>::shade_span(&mut sh, x, y, &s8, &d8, px);
+    }
+    n
+}
+
+/// The triangle of the other triangle kernels through the mesh renderer, with
+/// texture coordinates (0 to 2 along each leg) and tangents along the
+/// parallels of its normals.
+unsafe fn draw_nm<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -> u32
+where
+    K::Vertex: fixshade::render::Lerp,
+{
+    let t = black_box(tri_transform());
+    let s = black_box(scale);
+    // SAFETY: the kernels run one at a time (single-threaded emulator); nothing
+    // else references DEPTH
+    let depth = slice::from_raw_parts_mut(core::ptr::addr_of_mut!(DEPTH) as *mut u16, (FB * FB) as usize);
+    let Ok(mut frame) = FullFrame::new(FB, FB, pixels(out, (FB * FB) as usize), Some(depth)) else {
+        return 0;
+    };
+    if s == 0 {
+        frame.render(Rgb565::BLACK, &mut []);
+        drop(frame);
+        return covered();
+    }
+    let (o, d) = (9 << (SUBPIXEL_BITS - 2), (s as i32) << SUBPIXEL_BITS);
+    let pos = [[o, -o, 0], [o + d, -o, 0], [o, -(o + d), 0]].map(|p| p.map(|c| c as i16));
+    let nrm: [[i16; 3]; 3] = [[-8180, 6544, 12597], [8180, 6544, 12597], [-8180, -6544, 12597]];
+    let tan: [[i16; 4]; 3] = [[13741, 0, 8923, 16384], [13741, 0, -8923, 16384], [13741, 0, 8923, 16384]];
+    let uv: [[i16; 2]; 3] = [[0, 0], [8192, 0], [0, 8192]];
+    let tris = [[0u16, 1, 2]];
+    let (pos, nrm, tan, uv) = (black_box(pos), black_box(nrm), black_box(tan), black_box(uv));
+    let Ok(mesh) = Mesh::new(&pos, &nrm, &tris, SUBPIXEL_BITS as u8) else {
+        return 0;
+    };
+    let Ok(mesh) = mesh.with_texcoords(&uv).and_then(|m| m.with_tangents(&tan)) else {
+        return 0;
+    };
+    let layout = Layout::full(FB, FB).unwrap();
+    let mut cache = [CachedVertex::<K::Vertex>::default(); 3];
+    let mut bins = [0u16; bins_len(1, 1)];
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut [],
+    };
+    let opts = DrawOptions { cull: Cull::None };
+    let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
+        return 0;
+    };
+    frame.render(Rgb565::BLACK, &mut [&mut tri]);
+    drop(frame);
+    covered()
+}
+
+macro_rules! nmap_fast {
+    ($($set:ident = $M:ty;)*) => {$(
+        const _: () = {
+            #[export_name = concat!("span_q14_1_nmap_", stringify!($set))]
+            pub unsafe extern "C" fn span(n: u32, out: *mut u16) -> u32 {
+                span_nmap_fast::<1, $M>(n, out)
+            }
+            #[export_name = concat!("tri_q14_1_nmap_", stringify!($set))]
+            pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
+                let lit = lighting::<Q14<1>, _, $M>([dir::<Q14<1>>()]);
+                draw_nm(fixshade::shade::FastNormalMapShader::<_, _, Rgb565>::new(&lit, nmap()), scale, out)
+            }
+            #[used]
+            static KEEP_NMAP: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
+        };
+    )*};
+}
+
+nmap_fast! {
+    dir_diffuse = Lambert;
+    dir_blinn = BlinnPhong;
+}
+
+macro_rules! nmap_general {
+    ($($tier:ident = $S:ty, $set:ident = ($mk:ident, $M:ty);)*) => {$(
+        const _: () = {
+            #[export_name = concat!("span_", stringify!($tier), "_nmap_general_", stringify!($set))]
+            pub unsafe extern "C" fn span(n: u32, out: *mut u16) -> u32 {
+                span_nmap_general::<$S, _, $M>($mk::<$S>(), n, out)
+            }
+            #[export_name = concat!("tri_", stringify!($tier), "_nmap_general_", stringify!($set))]
+            pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
+                let lit = lighting::<$S, _, $M>($mk::<$S>());
+                draw_nm(fixshade::shade::NormalMapShader::<_, _, Rgb565>::new(&lit, nmap(), Linear), scale, out)
+            }
+            #[used]
+            static KEEP_NMAP_G: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
+        };
+    )*};
+}
+
+fn dir1<S: Scalar>() -> [DirectionalLight<S>; 1] {
+    [dir::<S>()]
+}
+
+nmap_general! {
+    q14_1 = Q14<1>, dir_blinn = (dir1, BlinnPhong);
+    q14_1 = Q14<1>, point4_blinn = (point4, BlinnPhong);
+    f32 = f32, dir_blinn = (dir1, BlinnPhong);
+    f32 = f32, point4_blinn = (point4, BlinnPhong);
+}
