@@ -101,6 +101,7 @@ pub mod light;
 pub mod lighting;
 pub mod material;
 pub mod mesh;
+pub mod normal_map;
 pub mod num;
 pub mod raster;
 #[cfg(feature = "reference")]

@@ -48,6 +48,7 @@ mod matrix;
 mod normals;
 mod screen;
 mod sphere;
+mod tangents;
 mod torus_knot;
 
 pub use clip::{clip_near, ClipVertex};
@@ -58,4 +59,5 @@ pub use matrix::Mat4;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
 pub use screen::{EyeTransform, FixedMat4, ScreenTransform, ScreenVertex, Viewport, INV_W_ONE};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
+pub use tangents::{tangents_to_q14, vertex_tangents};
 pub use torus_knot::{torus_knot_counts, TorusKnot};

@@ -76,7 +76,7 @@ struct LightTerms {
 
 /// `x^n` over `[x0, 1]` at 65 points, Q14.
 #[derive(Clone, Copy, Debug)]
-struct PowTable {
+pub(super) struct PowTable {
     /// `x0` in Q14.
     x0: i32,
     /// `u = (x − x0)·mul ≫ 16` is the table position in 1/256 segments.
@@ -85,7 +85,7 @@ struct PowTable {
 }
 
 impl PowTable {
-    fn new(n: f32) -> Self {
+    pub(super) fn new(n: f32) -> Self {
         // f32 (libm's powf is exact to an ulp) so that the fast path links no f64
         let x0 = if n == 0.0 {
             0.0
@@ -109,7 +109,7 @@ impl PowTable {
 
     /// `x^n` for `x` in Q14 (`x ≤ 1`), linearly interpolated.
     #[inline(always)]
-    fn get(&self, x: i32) -> i32 {
+    pub(super) fn get(&self, x: i32) -> i32 {
         if x <= self.x0 {
             return 0;
         }
@@ -122,7 +122,7 @@ impl PowTable {
 }
 
 /// A colour's channels (`C::linear_channels`) in channel units · 2^8.
-fn channel_units<C: OutputColor, const NW: u8>(c: Rgb<Q14<NW>>) -> [i32; 3] {
+pub(super) fn channel_units<C: OutputColor, const NW: u8>(c: Rgb<Q14<NW>>) -> [i32; 3] {
     let l = C::linear_channels(c);
     // value (Q14, < 2) · max · 2^8 ≤ 2·255·256 < 2^17
     core::array::from_fn(|i| (l[i].raw() * C::CHANNEL_MAX[i] as i32 * 256 + 8192) >> 14)

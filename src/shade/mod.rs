@@ -9,6 +9,7 @@
 //! | [`GouraudShading`] | at the three vertices | encoded colour channels | no (misses or smears it) |
 //! | [`PhongShading`] | at every pixel | normal (and position when the lighting needs it) | yes |
 //! | [`IncrementalPhongShading`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `\|N\|²` by differences | yes |
+//! | [`NormalMapShading`] | at every pixel, with the normal of a [`NormalMap`](crate::normal_map::NormalMap) in the tangent frame (general: every tier and light; fast: Q14, one directional light) | normal and tangent (general) or `L`, `H` in tangent space (fast), texture coordinates | yes, and surface detail |
 //! | [`QuadraticPhongShading`] | at anchors 4–32 pixels apart, the colour quadratically in between, the specular power per pixel (Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong `R·V`; every encoder) | encoded colour by second differences, the specular table coordinate | yes |
 //!
 //! The mode names say *how the surface is interpolated*; the reflection models
@@ -49,6 +50,7 @@ mod encode;
 mod flat;
 mod gouraud;
 mod incremental;
+mod normalmap;
 mod phong;
 mod quadratic;
 mod segment;
@@ -56,6 +58,10 @@ mod vertex_colors;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
 pub use incremental::{DirectionalLighting, IncrementalModel};
+pub use normalmap::{
+    FastNormalMapShader, NormalMapPayload, NormalMapShader, NormalMapTriangle, NormalMapVertex,
+    TangentLightPayload, TangentLightTriangle,
+};
 pub use quadratic::{QuadraticLighting, QuadraticModel, QuadraticTier};
 
 use crate::color::OutputColor;
@@ -108,6 +114,29 @@ pub struct IncrementalPhongShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadraticPhongShading;
 
+/// Normal-mapped Phong shading: per-pixel lighting with the normal of a
+/// [`NormalMap`](crate::normal_map::NormalMap) in the surface's tangent frame.
+/// Two shaders implement it (both the mesh renderer's [`Kernel`] with
+/// [`Kernel::NEEDS_TEXCOORD`] and [`Kernel::NEEDS_TANGENT`], and a per-triangle
+/// `draw` taking [`NormalMapVertex`]es):
+/// - [`NormalMapShader`], the general path: every tier, light kind and model,
+///   any [`Encoder`]. The normal and the tangent are interpolated (and the
+///   position when the lighting needs it); per pixel
+///   `N' = T·nx + B·ny + N·nz` (`B = w · N × T`) is renormalised with
+///   [`Scalar::normalize_interpolated`] and lit with the full model. A map
+///   of the flat normal gives exactly [`PhongShading`]'s pixels.
+/// - [`FastNormalMapShader`], the Q14 fast path for one directional light and a
+///   viewer at infinity, Lambert or Blinn-Phong: `L` and `H` are transformed
+///   into the tangent frame per vertex and interpolated, each pixel costs two
+///   3-term dot products with the texel, two Newton steps and a table lookup.
+///
+/// Texture coordinates are interpolated screen-affine per triangle in the mesh
+/// renderer (the per-triangle `draw_perspective` interpolates them
+/// perspective-correct). Error bounds and costs: `docs/tradeoff.md`
+/// ("Normal mapping").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NormalMapShading;
+
 /// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`],
 /// [`IncrementalPhongShading`] or [`QuadraticPhongShading`].
 pub trait Mode: Copy + Default + core::fmt::Debug + 'static {
@@ -126,6 +155,9 @@ impl Mode for PhongShading {
 }
 impl Mode for IncrementalPhongShading {
     const NAME: &'static str = "phong_inc";
+}
+impl Mode for NormalMapShading {
+    const NAME: &'static str = "normal_map";
 }
 impl Mode for QuadraticPhongShading {
     const NAME: &'static str = "phong_quad";

@@ -1,0 +1,426 @@
+//! Normal maps and bump maps: per-texel tangent-space normals for
+//! [`NormalMapShading`](crate::shade::NormalMapShading).
+//!
+//! A [`NormalMap`] borrows `'static` (or any) texels of a power-of-two size,
+//! 1 … 4096 texels a side. Each texel is a tangent-space unit normal in Q14
+//! ([`NormalTexel`], `[x, y, z]`, `16384` = 1.0; `x` along the tangent `T`
+//! (increasing `u`), `y` along the bitangent `B`, `z` along the surface normal:
+//! the flat normal is `[0, 0, 16384]`).
+//!
+//! **Format and quantisation.** Six bytes a texel (a 64 × 64 map is 24 KiB of
+//! flash). [`normal_texel`] rounds each component of a unit vector to the
+//! nearest Q14 step: a component is within `2^-15` of exact, so the length is
+//! within `1 ± 2^-15·√3` (< 6·10⁻⁵) and the angle within 0.006°. That is why
+//! the fast path of [`NormalMapShading`](crate::shade::NormalMapShading) can use
+//! a texel as a unit normal without renormalising it (an 8-bit format would be
+//! off by up to 0.7 % in length, 25 % of a highlight of exponent 32).
+//!
+//! **Sampling.** Nearest texel ([`NormalMap::sample`], [`TexCoord`] in Q16, the
+//! texel containing the point, as [`crate::texture`]); [`Wrap::Repeat`] takes
+//! coordinates modulo the map, [`Wrap::Clamp`] clamps to the edge texels.
+//!
+//! **Bump maps.** [`bump_to_normals`] turns a height map (`u8` heights and a
+//! scale) into a normal map by central differences (Blinn's bump mapping in
+//! tangent space: `n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1)`) into a caller-owned
+//! buffer, once at load time.
+//!
+//! ```
+//! use fixshade::normal_map::{bump_to_normals, NormalMap, Wrap};
+//! use fixshade::texture::TexCoord;
+//! // a 4 × 4 height ramp rising along u, converted into a normal map
+//! let heights: [u8; 16] = core::array::from_fn(|i| (i % 4) as u8 * 10);
+//! let mut texels = [[0i16; 3]; 16];
+//! bump_to_normals(&heights, 2, 2, Wrap::Clamp, 0.1, &mut texels)?;
+//! let map = NormalMap::new(&texels, 2, 2, Wrap::Clamp)?;
+//! // ∂h/∂u = 10 per texel, scale 0.1: n = normalize(−1, 0, 1)
+//! let n = map.sample(TexCoord::from_f32(0.4, 0.6));
+//! assert_eq!(n, [-11585, 0, 11585]);
+//! # Ok::<(), fixshade::normal_map::NormalMapError>(())
+//! ```
+
+use crate::texture::TexCoord;
+use core::fmt;
+
+pub use crate::texture::Wrap;
+
+/// One texel of a [`NormalMap`]: a tangent-space unit normal, Q14 per component.
+pub type NormalTexel = [i16; 3];
+
+/// The flat normal `(0, 0, 1)`: a map of it shades like no map at all.
+pub const FLAT_NORMAL: NormalTexel = [0, 0, 1 << 14];
+
+/// The largest `log2` of a normal map's side (4096 texels: the texel position of
+/// a Q12 mesh texture coordinate is then an integer).
+pub const MAX_LOG2_SIZE: u8 = 12;
+
+/// Why a normal map or a bump conversion was rejected.
+///
+/// ```
+/// use fixshade::normal_map::{NormalMap, NormalMapError, Wrap};
+/// let texels = [[0i16, 0, 16384]; 3];
+/// let err = NormalMap::new(&texels, 1, 1, Wrap::Repeat).unwrap_err();
+/// assert_eq!(err, NormalMapError::BufferTooSmall { needed: 4, got: 3 });
+/// assert_eq!(err.to_string(), "texel buffer too small: 4 texels needed, 3 given");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum NormalMapError {
+    /// A side's `log2` exceeds [`MAX_LOG2_SIZE`].
+    TooLarge {
+        /// The `log2` given.
+        log2: u8,
+    },
+    /// A texel (or height) slice holds fewer elements than the size needs.
+    BufferTooSmall {
+        /// Elements required.
+        needed: usize,
+        /// Elements provided.
+        got: usize,
+    },
+    /// The named parameter is NaN or infinite.
+    NotFinite(&'static str),
+    /// The named vector has zero length.
+    Degenerate(&'static str),
+}
+
+impl fmt::Display for NormalMapError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::TooLarge { log2 } => {
+                write!(f, "map side 2^{log2} exceeds 2^{MAX_LOG2_SIZE} texels")
+            }
+            Self::BufferTooSmall { needed, got } => {
+                write!(
+                    f,
+                    "texel buffer too small: {needed} texels needed, {got} given"
+                )
+            }
+            Self::NotFinite(p) => write!(f, "{p}: NaN or infinite"),
+            Self::Degenerate(p) => write!(f, "{p}: zero length"),
+        }
+    }
+}
+
+impl core::error::Error for NormalMapError {}
+
+/// A tangent-space normal map over borrowed texels (see the [module docs](self)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NormalMap<'a> {
+    texels: &'a [NormalTexel],
+    w_log2: u8,
+    h_log2: u8,
+    wrap: Wrap,
+}
+
+/// The number of texels of a `2^w_log2 × 2^h_log2` map, checked.
+fn texel_count(w_log2: u8, h_log2: u8) -> Result<usize, NormalMapError> {
+    for log2 in [w_log2, h_log2] {
+        if log2 > MAX_LOG2_SIZE {
+            return Err(NormalMapError::TooLarge { log2 });
+        }
+    }
+    Ok(1usize << (u32::from(w_log2) + u32::from(h_log2)))
+}
+
+impl<'a> NormalMap<'a> {
+    /// A map of `2^w_log2 × 2^h_log2` texels, row by row from the top-left
+    /// (`v = 0`) texel. Errors: a side above [`MAX_LOG2_SIZE`], fewer texels
+    /// than the size (extra texels are ignored).
+    ///
+    /// ```
+    /// use fixshade::normal_map::{NormalMap, Wrap, FLAT_NORMAL};
+    /// static FLAT: [[i16; 3]; 1] = [FLAT_NORMAL];
+    /// let map = NormalMap::new(&FLAT, 0, 0, Wrap::Repeat).unwrap();
+    /// assert_eq!((map.width(), map.height()), (1, 1));
+    /// ```
+    pub fn new(
+        texels: &'a [NormalTexel],
+        w_log2: u8,
+        h_log2: u8,
+        wrap: Wrap,
+    ) -> Result<Self, NormalMapError> {
+        let needed = texel_count(w_log2, h_log2)?;
+        if texels.len() < needed {
+            return Err(NormalMapError::BufferTooSmall {
+                needed,
+                got: texels.len(),
+            });
+        }
+        Ok(Self {
+            texels: texels.get(..needed).unwrap_or(texels),
+            w_log2,
+            h_log2,
+            wrap,
+        })
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        1 << self.w_log2
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        1 << self.h_log2
+    }
+
+    /// `log2` of the width and the height.
+    pub fn size_log2(&self) -> (u8, u8) {
+        (self.w_log2, self.h_log2)
+    }
+
+    /// The wrap mode.
+    pub fn wrap(&self) -> Wrap {
+        self.wrap
+    }
+
+    /// The texels (exactly `width · height`).
+    pub fn texels(&self) -> &'a [NormalTexel] {
+        self.texels
+    }
+
+    /// Texel `(x, y)` (any integers: wrapped or clamped by the map's mode).
+    #[inline(always)]
+    pub fn texel(&self, x: i32, y: i32) -> NormalTexel {
+        let (wm, hm) = ((1i32 << self.w_log2) - 1, (1i32 << self.h_log2) - 1);
+        let (x, y) = match self.wrap {
+            Wrap::Repeat => (x & wm, y & hm),
+            Wrap::Clamp => (x.clamp(0, wm), y.clamp(0, hm)),
+        };
+        let i = ((y << self.w_log2) | x) as usize;
+        self.texels.get(i).copied().unwrap_or(FLAT_NORMAL)
+    }
+
+    /// The texel containing the point `c` (nearest sampling).
+    #[inline]
+    pub fn sample(&self, c: TexCoord) -> NormalTexel {
+        self.sample_fixed(c.u, c.v, crate::texture::TEX_FRAC)
+    }
+
+    /// The texel containing the point `(u, v)` given with `frac` fraction bits
+    /// (`frac ≥` [`MAX_LOG2_SIZE`]; 12 for the mesh's Q12 texture coordinates).
+    #[inline(always)]
+    pub fn sample_fixed(&self, u: i32, v: i32, frac: u32) -> NormalTexel {
+        let su = frac.saturating_sub(u32::from(self.w_log2)).min(31);
+        let sv = frac.saturating_sub(u32::from(self.h_log2)).min(31);
+        self.texel(u >> su, v >> sv)
+    }
+}
+
+/// The Q14 texel of the unit vector along `n` (normalised here, each component
+/// rounded to nearest). Errors: a non-finite component, a zero vector.
+///
+/// ```
+/// use fixshade::normal_map::normal_texel;
+/// assert_eq!(normal_texel([0.0, 0.0, 2.0]), Ok([0, 0, 16384]));
+/// assert_eq!(normal_texel([1.0, 0.0, 1.0]), Ok([11585, 0, 11585]));
+/// ```
+pub fn normal_texel(n: [f32; 3]) -> Result<NormalTexel, NormalMapError> {
+    if n.iter().any(|v| !v.is_finite()) {
+        return Err(NormalMapError::NotFinite("normal"));
+    }
+    let d = n.map(f64::from);
+    let len = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if !(len > 0.0) || !len.is_finite() {
+        return Err(NormalMapError::Degenerate("normal"));
+    }
+    Ok(d.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16))
+}
+
+/// Converts a height map into a normal map (bump mapping, once at load time).
+///
+/// `heights` holds `2^w_log2 × 2^h_log2` heights row by row (`v` down);
+/// `scale` is the height change, in texels, of one height step (so `∂h/∂u`
+/// is measured in texel widths). Texel `(x, y)` of `out` gets
+/// `normalize(−scale·∂h/∂u, −scale·∂h/∂v, 1)` with central differences
+/// `(h[x+1] − h[x−1]) / 2`; at the edges of a [`Wrap::Clamp`] map one-sided
+/// differences `h[x+1] − h[x]`, `h[x] − h[x−1]` are used (so a linear ramp
+/// gives its exact slope everywhere), a [`Wrap::Repeat`] map wraps around.
+/// A constant map gives the flat normal `[0, 0, 16384]` exactly.
+///
+/// Errors: a side above [`MAX_LOG2_SIZE`], `heights` or `out` too short, a
+/// non-finite `scale`. Nothing is written on error.
+///
+/// ```
+/// use fixshade::normal_map::{bump_to_normals, Wrap, FLAT_NORMAL};
+/// let heights = [77u8; 64];
+/// let mut out = [[0i16; 3]; 64];
+/// bump_to_normals(&heights, 3, 3, Wrap::Repeat, 4.0, &mut out)?;
+/// assert!(out.iter().all(|&t| t == FLAT_NORMAL));
+/// # Ok::<(), fixshade::normal_map::NormalMapError>(())
+/// ```
+pub fn bump_to_normals(
+    heights: &[u8],
+    w_log2: u8,
+    h_log2: u8,
+    wrap: Wrap,
+    scale: f32,
+    out: &mut [NormalTexel],
+) -> Result<(), NormalMapError> {
+    let needed = texel_count(w_log2, h_log2)?;
+    for got in [heights.len(), out.len()] {
+        if got < needed {
+            return Err(NormalMapError::BufferTooSmall { needed, got });
+        }
+    }
+    if !scale.is_finite() {
+        return Err(NormalMapError::NotFinite("scale"));
+    }
+    let (w, h) = (1i32 << w_log2, 1i32 << h_log2);
+    let height = |x: i32, y: i32| -> f64 {
+        let i = ((y & (h - 1)) * w + (x & (w - 1))) as usize;
+        heights.get(i).copied().map_or(0.0, f64::from)
+    };
+    // the difference quotient along one axis: neighbours `a`, `b` of texel `c`
+    // (`len` texels along the axis)
+    let slope = |c: i32, len: i32, at: &dyn Fn(i32) -> f64| -> f64 {
+        if len == 1 {
+            return 0.0;
+        }
+        match wrap {
+            Wrap::Repeat => (at(c + 1) - at(c - 1)) / 2.0,
+            Wrap::Clamp => {
+                let (lo, hi) = ((c - 1).max(0), (c + 1).min(len - 1));
+                (at(hi) - at(lo)) / f64::from(hi - lo)
+            }
+        }
+    };
+    let s = f64::from(scale);
+    for (i, t) in out.iter_mut().take(needed).enumerate() {
+        let (x, y) = (i as i32 & (w - 1), i as i32 >> w_log2);
+        let du = slope(x, w, &|xx| height(xx, y));
+        let dv = slope(y, h, &|yy| height(x, yy));
+        let n = [-s * du, -s * dv, 1.0];
+        let len = libm::sqrt(n[0] * n[0] + n[1] * n[1] + 1.0);
+        *t = n.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16);
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_and_errors() {
+        let t = [FLAT_NORMAL; 16];
+        assert!(NormalMap::new(&t, 2, 2, Wrap::Repeat).is_ok());
+        assert_eq!(
+            NormalMap::new(&t, 13, 0, Wrap::Repeat),
+            Err(NormalMapError::TooLarge { log2: 13 })
+        );
+        assert_eq!(
+            NormalMap::new(&t, 3, 2, Wrap::Repeat),
+            Err(NormalMapError::BufferTooSmall {
+                needed: 32,
+                got: 16
+            })
+        );
+        let mut out = [[0i16; 3]; 4];
+        assert_eq!(
+            bump_to_normals(&[0; 4], 1, 1, Wrap::Repeat, f32::NAN, &mut out),
+            Err(NormalMapError::NotFinite("scale"))
+        );
+        assert_eq!(
+            bump_to_normals(&[0; 3], 1, 1, Wrap::Repeat, 1.0, &mut out),
+            Err(NormalMapError::BufferTooSmall { needed: 4, got: 3 })
+        );
+        assert_eq!(
+            normal_texel([0.0; 3]),
+            Err(NormalMapError::Degenerate("normal"))
+        );
+        assert_eq!(
+            normal_texel([f32::INFINITY, 0.0, 1.0]),
+            Err(NormalMapError::NotFinite("normal"))
+        );
+    }
+
+    #[test]
+    fn wrap_and_clamp_at_the_edges() {
+        // texel i holds [i, 0, 0]
+        let t: [NormalTexel; 8] = core::array::from_fn(|i| [i as i16, 0, 0]);
+        let r = NormalMap::new(&t, 2, 1, Wrap::Repeat).unwrap();
+        let c = NormalMap::new(&t, 2, 1, Wrap::Clamp).unwrap();
+        assert_eq!(r.texel(-1, 0)[0], 3);
+        assert_eq!(r.texel(4, 1)[0], 4);
+        assert_eq!(r.texel(-5, -1)[0], 7);
+        assert_eq!(c.texel(-1, 0)[0], 0);
+        assert_eq!(c.texel(9, 5)[0], 7);
+        // Q16: u = 1 − 2^-16 is the last column, u = 1 wraps to the first
+        assert_eq!(r.sample(TexCoord { u: 65535, v: 0 })[0], 3);
+        assert_eq!(r.sample(TexCoord { u: 65536, v: 0 })[0], 0);
+        assert_eq!(c.sample(TexCoord { u: 65536, v: 0 })[0], 3);
+        // v = ½ is the second row; just below it the first
+        assert_eq!(r.sample(TexCoord { u: 0, v: 32768 })[0], 4);
+        assert_eq!(r.sample(TexCoord { u: 0, v: 32767 })[0], 0);
+        // Q12 coordinates of the mesh
+        assert_eq!(r.sample_fixed(3 * 1024, 2048, 12)[0], 7);
+    }
+
+    /// The texel's exact unit vector (f64).
+    fn unit(t: NormalTexel) -> [f64; 3] {
+        t.map(|c| f64::from(c) / 16384.0)
+    }
+
+    #[test]
+    fn quantised_normals_are_unit_within_the_stated_bound() {
+        // worst case search over a grid of directions, including near the
+        // tangent plane (z → 0)
+        let mut worst: f64 = 0.0;
+        for a in 0..200 {
+            for b in 0..50 {
+                let phi = a as f32 * 0.0314159;
+                let z = b as f32 / 49.0;
+                let r = libm::sqrtf(1.0 - z * z);
+                let t = normal_texel([r * libm::cosf(phi), r * libm::sinf(phi), z]).unwrap();
+                let u = unit(t);
+                let len = libm::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+                worst = worst.max((len - 1.0).abs());
+            }
+        }
+        assert!(worst < 6e-5, "length error {worst}");
+    }
+
+    #[test]
+    fn linear_ramps_give_the_analytic_tilt() {
+        // h = 3x + 5y (u8, 8 × 8), clamp: one-sided at the edges, exact everywhere
+        let heights: [u8; 64] = core::array::from_fn(|i| (3 * (i % 8) + 5 * (i / 8)) as u8);
+        let mut out = [[0i16; 3]; 64];
+        let s = 0.25f64;
+        bump_to_normals(&heights, 3, 3, Wrap::Clamp, s as f32, &mut out).unwrap();
+        let n = [-s * 3.0, -s * 5.0, 1.0];
+        let l = libm::sqrt(n[0] * n[0] + n[1] * n[1] + 1.0);
+        for t in out {
+            for (c, e) in unit(t).iter().zip(n) {
+                assert!((c - e / l).abs() <= 0.5 / 16384.0 + 1e-12, "{t:?}");
+            }
+        }
+        // a repeating ramp along v only (wrap seam excluded): tilt in y only
+        let heights: [u8; 16] = core::array::from_fn(|i| (10 * (i / 4)) as u8);
+        let mut out = [[0i16; 3]; 16];
+        bump_to_normals(&heights, 2, 2, Wrap::Repeat, 0.1, &mut out).unwrap();
+        for (i, t) in out.iter().enumerate() {
+            let y = i / 4;
+            if y == 1 || y == 2 {
+                assert_eq!(*t, [0, -11585, 11585]);
+            } else {
+                // across the seam: (h[y+1] − h[y−1])/2 = ∓10 (one side jumps by 30)
+                assert_eq!(t[0], 0);
+                assert!(t[1] > 0, "{t:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn constant_heights_give_the_flat_normal() {
+        for wrap in [Wrap::Repeat, Wrap::Clamp] {
+            let mut out = [[1i16; 3]; 32];
+            bump_to_normals(&[200; 32], 3, 2, wrap, 100.0, &mut out).unwrap();
+            assert!(out.iter().all(|&t| t == FLAT_NORMAL));
+            // 1-texel sides have no slope
+            let mut one = [[1i16; 3]; 1];
+            bump_to_normals(&[9], 0, 0, wrap, 1.0, &mut one).unwrap();
+            assert_eq!(one[0], FLAT_NORMAL);
+        }
+    }
+}
