@@ -42,6 +42,9 @@ pub enum MeshError {
     /// The named parameters describe a degenerate configuration (zero-length
     /// direction, parallel vectors, empty volume).
     Degenerate(&'static str),
+    /// The mesh lacks the named per-vertex attribute (texture coordinates,
+    /// tangents) the operation reads.
+    MissingAttribute(&'static str),
 }
 
 impl fmt::Display for MeshError {
@@ -59,6 +62,7 @@ impl fmt::Display for MeshError {
             Self::NotFinite(p) => write!(f, "{p}: NaN or infinite"),
             Self::OutOfRange(p) => write!(f, "{p}: out of range"),
             Self::Degenerate(p) => write!(f, "{p}: degenerate"),
+            Self::MissingAttribute(p) => write!(f, "the mesh has no {p}"),
         }
     }
 }

@@ -43,21 +43,25 @@
 
 mod clip;
 mod compact;
+mod displace;
 mod error;
 mod matrix;
 mod normals;
 mod screen;
 mod sphere;
 mod tangents;
+mod textured;
 mod torus_knot;
 
 pub use clip::{clip_near, ClipVertex};
 pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
+pub use displace::{displace, to_compact, weld_by_position};
 pub use error::MeshError;
 pub use matrix::Mat4;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
 pub use screen::{EyeTransform, FixedMat4, ScreenTransform, ScreenVertex, Viewport, INV_W_ONE};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
 pub use tangents::{tangents_to_q14, vertex_tangents};
+pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
 pub use torus_knot::{torus_knot_counts, TorusKnot};

@@ -146,6 +146,56 @@ pub fn vertex_normals(
     weighting: Weighting,
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
+    vertex_normals_mapped(positions, tris, weighting, usize::from, out)
+}
+
+/// [`vertex_normals`] with the vertices welded: vertex `i`'s faces count for
+/// vertex `weld[i]` (a representative with `weld[weld[i]] == weld[i]`), and every
+/// vertex gets its representative's normal. Duplicates at a texture seam
+/// (same position, different texture coordinates) thus share one normal.
+///
+/// # Errors
+///
+/// As [`vertex_normals`]; [`MeshError::BufferTooSmall`] when `weld` is shorter
+/// than the positions, [`MeshError::IndexOutOfRange`] (triangle 0) for a
+/// representative beyond the positions.
+pub(crate) fn vertex_normals_welded(
+    positions: &[[f32; 3]],
+    tris: &[[u16; 3]],
+    weighting: Weighting,
+    weld: &[u16],
+    out: &mut [[f32; 3]],
+) -> Result<usize, MeshError> {
+    let n = positions.len();
+    check_len(n, weld.len())?;
+    let weld = weld.get(..n).unwrap_or(&[]);
+    if let Some(&index) = weld.iter().find(|&&w| usize::from(w) >= n) {
+        return Err(MeshError::IndexOutOfRange { triangle: 0, index });
+    }
+    let map = |i: u16| weld.get(usize::from(i)).map_or(0, |&w| usize::from(w));
+    vertex_normals_mapped(positions, tris, weighting, map, out)?;
+    for (i, &r) in weld.iter().enumerate() {
+        let r = usize::from(r);
+        if r != i {
+            if let Some(&v) = out.get(r) {
+                if let Some(o) = out.get_mut(i) {
+                    *o = v;
+                }
+            }
+        }
+    }
+    Ok(n)
+}
+
+/// The sums of [`vertex_normals`] gathered at `map(vertex)`; vertices that are
+/// no vertex's image get zero.
+fn vertex_normals_mapped(
+    positions: &[[f32; 3]],
+    tris: &[[u16; 3]],
+    weighting: Weighting,
+    map: impl Fn(u16) -> usize,
+    out: &mut [[f32; 3]],
+) -> Result<usize, MeshError> {
     let n = positions.len();
     check_len(n, out.len())?;
     check_indices(tris, n)?;
@@ -175,7 +225,9 @@ pub fn vertex_normals(
             Weighting::Area => {
                 let w = [c[0] * scale, c[1] * scale, c[2] * scale];
                 for &i in &t {
-                    add(&mut out[usize::from(i)], w);
+                    if let Some(o) = out.get_mut(map(i)) {
+                        add(o, w);
+                    }
                 }
             }
             Weighting::Angle => {
@@ -193,7 +245,9 @@ pub fn vertex_normals(
                     let angle = libm::atan2(libm::sqrt(dot(x, x)), dot(e1, e2));
                     if angle.is_finite() {
                         let w = [unit[0] * angle, unit[1] * angle, unit[2] * angle];
-                        add(&mut out[usize::from(t[k])], w);
+                        if let Some(o) = out.get_mut(map(t[k])) {
+                            add(o, w);
+                        }
                     }
                 }
             }

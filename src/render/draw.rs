@@ -2,6 +2,7 @@
 
 use super::bins::{self, Bins};
 use super::hclip::{self, HPoint, HPolygon};
+use super::refine::{self, Refine, RefineStats, Refined};
 use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
 use crate::camera::{Clip, MeshTransform, Orthographic, Projection};
@@ -142,6 +143,8 @@ pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
     /// Entries of the current half of `carry` and which half (0 or 1).
     carried: usize,
     half: usize,
+    /// Silhouette refinement's vertices and triangles (empty without).
+    refined: Refined<'a, K::Vertex>,
 }
 
 impl<K: Kernel, P: Projection> core::fmt::Debug for MeshDraw<'_, K, P> {
@@ -226,6 +229,198 @@ where
             carry,
             carried: 0,
             half: 0,
+            refined: Refined::default(),
+        })
+    }
+
+    /// [`MeshDraw::with_options`] with silhouette refinement: after the vertex
+    /// stage, the triangles along the outline of the mesh for this view are
+    /// subdivided into curved (PN triangle) pieces within the budget of
+    /// `refine` (see [`refine`](super::refine) for the rule, the geometry and
+    /// what happens when the budget runs out). The new triangles are culled,
+    /// binned and drawn like mesh triangles, after them within each band
+    /// (so a banded frame is still the whole frame bit for bit).
+    ///
+    /// The bins must hold the replacing triangles too:
+    /// [`bins_len`](super::bins_len)`(triangles + refine triangle budget, bands)`
+    /// always suffices.
+    ///
+    /// ```
+    /// use fixshade::camera::Camera;
+    /// use fixshade::mesh::{uv_sphere_counts, Mat4, MeshData, Viewport};
+    /// use fixshade::prelude::*;
+    /// use fixshade::render::{bins_len, FullFrame, Layout, MeshBuffers, MeshDraw, RefineBuffers};
+    /// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+    /// const N: (usize, usize) = uv_sphere_counts(8, 12);
+    /// static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(8, 12, 14);
+    /// let cam = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, Viewport::new(0, 0, 64, 64)?)?
+    ///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
+    /// let t = cam.mesh_transform(&Mat4::rotate_x(0.3), SPHERE.frac)?;
+    /// let lighting = fixshade::standard::lambert::<Q14>().unwrap();
+    /// let shader = Shader::new(GouraudShading, &lighting, Linear);
+    /// let mut mem: MeshBuffers<[u16; 3], { N.0 }, { bins_len(N.1 + 256, 1) }, 0> = MeshBuffers::new();
+    /// let mut refine: RefineBuffers<[u16; 3], { N.0 }, 64, 256> = RefineBuffers::new();
+    /// let layout = Layout::full(64, 64).unwrap();
+    /// let mut draw = MeshDraw::with_refinement(
+    ///     layout, SPHERE.mesh(), &t, shader, Default::default(), mem.memory(), refine.refine(0),
+    /// ).unwrap();
+    /// assert!(draw.refine_stats().vertices > 0);
+    /// let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
+    /// let mut frame = FullFrame::new(64, 64, &mut color, Some(&mut depth)).unwrap();
+    /// frame.render(Rgb565::BLACK, &mut [&mut draw]);
+    /// # Ok::<(), fixshade::mesh::MeshError>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// As [`MeshDraw::new`]; [`RenderError::BufferTooSmall`] for refinement
+    /// memory shorter than the mesh's vertices (`vertex_words`), and
+    /// [`RenderError::TooManyVertices`] when the mesh and its replacing
+    /// triangles exceed `u16` indices.
+    pub fn with_refinement(
+        layout: Layout,
+        mesh: Mesh<'a>,
+        transform: &MeshTransform<P>,
+        kernel: K,
+        opts: DrawOptions,
+        memory: MeshMemory<'a, K::Vertex>,
+        refine: Refine<'a, K::Vertex>,
+    ) -> Result<Self, RenderError> {
+        let MeshMemory {
+            vertices: cache,
+            bins,
+            carry,
+        } = memory;
+        if cache.len() < mesh.vertex_count() {
+            return Err(RenderError::TooManyVertices);
+        }
+        vertex::stage(&mesh, transform, &kernel, cache);
+        let refined = refine::build(&mesh, transform, &kernel, refine).map_err(|e| {
+            RenderError::BufferTooSmall {
+                buffer: e.buffer,
+                needed: e.needed,
+                got: e.got,
+            }
+        })?;
+        let cache: &'a [CachedVertex<K::Vertex>] = cache;
+        let nt = mesh.triangle_count();
+        let nv = mesh.vertex_count();
+        let vert = |i: usize| {
+            if i < nv {
+                cache.get(i)
+            } else {
+                refined.vertices.get(i - nv)
+            }
+        };
+        let pos = |i: usize| {
+            if i < nv {
+                mesh.positions().get(i).copied()
+            } else {
+                refined.positions.get(i - nv).copied()
+            }
+        };
+        let classify = |t: usize| {
+            if t < nt {
+                if refined.replaced(t) {
+                    return None;
+                }
+                classify(&mesh, transform, cache, &layout, opts.cull, t)
+            } else {
+                let r = refined.triangles.get(t - nt)?;
+                let idx = [r[0], r[1], r[2]].map(usize::from);
+                classify_idx(idx, vert, pos, transform, &layout, opts.cull)
+            }
+        };
+        let total = nt.saturating_add(refined.triangles.len());
+        let bins = bins::sort(&layout, total, classify, bins)?;
+        if carry.len() < 2 * bins.crossing {
+            return Err(RenderError::BufferTooSmall {
+                buffer: "carry",
+                needed: 2 * bins.crossing,
+                got: carry.len(),
+            });
+        }
+        Ok(MeshDraw {
+            mesh,
+            transform: *transform,
+            kernel,
+            layout,
+            cache,
+            bins,
+            carry,
+            carried: 0,
+            half: 0,
+            refined,
+        })
+    }
+
+    /// What this frame's silhouette refinement produced (zeros without).
+    pub fn refine_stats(&self) -> RefineStats {
+        self.refined.stats
+    }
+
+    /// Vertex `i` of the mesh and the refinement's new vertices after it.
+    #[inline]
+    fn vertex(&self, i: usize) -> Option<&CachedVertex<K::Vertex>> {
+        let nv = self.mesh.vertex_count();
+        if i < nv {
+            self.cache.get(i)
+        } else {
+            self.refined.vertices.get(i - nv)
+        }
+    }
+
+    /// The raw position of vertex `i` (mesh, then new vertices).
+    #[inline]
+    fn position(&self, i: usize) -> Option<[i16; 3]> {
+        let nv = self.mesh.vertex_count();
+        if i < nv {
+            self.mesh.positions().get(i).copied()
+        } else {
+            self.refined.positions.get(i - nv).copied()
+        }
+    }
+
+    /// A triangle replacing a refined one (`tri` beyond the mesh's
+    /// triangles), drawn like [`MeshDraw::triangle`].
+    #[inline(never)]
+    fn refined_triangle(
+        &self,
+        tri: u16,
+        resume: Option<(i32, i32)>,
+        band: &mut BandView<'_, K::Color>,
+    ) -> Option<Carry> {
+        let r = self
+            .refined
+            .triangles
+            .get(usize::from(tri).checked_sub(self.mesh.triangle_count())?)?;
+        let idx = [r[0], r[1], r[2]].map(usize::from);
+        let v = [
+            self.vertex(idx[0])?,
+            self.vertex(idx[1])?,
+            self.vertex(idx[2])?,
+        ];
+        if !(v[0].inside() && v[1].inside() && v[2].inside()) {
+            return self.clipped(tri, idx, band);
+        }
+        let xy = v.map(|c| (i32::from(c.x), i32::from(c.y)));
+        let eye = if K::NEEDS_POSITION {
+            idx.map(|i| self.position(i).map_or([0; 3], |p| self.transform.eye(p)))
+        } else {
+            [[0; 3]; 3]
+        };
+        let next = self.draw_setup(
+            xy,
+            [v[0].z, v[1].z, v[2].z],
+            [&v[0].v, &v[1].v, &v[2].v],
+            eye,
+            resume,
+            band,
+        )?;
+        Some(Carry {
+            tri,
+            long: next.0 as i16,
+            short: next.1 as i16,
         })
     }
 
@@ -244,7 +439,10 @@ where
         resume: Option<(i32, i32)>,
         band: &mut BandView<'_, K::Color>,
     ) -> Option<Carry> {
-        let idx = self.mesh.triangles().get(tri as usize)?.map(usize::from);
+        let Some(idx) = self.mesh.triangles().get(tri as usize) else {
+            return self.refined_triangle(tri, resume, band);
+        };
+        let idx = idx.map(usize::from);
         let v = [
             self.cache.get(idx[0])?,
             self.cache.get(idx[1])?,
@@ -384,9 +582,9 @@ where
         let rows = band.rows();
         let mut more = false;
         pieces(
-            &self.mesh,
+            |i| self.position(i),
             &self.transform,
-            |i| self.cache.get(i).map(|c| c.v),
+            |i| self.vertex(i).map(|c| c.v),
             K::NEEDS_POSITION,
             idx,
             |pts| {
@@ -549,18 +747,14 @@ impl Lerp for () {
 /// gives vertex `i`'s payload; eye positions are computed when `eye`.
 /// `None` when an index or payload lookup fails.
 fn pieces<V: Lerp + Default, P: Projection>(
-    mesh: &Mesh<'_>,
+    pos: impl Fn(usize) -> Option<[i16; 3]>,
     transform: &MeshTransform<P>,
     payload: impl Fn(usize) -> Option<V>,
     eye: bool,
     idx: [usize; 3],
     mut f: impl FnMut(&[Point<V>; 3]),
 ) -> Option<()> {
-    let pos = [
-        *mesh.positions().get(idx[0])?,
-        *mesh.positions().get(idx[1])?,
-        *mesh.positions().get(idx[2])?,
-    ];
+    let pos = [pos(idx[0])?, pos(idx[1])?, pos(idx[2])?];
     let pay = [payload(idx[0])?, payload(idx[1])?, payload(idx[2])?];
     let eyes = pos.map(|p| if eye { transform.eye(p) } else { [0; 3] });
     if P::PERSPECTIVE {
@@ -604,6 +798,7 @@ fn pieces<V: Lerp + Default, P: Projection>(
 
 /// The rows of triangle `t` clamped to the frame, or `None` when it is culled,
 /// degenerate or outside the frame.
+#[inline(always)]
 fn classify<V, P: Projection>(
     mesh: &Mesh<'_>,
     transform: &MeshTransform<P>,
@@ -612,12 +807,29 @@ fn classify<V, P: Projection>(
     cull: Cull,
     t: usize,
 ) -> Option<(u32, u32)> {
-    let idx = mesh.triangles().get(t)?;
-    let v = [
-        cache.get(usize::from(idx[0]))?,
-        cache.get(usize::from(idx[1]))?,
-        cache.get(usize::from(idx[2]))?,
-    ];
+    let idx = mesh.triangles().get(t)?.map(usize::from);
+    classify_idx(
+        idx,
+        |i| cache.get(i),
+        |i| mesh.positions().get(i).copied(),
+        transform,
+        layout,
+        cull,
+    )
+}
+
+/// [`classify`] for the triangle of vertices `idx`, looked up with `vert`
+/// (cache entries) and `pos` (raw positions).
+#[inline(always)]
+fn classify_idx<'c, V: 'c, P: Projection>(
+    idx: [usize; 3],
+    vert: impl Fn(usize) -> Option<&'c CachedVertex<V>>,
+    pos: impl Fn(usize) -> Option<[i16; 3]>,
+    transform: &MeshTransform<P>,
+    layout: &Layout,
+    cull: Cull,
+) -> Option<(u32, u32)> {
+    let v = [vert(idx[0])?, vert(idx[1])?, vert(idx[2])?];
     let ((xmin, xmax, ymin, ymax), front) = if v[0].inside() && v[1].inside() && v[2].inside() {
         let p = v.map(|c| (i32::from(c.x), i32::from(c.y)));
         // A > 0: clockwise on the screen (a back face); products < 2^30
@@ -633,19 +845,16 @@ fn classify<V, P: Projection>(
         );
         (bbox, area < 0)
     } else {
-        let idx = idx.map(usize::from);
         let front = if P::PERSPECTIVE {
-            let pos = |k: usize| mesh.positions().get(idx[k]).copied();
             hclip::facing([
-                transform.clip_coords(pos(0)?),
-                transform.clip_coords(pos(1)?),
-                transform.clip_coords(pos(2)?),
+                transform.clip_coords(pos(idx[0])?),
+                transform.clip_coords(pos(idx[1])?),
+                transform.clip_coords(pos(idx[2])?),
             ])?
         } else {
             let p = idx.map(|i| {
-                mesh.positions()
-                    .get(i)
-                    .and_then(|pos| transform.screen(*pos))
+                pos(i)
+                    .and_then(|p| transform.screen(p))
                     .map_or((0, 0), |s| (s.x, s.y))
             });
             let d1 = (
@@ -664,7 +873,7 @@ fn classify<V, P: Projection>(
         // the bounding box of what remains after clipping in clip space
         let mut bbox = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
         pieces(
-            mesh,
+            &pos,
             transform,
             |_| Some(()),
             false,

@@ -24,11 +24,13 @@
 pub mod bins;
 mod draw;
 mod hclip;
+pub mod refine;
 #[cfg(test)]
 mod tests;
 pub mod vertex;
 
 pub use draw::{Carry, DrawOptions, Lerp, MeshBuffers, MeshDraw, MeshMemory};
+pub use refine::{Refine, RefineBuffers, RefineMemory, RefineStats};
 pub use vertex::CachedVertex;
 
 use core::fmt;
