@@ -1,5 +1,5 @@
-//! Textures in flash and their sampling in fixed point (the first part of texture
-//! mapping: the sampler; the shading modes do not read textures yet).
+//! Textures in flash and their sampling in fixed point (the sampler of
+//! [`TexturedGouraudShading`](crate::shade::TexturedGouraudShading)).
 //!
 //! A [`Texture`] borrows `'static` (or any) texel data — `Rgb565` words, 8-bit grey
 //! levels, or 8-bit indices into a palette of `Rgb565` colours — of a power-of-two
@@ -171,6 +171,16 @@ pub struct Texture<'a> {
     wrap: Wrap,
 }
 
+impl Texture<'static> {
+    /// A 1 × 1 white texture (what modulation leaves unchanged).
+    pub const WHITE: Texture<'static> = Texture {
+        texels: Texels::Rgb565(&[0xFFFF]),
+        log2_w: 0,
+        log2_h: 0,
+        wrap: Wrap::Repeat,
+    };
+}
+
 impl<'a> Texture<'a> {
     /// A texture of `2^log2_w` columns and `2^log2_h` rows. Errors: a side above
     /// 2^15 texels, data of another length than `w·h`, a palette of more than 256
@@ -219,6 +229,16 @@ impl<'a> Texture<'a> {
     /// The wrap mode.
     pub const fn wrap(&self) -> Wrap {
         self.wrap
+    }
+
+    /// `log2` of the width and of the height.
+    pub const fn log2_size(&self) -> (u8, u8) {
+        (self.log2_w, self.log2_h)
+    }
+
+    /// The texel data.
+    pub const fn texels(&self) -> Texels<'a> {
+        self.texels
     }
 
     /// Texel `(x, y)` after wrapping or clamping, 8-bit RGB.

@@ -10,6 +10,7 @@
 //! | [`PhongShading`] | at every pixel | normal (and position when the lighting needs it) | yes |
 //! | [`IncrementalPhongShading`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `\|N\|²` by differences | yes |
 //! | [`NormalMapShading`] | at every pixel, with the normal of a [`NormalMap`](crate::normal_map::NormalMap) in the tangent frame (general: every tier and light; fast: Q14, one directional light) | normal and tangent (general) or `L`, `H` in tangent space (fast), texture coordinates | yes, and surface detail |
+//! | [`TexturedGouraudShading`] | at the three vertices, primary and secondary colour apart | both colours and the texture coordinates (perspective-correct) | no (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
 //! | [`QuadraticPhongShading`] | at anchors 4–32 pixels apart, the colour quadratically in between, the specular power per pixel (Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong `R·V`; every encoder) | encoded colour by second differences, the specular table coordinate | yes |
 //!
 //! The mode names say *how the surface is interpolated*; the reflection models
@@ -54,6 +55,7 @@ mod normalmap;
 mod phong;
 mod quadratic;
 mod segment;
+mod textured;
 mod vertex_colors;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
@@ -63,6 +65,9 @@ pub use normalmap::{
     TangentLightPayload, TangentLightTriangle,
 };
 pub use quadratic::{QuadraticLighting, QuadraticModel, QuadraticTier};
+pub use textured::{
+    TexPayload, TextureBinding, TexturedGouraudShading, TexturedTriangle, TexturedVertex,
+};
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
@@ -138,7 +143,8 @@ pub struct QuadraticPhongShading;
 pub struct NormalMapShading;
 
 /// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`],
-/// [`IncrementalPhongShading`] or [`QuadraticPhongShading`].
+/// [`IncrementalPhongShading`], [`QuadraticPhongShading`] or
+/// [`TexturedGouraudShading`].
 pub trait Mode: Copy + Default + core::fmt::Debug + 'static {
     /// A short name for reports.
     const NAME: &'static str;
