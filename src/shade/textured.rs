@@ -435,10 +435,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, TexturedGouraudSha
             } else {
                 // beyond the run: the planes clamped to their vertex ranges
                 t.coord(
-                    q.clamp_to(
-                        t.qbase.wrapping_add(t.pq.lo),
-                        t.qbase.wrapping_add(t.pq.hi),
-                    ),
+                    q.clamp_to(t.qbase.wrapping_add(t.pq.lo), t.qbase.wrapping_add(t.pq.hi)),
                     a.clamp_to(t.pu.lo, t.pu.hi),
                     b.clamp_to(t.pv.lo, t.pv.hi),
                 )
@@ -526,10 +523,8 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
     ) -> (TexturedTriangle, bool) {
         let top = *at3(&v, s.tmb[0]);
         let black = self.encoder.vertex(Rgb::<I::Scalar>::BLACK);
-        let prim: [Plane; 3] =
-            core::array::from_fn(|i| s.plane(v.map(|p| i32::from(p.prim[i]))));
-        let spec: [Plane; 3] =
-            core::array::from_fn(|i| s.plane(v.map(|p| i32::from(p.spec[i]))));
+        let prim: [Plane; 3] = core::array::from_fn(|i| s.plane(v.map(|p| i32::from(p.prim[i]))));
+        let spec: [Plane; 3] = core::array::from_fn(|i| s.plane(v.map(|p| i32::from(p.spec[i]))));
         let pbase = core::array::from_fn(|i| i32::from(top.prim[i]) << ATTR_FRAC);
         let sbase = core::array::from_fn(|i| i32::from(top.spec[i]) << ATTR_FRAC);
         let has_spec = v
@@ -559,13 +554,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
             let ta = bit_length(big).saturating_sub(15);
             (pu, pv, pq, qbase, ta)
         } else {
-            (
-                s.plane(uv(0)),
-                s.plane(uv(1)),
-                Plane::default(),
-                0,
-                0,
-            )
+            (s.plane(uv(0)), s.plane(uv(1)), Plane::default(), 0, 0)
         };
         (
             TexturedTriangle {
@@ -735,7 +724,11 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, TexturedGouraudSha
         let half = 1 << (crate::raster::SUBPIXEL_BITS - 1);
         let sub = 1 << crate::raster::SUBPIXEL_BITS;
         let Some(mut s) = Setup::new(
-            [(half, half), (half, half + sub * len), (half + sub * len, half)],
+            [
+                (half, half),
+                (half, half + sub * len),
+                (half + sub * len, half),
+            ],
             crate::raster::Cull::None,
         ) else {
             return;
@@ -777,7 +770,12 @@ mod tests {
 
     #[test]
     fn inverse_w_is_the_scaled_reciprocal() {
-        for w in [[1, 1, 2], [100, 200, 400], [70000, 1 << 30, 123456], [5, 5, 5]] {
+        for w in [
+            [1, 1, 2],
+            [100, 200, 400],
+            [70000, 1 << 30, 123456],
+            [5, 5, 5],
+        ] {
             let q = inverse_w(w);
             let wmin = w.iter().copied().min().unwrap();
             for k in 0..3 {
