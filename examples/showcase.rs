@@ -16,6 +16,10 @@
 
 #[path = "../tests/common/render.rs"]
 mod render;
+#[path = "../tests/common/surface.rs"]
+mod surface;
+#[path = "../tests/common/surface_scenes.rs"]
+mod surface_scenes;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
@@ -135,5 +139,27 @@ fn main() {
             d.psnr,
             100.0 * d.identical_565
         );
+    }
+    println!("\nSurface detail (textures, normal and bump mapping, displacement, silhouette refinement):");
+    for img in surface_scenes::all() {
+        let path = dir.join(format!("{}.png", img.name));
+        let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(img.width, img.height));
+        let points = (0..img.height)
+            .flat_map(|y| (0..img.width).map(move |x| Point::new(x as i32, y as i32)));
+        display
+            .draw_iter(
+                points
+                    .zip(img.pixels.iter().copied())
+                    .map(|(p, c)| Pixel(p, c)),
+            )
+            .expect("the simulator display accepts every pixel");
+        display
+            .to_rgb_output_image(&OutputSettingsBuilder::new().build())
+            .save_png(&path)
+            .expect("write PNG");
+        println!("  {} — {}", path.display(), img.title);
+        for n in &img.notes {
+            println!("    {n}");
+        }
     }
 }

@@ -48,7 +48,11 @@ pub fn norm(a: V3) -> V3 {
 /// `+x` (counter-clockwise seen from the north).
 pub fn direction(u: f64, v: f64) -> V3 {
     let (theta, phi) = (v * PI, u * 2.0 * PI);
-    [theta.sin() * phi.sin(), theta.cos(), theta.sin() * phi.cos()]
+    [
+        theta.sin() * phi.sin(),
+        theta.cos(),
+        theta.sin() * phi.cos(),
+    ]
 }
 
 /// The sphere's tangent frame at `(u, v)`: `T` along increasing `u`, `B`
@@ -59,7 +63,11 @@ pub fn frame(u: f64, v: f64) -> (V3, V3, V3) {
     let t = [phi.cos(), 0.0, -phi.sin()];
     let n = direction(u, v);
     let theta = v * PI;
-    let b = [theta.cos() * phi.sin(), -theta.sin(), theta.cos() * phi.cos()];
+    let b = [
+        theta.cos() * phi.sin(),
+        -theta.sin(),
+        theta.cos() * phi.cos(),
+    ];
     (t, b, n)
 }
 
@@ -77,10 +85,10 @@ pub fn tiles(u: f64, v: f64) -> f64 {
     let row = y.floor();
     let x = u * cols + if row as i64 % 2 == 0 { 0.0 } else { 0.5 };
     let (fx, fy) = (x - x.floor(), y - row);
-    // distance to the nearest tile edge, in tile widths (rows are taller on
-    // the sphere: scale the vertical distance to about the same arc length)
-    let d = fx.min(1.0 - fx).min(2.0 * fy.min(1.0 - fy));
-    let bevel = smooth(0.03, 0.12, d);
+    // distance to the nearest tile edge, in tile sides (a tile is about as
+    // tall as it is wide at the equator: 2π/16 across, π/8 down)
+    let d = fx.min(1.0 - fx).min(fy.min(1.0 - fy));
+    let bevel = smooth(0.04, 0.16, d);
     let pole = smooth(0.06, 0.16, v.min(1.0 - v));
     bevel * pole
 }
@@ -101,7 +109,12 @@ pub struct HostMesh {
 /// pole rows duplicated, so every vertex has its own texture coordinates),
 /// counter-clockwise seen from outside. Normals are the displaced surface's
 /// exact normals (central differences of the position function).
-pub fn displaced_sphere(stacks: usize, slices: usize, amp: f64, h: impl Fn(f64, f64) -> f64) -> HostMesh {
+pub fn displaced_sphere(
+    stacks: usize,
+    slices: usize,
+    amp: f64,
+    h: impl Fn(f64, f64) -> f64,
+) -> HostMesh {
     let p = |u: f64, v: f64| scale(direction(u, v), 1.0 + amp * h(u, v));
     let mut m = HostMesh {
         pos: vec![],
@@ -166,7 +179,10 @@ impl HostMesh {
             )
         } else {
             add(
-                add(scale(n(i + 1, j + 1), fx + fy - 1.0), scale(n(i, j + 1), 1.0 - fy)),
+                add(
+                    scale(n(i + 1, j + 1), fx + fy - 1.0),
+                    scale(n(i, j + 1), 1.0 - fy),
+                ),
                 scale(n(i + 1, j), 1.0 - fx),
             )
         };
@@ -181,7 +197,10 @@ pub fn bake_normal_map(high: &HostMesh, size: (usize, usize)) -> Vec<V3> {
     let mut out = Vec::with_capacity(size.0 * size.1);
     for y in 0..size.1 {
         for x in 0..size.0 {
-            let (u, v) = ((x as f64 + 0.5) / size.0 as f64, (y as f64 + 0.5) / size.1 as f64);
+            let (u, v) = (
+                (x as f64 + 0.5) / size.0 as f64,
+                (y as f64 + 0.5) / size.1 as f64,
+            );
             let n = high.normal_at(u, v);
             let (t, b, nn) = frame(u, v);
             out.push(norm([dot(n, t), dot(n, b), dot(n, nn)]));
@@ -235,4 +254,26 @@ pub fn hcat<P: Copy>(panels: &[(u32, u32, Vec<P>)]) -> (u32, u32, Vec<P>) {
         }
     }
     (w, h, out)
+}
+
+/// A procedural floor texture, `w × h` texels: 8 × 8 checks of two stone
+/// colours with a thin dark grout line.
+pub fn checker_texture(w: usize, h: usize) -> Vec<[u8; 3]> {
+    let mut out = Vec::with_capacity(w * h);
+    for y in 0..h {
+        for x in 0..w {
+            let (cx, cy) = (x * 8 / w, y * 8 / h);
+            let (fx, fy) = ((x * 8) % w, (y * 8) % h);
+            let grout = fx == 0 || fy == 0;
+            let c: [u8; 3] = if grout {
+                [40, 38, 36]
+            } else if (cx + cy) % 2 == 0 {
+                [214, 206, 190]
+            } else {
+                [120, 70, 50]
+            };
+            out.push(c);
+        }
+    }
+    out
 }
