@@ -50,8 +50,8 @@ mod matrix;
 mod normals;
 mod screen;
 mod sphere;
-mod textured;
 mod tangents;
+mod textured;
 mod torus_knot;
 
 pub use clip::{clip_near, ClipVertex};
@@ -63,6 +63,6 @@ pub use matrix::Mat4;
 pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
 pub use screen::{EyeTransform, FixedMat4, ScreenTransform, ScreenVertex, Viewport, INV_W_ONE};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
-pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
 pub use tangents::{tangents_to_q14, vertex_tangents};
+pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
 pub use torus_knot::{torus_knot_counts, TorusKnot};

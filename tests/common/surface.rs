@@ -130,7 +130,7 @@ pub fn displaced_sphere(
             let (u, v) = (j as f64 / slices as f64, i as f64 / stacks as f64);
             m.pos.push(p(u, v));
             m.uv.push([u, v]);
-            let n = if v < 1e-9 || v > 1.0 - 1e-9 {
+            let n = if !(1e-9..=1.0 - 1e-9).contains(&v) {
                 direction(u, v)
             } else {
                 let du = sub(p(u + e, v), p(u - e, v));
