@@ -51,7 +51,7 @@ use crate::lighting::{
     Viewer,
 };
 use crate::material::{Material, MaterialDesc};
-use crate::mesh::Mat4;
+use crate::num::Mat4;
 use crate::num::Scalar;
 
 fn rgb(c: [f32; 4]) -> [f32; 3] {
@@ -118,7 +118,7 @@ impl GlLight {
     ///
     /// ```
     /// use fixshade::gl::GlLight;
-    /// use fixshade::mesh::Mat4;
+    /// use fixshade::num::Mat4;
     /// let world = GlLight { position: [1.0, 2.0, 3.0, 1.0], ..GlLight::light0() };
     /// let eye = world.transformed(&Mat4::translate([0.0, 0.0, -5.0]));
     /// assert_eq!(eye.position, [1.0, 2.0, -2.0, 1.0]);
@@ -649,7 +649,7 @@ pub enum GlNormals {
 ///
 /// ```
 /// use fixshade::gl::{eye_normal, GlNormals};
-/// use fixshade::mesh::Mat4;
+/// use fixshade::num::Mat4;
 /// let m = Mat4::scale([2.0, 2.0, 2.0]);
 /// let n = [0.0, 0.0, 1.0];
 /// assert_eq!(eye_normal(&m, n, GlNormals::AsGiven), [0.0, 0.0, 0.5]);

@@ -96,6 +96,7 @@ extern crate std;
 pub mod camera;
 pub mod color;
 pub mod error;
+pub mod framebuffer;
 pub mod gl;
 pub mod light;
 pub mod lighting;
@@ -109,17 +110,16 @@ pub mod reference;
 pub mod render;
 pub mod shade;
 pub mod standard;
-pub mod target;
 pub mod texture;
 pub mod vector;
 
 /// The types most programs need, for `use fixshade::prelude::*`.
 pub mod prelude {
     pub use crate::camera::{
-        Angle, Camera, FixedCamera, MeshTransform, Orthographic, Perspective, Pose,
+        Angle, Camera, FixedCamera, Mat4, MeshTransform, Orthographic, Perspective, Pose, Viewport,
     };
     pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
-    pub use crate::error::ParamError;
+    pub use crate::error::{Error, ParamError};
     pub use crate::light::{
         AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight,
     };
@@ -128,16 +128,14 @@ pub mod prelude {
         Terms,
     };
     pub use crate::material::{AmbientSource, Material, MaterialDesc};
-    pub use crate::mesh::{uv_sphere_counts, Mat4, Mesh, MeshData, Viewport};
+    pub use crate::framebuffer::Checksum;
+    pub use crate::mesh::{uv_sphere_counts, Mesh, MeshData};
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
-    pub use crate::raster::{Cull, RasterOptions};
+    pub use crate::raster::Cull;
     pub use crate::render::{bins_len, Bands, FullFrame, Layout, MeshBuffers, MeshDraw};
     pub use crate::shade::{
-        Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Linear,
-        PhongShading, QuadraticPhongShading, ShadeVertex, Shader, Shading,
-    };
-    pub use crate::target::{
-        BandBuffer, Checksum, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer,
+        Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Kernel, Linear,
+        PhongShading, QuadraticPhongShading, Shader,
     };
     pub use crate::vector::Vec3;
     pub use embedded_graphics_core::geometry::Size;

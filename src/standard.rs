@@ -15,7 +15,8 @@ use crate::error::ParamError;
 use crate::light::{DirectionalLight, LightColors};
 use crate::lighting::{BlinnPhong, Lambert, Lighting};
 use crate::material::{Material, MaterialDesc};
-use crate::mesh::{uv_sphere_counts, Mat4, MeshData, MeshError, Viewport};
+use crate::camera::{Mat4, Viewport};
+use crate::mesh::{uv_sphere_counts, MeshData};
 use crate::num::Scalar;
 
 /// Frame width and height.
@@ -28,7 +29,7 @@ pub const COUNTS: (usize, usize) = uv_sphere_counts(16, 24);
 pub static SPHERE: MeshData<{ COUNTS.0 }, { COUNTS.1 }> = MeshData::uv_sphere(16, 24, 14);
 
 /// The camera.
-pub fn camera() -> Result<Camera<Orthographic>, MeshError> {
+pub fn camera() -> Result<Camera<Orthographic>, ParamError> {
     let s = 1.0 / 0.85;
     Ok(Camera::orthographic(
         -s,
@@ -43,12 +44,12 @@ pub fn camera() -> Result<Camera<Orthographic>, MeshError> {
 }
 
 /// The sphere's fixed-point transform (model matrix: identity).
-pub fn transform() -> Result<MeshTransform<Orthographic>, MeshError> {
+pub fn transform() -> Result<MeshTransform<Orthographic>, ParamError> {
     camera()?.mesh_transform(&Mat4::IDENTITY, SPHERE.frac)
 }
 
 /// The camera converted for integer per-frame transforms (once, in `f32`).
-pub fn fixed_camera() -> Result<FixedCamera<Orthographic>, MeshError> {
+pub fn fixed_camera() -> Result<FixedCamera<Orthographic>, ParamError> {
     FixedCamera::new(&camera()?)
 }
 
@@ -56,7 +57,7 @@ pub fn fixed_camera() -> Result<FixedCamera<Orthographic>, MeshError> {
 /// Cortex-M0 does every frame: no soft float).
 pub fn fixed_transform(
     c: &FixedCamera<Orthographic>,
-) -> Result<MeshTransform<Orthographic>, MeshError> {
+) -> Result<MeshTransform<Orthographic>, ParamError> {
     c.mesh_transform(&Pose::IDENTITY, SPHERE.frac)
 }
 

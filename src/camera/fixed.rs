@@ -8,7 +8,7 @@
 //! `__aeabi_lmul`, no division.
 
 use super::{Camera, EyeRows, MeshTransform, NormalRows, Projection, Row};
-use crate::mesh::MeshError;
+use crate::error::ParamError;
 use crate::num::wide::mul_u32;
 use crate::raster::setup::at3;
 use crate::raster::SUBPIXEL_BITS;
@@ -141,10 +141,10 @@ impl Pose {
     ///
     /// # Errors
     ///
-    /// [`MeshError::OutOfRange`] for `|s| ≥ 128` or `s = 0`.
-    pub fn scale(s: i32) -> Result<Pose, MeshError> {
+    /// [`ParamError::OutOfRange`] for `|s| ≥ 128` or `s = 0`.
+    pub fn scale(s: i32) -> Result<Pose, ParamError> {
         if s == 0 || s.unsigned_abs() >= 128 << 16 {
-            return Err(MeshError::OutOfRange("scale"));
+            return Err(ParamError::OutOfRange("scale"));
         }
         let v = s << 8;
         Ok(Pose {
@@ -314,7 +314,7 @@ fn row_at(lin: &[i64; 3], t: i64, e: i32, mfrac: i32, frac: i32) -> Row {
 ///
 /// ```
 /// use fixshade::camera::{Angle, Camera, FixedCamera, Pose};
-/// use fixshade::mesh::{Mat4, Viewport};
+/// use fixshade::camera::{Mat4, Viewport};
 /// let s = 1.0 / 0.85;
 /// let cam = Camera::orthographic(-s, s, -s, s, 1.0, 10.0, Viewport::new(0, 0, 240, 240)?)?
 ///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
@@ -324,7 +324,7 @@ fn row_at(lin: &[i64; 3], t: i64, e: i32, mfrac: i32, frac: i32) -> Row {
 /// let f = cam.mesh_transform(&Mat4::rotate_y(1234.0 / 65536.0 * core::f32::consts::TAU), 14)?;
 /// let (a, b) = (t.project([16384, 0, 0]), f.project([16384, 0, 0]));
 /// assert!((a.x - b.x).abs() <= 1 && (a.y - b.y).abs() <= 1);
-/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// # Ok::<(), fixshade::error::ParamError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FixedCamera<P: Projection> {
@@ -345,16 +345,16 @@ impl<P: Projection> FixedCamera<P> {
     ///
     /// # Errors
     ///
-    /// [`MeshError::NotFinite`] for a non-finite matrix;
-    /// [`MeshError::OutOfRange`]`("view")` when the view matrix is not a
+    /// [`ParamError::NotFinite`] for a non-finite matrix;
+    /// [`ParamError::OutOfRange`]`("view")` when the view matrix is not a
     /// rotation with a uniform scale and a translation (the integer normal
     /// matrix relies on it).
-    pub fn new(camera: &Camera<P>) -> Result<Self, MeshError> {
+    pub fn new(camera: &Camera<P>) -> Result<Self, ParamError> {
         // the f32 path's rows for the identity model, per world unit
         let view = camera.view();
         let pv = camera.projection().mul(view);
         if !pv.is_finite() {
-            return Err(MeshError::NotFinite("matrix"));
+            return Err(ParamError::NotFinite("matrix"));
         }
         let vp = camera.viewport();
         let (w8, h8) = (vp.width() as f32 * 8.0, vp.height() as f32 * 8.0);
@@ -391,7 +391,7 @@ impl<P: Projection> FixedCamera<P> {
             || dot(0, 2).abs() > tol
             || dot(1, 2).abs() > tol
         {
-            return Err(MeshError::OutOfRange("view"));
+            return Err(ParamError::OutOfRange("view"));
         }
         let max = v
             .iter()
@@ -422,10 +422,10 @@ impl<P: Projection> FixedCamera<P> {
     ///
     /// # Errors
     ///
-    /// [`MeshError::OutOfRange`] for `frac > 15`.
-    pub fn mesh_transform(&self, model: &Pose, frac: u8) -> Result<MeshTransform<P>, MeshError> {
+    /// [`ParamError::OutOfRange`] for `frac > 15`.
+    pub fn mesh_transform(&self, model: &Pose, frac: u8) -> Result<MeshTransform<P>, ParamError> {
         if frac > 15 {
-            return Err(MeshError::OutOfRange("frac"));
+            return Err(ParamError::OutOfRange("frac"));
         }
         let mf = i32::from(frac);
         let wide = self.out.map(|r| (r.times(model), r.e));

@@ -14,7 +14,12 @@ mod fixed;
 
 pub use fixed::{Angle, FixedCamera, Pose};
 
-use crate::mesh::{Mat4, MeshError, Viewport};
+mod viewport;
+
+pub use crate::num::Mat4;
+pub use viewport::Viewport;
+
+use crate::error::ParamError;
 use crate::raster::SUBPIXEL_BITS;
 use core::marker::PhantomData;
 
@@ -48,7 +53,7 @@ impl Projection for Perspective {
 ///
 /// ```
 /// use fixshade::camera::Camera;
-/// use fixshade::mesh::{Mat4, Viewport};
+/// use fixshade::camera::{Mat4, Viewport};
 /// // the standard scene: ±1/0.85 orthographic, camera 5 units back
 /// let s = 1.0 / 0.85;
 /// let cam = Camera::orthographic(-s, s, -s, s, 1.0, 10.0, Viewport::new(0, 0, 240, 240)?)?
@@ -58,7 +63,7 @@ impl Projection for Perspective {
 /// let v = t.project([0, 0, 0]);
 /// assert_eq!((v.x, v.y), (120 << 4, 120 << 4));
 /// assert_eq!(v.z, (65535.0f32 * 4.0 / 9.0).round() as u16);
-/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// # Ok::<(), fixshade::error::ParamError>(())
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera<P: Projection> {
@@ -85,7 +90,7 @@ impl Camera<Orthographic> {
         near: f32,
         far: f32,
         viewport: Viewport,
-    ) -> Result<Self, MeshError> {
+    ) -> Result<Self, ParamError> {
         Ok(Camera {
             projection: Mat4::orthographic(left, right, bottom, top, near, far)?,
             view: Mat4::IDENTITY,
@@ -108,7 +113,7 @@ impl Camera<Perspective> {
         near: f32,
         far: f32,
         viewport: Viewport,
-    ) -> Result<Self, MeshError> {
+    ) -> Result<Self, ParamError> {
         Ok(Camera {
             projection: Mat4::perspective(fovy_rad, aspect, near, far)?,
             view: Mat4::IDENTITY,
@@ -151,16 +156,16 @@ impl<P: Projection> Camera<P> {
     ///
     /// # Errors
     ///
-    /// [`MeshError::NotFinite`] for a non-finite matrix;
-    /// [`MeshError::OutOfRange`] for `frac > 15`.
-    pub fn mesh_transform(&self, model: &Mat4, frac: u8) -> Result<MeshTransform<P>, MeshError> {
+    /// [`ParamError::NotFinite`] for a non-finite matrix;
+    /// [`ParamError::OutOfRange`] for `frac > 15`.
+    pub fn mesh_transform(&self, model: &Mat4, frac: u8) -> Result<MeshTransform<P>, ParamError> {
         if frac > 15 {
-            return Err(MeshError::OutOfRange("frac"));
+            return Err(ParamError::OutOfRange("frac"));
         }
         let mv = self.view.mul(model);
         let mvp = self.projection.mul(&mv);
         if !mvp.is_finite() || !mv.is_finite() {
-            return Err(MeshError::NotFinite("matrix"));
+            return Err(ParamError::NotFinite("matrix"));
         }
         let vp = &self.viewport;
         let (w8, h8) = (vp.width() as f32 * 8.0, vp.height() as f32 * 8.0);
@@ -577,6 +582,24 @@ impl<P: Projection> MeshTransform<P> {
             y: self.y.apply(p),
             z: self.z.apply(p),
             w: self.w.apply(p),
+        }
+    }
+
+    /// The clip coordinates of a raw position, as the clipper takes them: for
+    /// a perspective transform `(x, y, z, w)` with the screen position at
+    /// `centre + (x/w, y/w)`; for an orthographic one the screen position in
+    /// sub-pixels, the depth and `w = 1`.
+    #[inline]
+    pub(crate) fn clip_point(&self, p: [i16; 3]) -> Clip {
+        if P::PERSPECTIVE {
+            self.clip_coords(p)
+        } else {
+            Clip {
+                x: self.x.apply_round(p),
+                y: self.y.apply_round(p),
+                z: self.z.apply_round(p),
+                w: 1,
+            }
         }
     }
 

@@ -9,7 +9,7 @@
 //! [`MeshData`] filled by a `const fn` generator lives in flash: no RAM, no
 //! floating point at run time.
 
-use super::error::MeshError;
+use crate::error::MeshError;
 
 /// Unit normal components are stored in Q14: `16384` is 1.
 pub const NORMAL_ONE: i16 = 1 << 14;
@@ -62,6 +62,7 @@ impl<'a> Mesh<'a> {
         }
         if normals.len() < positions.len() {
             return Err(MeshError::BufferTooSmall {
+                which: "normals",
                 needed: positions.len(),
                 got: normals.len(),
             });
@@ -99,6 +100,7 @@ impl<'a> Mesh<'a> {
     pub const fn with_texcoords(mut self, texcoords: &'a [[i16; 2]]) -> Result<Self, MeshError> {
         if texcoords.len() < self.positions.len() {
             return Err(MeshError::BufferTooSmall {
+                which: "texcoords",
                 needed: self.positions.len(),
                 got: texcoords.len(),
             });
@@ -119,6 +121,7 @@ impl<'a> Mesh<'a> {
     pub const fn with_tangents(mut self, tangents: &'a [[i16; 4]]) -> Result<Self, MeshError> {
         if tangents.len() < self.positions.len() {
             return Err(MeshError::BufferTooSmall {
+                which: "tangents",
                 needed: self.positions.len(),
                 got: tangents.len(),
             });

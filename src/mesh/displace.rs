@@ -25,7 +25,8 @@
 //! ```
 
 use super::compact::{round_i16, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
-use super::error::{check_len, MeshError};
+use super::error::check_len;
+use crate::error::MeshError;
 use super::normals::{vertex_normals_welded, Weighting};
 use crate::texture::{Filter, TexCoord, Texture, TEX_FRAC};
 
@@ -52,7 +53,7 @@ pub fn weld_by_position(positions: &[[i16; 3]], out: &mut [u16]) -> Result<usize
     if n > 1 << 16 {
         return Err(MeshError::TooManyVertices { needed: n });
     }
-    check_len(n, out.len())?;
+    check_len("out", n, out.len())?;
     for (i, p) in positions.iter().enumerate() {
         let r = positions.iter().position(|q| q == p).unwrap_or(i);
         if let Some(o) = out.get_mut(i) {
@@ -131,8 +132,13 @@ pub fn displace(
     if !scale.is_finite() {
         return Err(MeshError::NotFinite("scale"));
     }
-    for got in [weld.len(), scratch.len(), positions.len(), normals.len()] {
-        check_len(n, got)?;
+    for (which, got) in [
+        ("weld", weld.len()),
+        ("scratch", scratch.len()),
+        ("positions", positions.len()),
+        ("normals", normals.len()),
+    ] {
+        check_len(which, n, got)?;
     }
     weld_by_position(mesh.positions(), weld)?;
     let weld = weld.get(..n).unwrap_or(&[]);
@@ -194,9 +200,9 @@ pub fn to_compact(
         return Err(MeshError::OutOfRange("frac"));
     }
     let n = positions.len();
-    check_len(n, normals.len())?;
-    check_len(n, out_positions.len())?;
-    check_len(n, out_normals.len())?;
+    check_len("normals", n, normals.len())?;
+    check_len("out_positions", n, out_positions.len())?;
+    check_len("out_normals", n, out_normals.len())?;
     let scale = f64::from(1u32 << frac);
     let fit = |x: f64| (-32768.5..32767.5).contains(&x);
     for ((p, m), (op, on)) in positions
@@ -373,7 +379,11 @@ mod tests {
         );
         assert_eq!(
             displace(&m, &tex, 1.0, &mut w[..2], &mut s, &mut p, &mut n),
-            Err(MeshError::BufferTooSmall { needed: 3, got: 2 })
+            Err(MeshError::BufferTooSmall {
+                which: "weld",
+                needed: 3,
+                got: 2
+            })
         );
         assert!(displace(&m, &tex, 1.0, &mut w, &mut s, &mut p, &mut n).is_ok());
         let (mut pc, mut nc) = ([[0i16; 3]; 1], [[0i16; 3]; 1]);

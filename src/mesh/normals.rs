@@ -1,7 +1,8 @@
 //! Face and vertex normals of an indexed triangle mesh (load-time work, `f32`
 //! storage with `f64` intermediate products).
 
-use super::error::{check_len, MeshError};
+use super::error::check_len;
+use crate::error::MeshError;
 use crate::num::{Geo16, Scalar, Q14};
 use crate::vector::Vec3;
 
@@ -100,7 +101,7 @@ pub fn face_normals(
     tris: &[[u16; 3]],
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
-    check_len(tris.len(), out.len())?;
+    check_len("out", tris.len(), out.len())?;
     check_indices(tris, positions.len())?;
     for (o, &t) in out.iter_mut().zip(tris) {
         *o = unit_or_zero(face_cross(positions, t));
@@ -167,7 +168,7 @@ pub(crate) fn vertex_normals_welded(
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
     let n = positions.len();
-    check_len(n, weld.len())?;
+    check_len("weld", n, weld.len())?;
     let weld = weld.get(..n).unwrap_or(&[]);
     if let Some(&index) = weld.iter().find(|&&w| usize::from(w) >= n) {
         return Err(MeshError::IndexOutOfRange { triangle: 0, index });
@@ -197,7 +198,7 @@ fn vertex_normals_mapped(
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
     let n = positions.len();
-    check_len(n, out.len())?;
+    check_len("out", n, out.len())?;
     check_indices(tris, n)?;
     let out = &mut out[..n];
     out.fill([0.0; 3]);
@@ -293,7 +294,7 @@ pub fn normals_to_tier<S: Scalar>(
     src: &[[f32; 3]],
     dst: &mut [Vec3<S>],
 ) -> Result<usize, MeshError> {
-    check_len(src.len(), dst.len())?;
+    check_len("dst", src.len(), dst.len())?;
     for (d, &s) in dst.iter_mut().zip(src) {
         *d = Vec3::from_f32(s);
     }
@@ -319,7 +320,7 @@ pub fn normals_to_tier<S: Scalar>(
 /// # Ok::<(), fixshade::mesh::MeshError>(())
 /// ```
 pub fn positions_to_geo16(src: &[[f32; 3]], dst: &mut [Vec3<Geo16>]) -> Result<usize, MeshError> {
-    check_len(src.len(), dst.len())?;
+    check_len("dst", src.len(), dst.len())?;
     for (d, &s) in dst.iter_mut().zip(src) {
         *d = geo16(s);
     }
@@ -396,7 +397,11 @@ mod tests {
         let mut n = [[9.0f32; 3]; 8];
         assert_eq!(
             vertex_normals(&p, &t, Weighting::Area, &mut n[..7]),
-            Err(MeshError::BufferTooSmall { needed: 8, got: 7 })
+            Err(MeshError::BufferTooSmall {
+                which: "out",
+                needed: 8,
+                got: 7
+            })
         );
         assert_eq!(
             vertex_normals(&p[..7], &t, Weighting::Area, &mut n),

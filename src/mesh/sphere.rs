@@ -7,7 +7,8 @@
 //! texture seam) and write the exact sphere normal `(p − centre)/radius` per
 //! vertex.
 
-use super::error::{check_len, finite, MeshError};
+use super::error::{check_len, finite};
+use crate::error::MeshError;
 use core::f64::consts::PI;
 
 /// The highest subdivision level [`icosphere`] accepts: 4 (2562 vertices, 5120
@@ -68,9 +69,9 @@ fn check_common(
     if counts.0 > 1 << 16 {
         return Err(MeshError::TooManyVertices { needed: counts.0 });
     }
-    check_len(counts.0, positions)?;
-    check_len(counts.0, normals)?;
-    check_len(counts.1, tris)
+    check_len("positions", counts.0, positions)?;
+    check_len("normals", counts.0, normals)?;
+    check_len("triangles", counts.1, tris)
 }
 
 /// `p = centre + radius·n` in `f32` (`n` unit).

@@ -47,9 +47,9 @@ pub fn vertex_tangents(
     out: &mut [[f32; 4]],
 ) -> Result<(), MeshError> {
     let n = positions.len();
-    check_len(n, normals.len())?;
-    check_len(n, uvs.len())?;
-    check_len(n, out.len())?;
+    check_len("normals", n, normals.len())?;
+    check_len("uvs", n, uvs.len())?;
+    check_len("out", n, out.len())?;
     for p in positions.iter().chain(normals.iter()) {
         for &c in p {
             finite("positions/normals", c)?;
@@ -246,7 +246,7 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 /// # Ok::<(), fixshade::mesh::MeshError>(())
 /// ```
 pub fn tangents_to_q14(tangents: &[[f32; 4]], out: &mut [[i16; 4]]) -> Result<(), MeshError> {
-    check_len(tangents.len(), out.len())?;
+    check_len("out", tangents.len(), out.len())?;
     for t in tangents {
         for &c in t {
             finite("tangents", c)?;
@@ -294,11 +294,19 @@ mod tests {
         );
         assert_eq!(
             vertex_tangents(&pos, &nrm, &uv[..3], &tris, &mut out),
-            Err(MeshError::BufferTooSmall { needed: 4, got: 3 })
+            Err(MeshError::BufferTooSmall {
+                which: "uvs",
+                needed: 4,
+                got: 3
+            })
         );
         assert_eq!(
             vertex_tangents(&pos, &nrm, &uv, &tris, &mut out[..2]),
-            Err(MeshError::BufferTooSmall { needed: 4, got: 2 })
+            Err(MeshError::BufferTooSmall {
+                which: "out",
+                needed: 4,
+                got: 2
+            })
         );
         // all texture coordinates equal: degenerate, nothing written
         let flat = [[0.5, 0.5]; 4];

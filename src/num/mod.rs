@@ -33,14 +33,17 @@
 
 mod float;
 mod geo;
+mod matrix;
 mod pow;
 mod q14;
 mod q30;
+pub(crate) mod recip;
 pub(crate) mod rsqrt;
 pub(crate) mod wide;
 
 pub use float::{F32Fast, RampF32, F32_LIMIT};
 pub use geo::{GeoScalar, InvQuadratic16};
+pub use matrix::Mat4;
 pub use pow::Exponent;
 pub use q14::RampQ14;
 pub use q14::Q14;

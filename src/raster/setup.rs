@@ -309,7 +309,6 @@ impl Setup {
             c0: b.c0,
             lo: lo << ATTR_FRAC,
             hi: hi << ATTR_FRAC,
-            sa: sa as u32,
             spread: d1.unsigned_abs() + d2.unsigned_abs(),
         }
     }
@@ -340,13 +339,24 @@ pub struct Plane {
     /// The vertex range (relative values).
     pub(crate) lo: i32,
     pub(crate) hi: i32,
-    /// The shift applied to the attribute's differences.
-    pub(crate) sa: u32,
     /// `|Δa₁| + |Δa₂|` after the shift (for [`Setup::err`]).
     pub(crate) spread: u32,
 }
 
 impl Plane {
+    /// The plane with `base` added to its values and its vertex range (a
+    /// plane of [`Setup::plane`] is relative to the top vertex; `base` is the
+    /// top vertex's value with [`ATTR_FRAC`] bits, so that the result holds
+    /// absolute values). For planes whose differences needed no shift
+    /// (`sa = 0`).
+    #[inline(always)]
+    pub(crate) fn absolute(mut self, base: i32) -> Plane {
+        self.row = self.row.wrapping_add(base);
+        self.lo = self.lo.wrapping_add(base);
+        self.hi = self.hi.wrapping_add(base);
+        self
+    }
+
     /// Value at the centre of pixel `x` of the current row.
     #[inline(always)]
     pub(crate) fn at(&self, x: i32) -> i32 {

@@ -10,7 +10,7 @@
 use super::{Layout, RenderError};
 
 /// The sorted bins of one mesh (views into the caller's slice).
-#[derive(Debug)]
+#[derive(Debug, Default)]
 pub(crate) struct Bins<'a> {
     heads: &'a [u16],
     indices: &'a [u16],
@@ -38,7 +38,7 @@ impl<'a> Bins<'a> {
 ///
 /// [`RenderError::BufferTooSmall`] when `buf` cannot hold the heads, the
 /// crossings and one index per visible triangle; [`RenderError::TooManyVertices`]
-/// for more than 65535 triangles.
+/// for more than 65535 triangles (a mesh and its refinement).
 pub(crate) fn sort<'a>(
     layout: &Layout,
     n: usize,
@@ -46,19 +46,19 @@ pub(crate) fn sort<'a>(
     buf: &'a mut [u16],
 ) -> Result<Bins<'a>, RenderError> {
     if n > u16::MAX as usize {
-        return Err(RenderError::TooManyVertices);
+        return Err(RenderError::TooManyVertices { needed: n });
     }
     let bands = layout.bands() as usize;
     let head_len = bands + 1;
     if buf.len() < 2 * head_len {
         return Err(RenderError::BufferTooSmall {
-            buffer: "bins",
+            which: "bins",
             needed: 2 * head_len,
             got: buf.len(),
         });
     }
     let too_small = RenderError::BufferTooSmall {
-        buffer: "bins",
+        which: "bins",
         needed: 2 * head_len,
         got: buf.len(),
     };
@@ -93,7 +93,7 @@ pub(crate) fn sort<'a>(
     }
     if indices.len() < visible {
         return Err(RenderError::BufferTooSmall {
-            buffer: "bins",
+            which: "bins",
             needed: 2 * head_len + visible,
             got: 2 * head_len + indices.len(),
         });

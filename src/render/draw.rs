@@ -1,16 +1,14 @@
 //! A mesh prepared for one frame and drawn band by band.
 
 use super::bins::{self, Bins};
-use super::hclip::{self, HPoint, HPolygon};
 use super::refine::{self, Refine, RefineStats, Refined};
+use super::tri::{self, ClipCorner, Corner};
 use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
-use crate::camera::{Clip, MeshTransform, Orthographic, Projection};
+use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
-use crate::num::wide::lerp_i32;
-use crate::raster::clip::{ClipPoint, Polygon};
-use crate::raster::setup::at3;
-use crate::raster::{Cull, Setup, Walker, ATTR_FRAC, SUBPIXEL_BITS};
+use crate::raster::clip::{ClipSpace, Screen};
+use crate::raster::Cull;
 use crate::shade::Kernel;
 
 /// What a triangle that continues into the next band keeps: its index and
@@ -114,24 +112,20 @@ impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize> Defau
 ///   band boundary (none for a full frame); [`MeshDraw::new`] reports the need.
 ///
 /// The projection `P` comes from the transform's type:
-/// - [`Orthographic`]: no division, no clip-space code linked; triangles
-///   reaching beyond the set-up window are clipped to it exactly.
+/// - [`Orthographic`]: values interpolated screen-linearly (exact for an
+///   orthographic projection), no division, no perspective code linked;
+///   triangles reaching beyond the set-up window are clipped to it.
 /// - [`Perspective`](crate::camera::Perspective): each vertex is divided by
-///   its `w` once per frame. A triangle with a vertex behind the near plane or
-///   beyond the window is clipped in clip space to the near plane and to a
-///   guard band of ±2^26 sub-pixels ([`GUARD`](crate::camera::GUARD)), then
-///   to the window; every cut point is computed from its edge's endpoints in
-///   a canonical order, so meshes stay watertight across the near plane (the
-///   property tests render random sheets through it and count every pixel).
-///   Depth (`z/w`) is affine on the screen, so it is interpolated exactly;
-///   the shading attributes (colours, normals, eye positions) are
-///   interpolated affinely on the screen within each triangle, not
-///   perspective-correctly: exact at the vertices, off inside a triangle by
-///   the classic perspective distortion, which grows with the triangle's
-///   depth range (negligible for the small triangles of a tessellated mesh,
-///   visible on a large one spanning a wide depth range: subdivide it, or
-///   use the per-triangle [`Shading::draw_perspective`](crate::shade::Shading::draw_perspective)).
-///   No far-plane clipping: depth saturates at 65535 beyond it.
+///   its `w` once per frame; every value a kernel interpolates (colours,
+///   normals, eye positions, texture coordinates) is perspective-correct, as
+///   OpenGL interpolates it (exact at every 8th pixel of a run, linear in
+///   between: see [`interp`](crate::raster::interp)); depth (`z/w`) is affine
+///   on the screen and interpolated exactly. A triangle with a vertex behind
+///   the near plane or beyond the window is clipped in clip space to the near
+///   plane and to the window; every cut point is computed from its edge's
+///   endpoints in a canonical order, so meshes stay watertight across the
+///   near plane (the property tests render random sheets through it and count
+///   every pixel). No far-plane clipping: depth saturates at 65535 beyond it.
 pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
     mesh: Mesh<'a>,
     transform: MeshTransform<P>,
@@ -145,6 +139,7 @@ pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
     half: usize,
     /// Silhouette refinement's vertices and triangles (empty without).
     refined: Refined<'a, K::Vertex>,
+    cull: Cull,
 }
 
 impl<K: Kernel, P: Projection> core::fmt::Debug for MeshDraw<'_, K, P> {
@@ -157,19 +152,17 @@ impl<K: Kernel, P: Projection> core::fmt::Debug for MeshDraw<'_, K, P> {
     }
 }
 
-impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P>
-where
-    K::Vertex: Lerp,
-{
+impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// Runs the vertex stage and bins the triangles of `mesh` seen through
     /// `transform`, for a frame of `layout`, drawn with `shader` (back faces
     /// culled; see [`MeshDraw::with_options`]).
     ///
     /// # Errors
     ///
-    /// [`RenderError::TooManyVertices`] when the mesh has more vertices than
-    /// the cache holds; [`RenderError::BufferTooSmall`] for too few bins or
-    /// resume records. Nothing is drawn then.
+    /// [`RenderError::BufferTooSmall`] for a vertex cache shorter than the
+    /// mesh's vertices, too few bins or resume records;
+    /// [`RenderError::MissingAttribute`] when the shader reads texture
+    /// coordinates or tangents the mesh lacks. Nothing is drawn then.
     pub fn new(
         layout: Layout,
         mesh: Mesh<'a>,
@@ -200,37 +193,7 @@ where
         opts: DrawOptions,
         memory: MeshMemory<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
-        let MeshMemory {
-            vertices: cache,
-            bins,
-            carry,
-        } = memory;
-        if cache.len() < mesh.vertex_count() {
-            return Err(RenderError::TooManyVertices);
-        }
-        vertex::stage(&mesh, transform, &kernel, cache);
-        let cache: &'a [CachedVertex<K::Vertex>] = cache;
-        let classify = |t: usize| classify(&mesh, transform, cache, &layout, opts.cull, t);
-        let bins = bins::sort(&layout, mesh.triangle_count(), classify, bins)?;
-        if carry.len() < 2 * bins.crossing {
-            return Err(RenderError::BufferTooSmall {
-                buffer: "carry",
-                needed: 2 * bins.crossing,
-                got: carry.len(),
-            });
-        }
-        Ok(MeshDraw {
-            mesh,
-            transform: *transform,
-            kernel,
-            layout,
-            cache,
-            bins,
-            carry,
-            carried: 0,
-            half: 0,
-            refined: Refined::default(),
-        })
+        Self::prepare(layout, mesh, transform, kernel, opts, memory, None)
     }
 
     /// [`MeshDraw::with_options`] with silhouette refinement: after the vertex
@@ -286,72 +249,76 @@ where
         memory: MeshMemory<'a, K::Vertex>,
         refine: Refine<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
+        Self::prepare(layout, mesh, transform, kernel, opts, memory, Some(refine))
+    }
+
+    /// The vertex stage, the optional refinement and the bins.
+    fn prepare(
+        layout: Layout,
+        mesh: Mesh<'a>,
+        transform: &MeshTransform<P>,
+        kernel: K,
+        opts: DrawOptions,
+        memory: MeshMemory<'a, K::Vertex>,
+        refine: Option<Refine<'a, K::Vertex>>,
+    ) -> Result<Self, RenderError> {
         let MeshMemory {
             vertices: cache,
             bins,
             carry,
         } = memory;
-        if cache.len() < mesh.vertex_count() {
-            return Err(RenderError::TooManyVertices);
+        if K::NEEDS_TEXCOORD && mesh.texcoords().is_empty() {
+            return Err(RenderError::MissingAttribute("texture coordinates"));
         }
-        vertex::stage(&mesh, transform, &kernel, cache);
-        let refined = refine::build(&mesh, transform, &kernel, refine).map_err(|e| {
-            RenderError::BufferTooSmall {
-                buffer: e.buffer,
-                needed: e.needed,
-                got: e.got,
-            }
-        })?;
-        let cache: &'a [CachedVertex<K::Vertex>] = cache;
-        let nt = mesh.triangle_count();
-        let nv = mesh.vertex_count();
-        let vert = |i: usize| {
-            if i < nv {
-                cache.get(i)
-            } else {
-                refined.vertices.get(i - nv)
-            }
-        };
-        let pos = |i: usize| {
-            if i < nv {
-                mesh.positions().get(i).copied()
-            } else {
-                refined.positions.get(i - nv).copied()
-            }
-        };
-        let classify = |t: usize| {
-            if t < nt {
-                if refined.replaced(t, *mesh.triangles().get(t)?) {
-                    return None;
-                }
-                classify(&mesh, transform, cache, &layout, opts.cull, t)
-            } else {
-                let r = refined.triangles.get(t - nt)?;
-                let idx = [r[0], r[1], r[2]].map(usize::from);
-                classify_idx(idx, vert, pos, transform, &layout, opts.cull)
-            }
-        };
-        let total = nt.saturating_add(refined.triangles.len());
-        let bins = bins::sort(&layout, total, classify, bins)?;
-        if carry.len() < 2 * bins.crossing {
+        if K::NEEDS_TANGENT && mesh.tangents().is_empty() {
+            return Err(RenderError::MissingAttribute("tangents"));
+        }
+        if cache.len() < mesh.vertex_count() {
             return Err(RenderError::BufferTooSmall {
-                buffer: "carry",
-                needed: 2 * bins.crossing,
-                got: carry.len(),
+                which: "vertex cache",
+                needed: mesh.vertex_count(),
+                got: cache.len(),
             });
         }
-        Ok(MeshDraw {
+        vertex::stage(&mesh, transform, &kernel, cache);
+        let refined = match refine {
+            Some(r) => refine::build(&mesh, transform, &kernel, r).map_err(|e| {
+                RenderError::BufferTooSmall {
+                    which: e.buffer,
+                    needed: e.needed,
+                    got: e.got,
+                }
+            })?,
+            None => Refined::default(),
+        };
+        let mut draw = MeshDraw {
             mesh,
             transform: *transform,
             kernel,
             layout,
             cache,
-            bins,
-            carry,
+            bins: Bins::default(),
+            carry: &mut [],
             carried: 0,
             half: 0,
             refined,
-        })
+            cull: opts.cull,
+        };
+        let total = mesh
+            .triangle_count()
+            .saturating_add(draw.refined.triangles.len());
+        let classify = |t: usize| draw.classify(t);
+        let sorted = bins::sort(&layout, total, classify, bins)?;
+        if carry.len() < 2 * sorted.crossing {
+            return Err(RenderError::BufferTooSmall {
+                which: "carry",
+                needed: 2 * sorted.crossing,
+                got: carry.len(),
+            });
+        }
+        draw.bins = sorted;
+        draw.carry = carry;
+        Ok(draw)
     }
 
     /// What this frame's silhouette refinement produced (zeros without).
@@ -359,8 +326,14 @@ where
         self.refined.stats
     }
 
+    /// Resume records this frame needs (twice the largest number of
+    /// triangles crossing one band boundary).
+    pub fn carry_needed(&self) -> usize {
+        2 * self.bins.crossing
+    }
+
     /// Vertex `i` of the mesh and the refinement's new vertices after it.
-    #[inline]
+    #[inline(always)]
     fn vertex(&self, i: usize) -> Option<&CachedVertex<K::Vertex>> {
         let nv = self.mesh.vertex_count();
         if i < nv {
@@ -371,7 +344,7 @@ where
     }
 
     /// The raw position of vertex `i` (mesh, then new vertices).
-    #[inline]
+    #[inline(always)]
     fn position(&self, i: usize) -> Option<[i16; 3]> {
         let nv = self.mesh.vertex_count();
         if i < nv {
@@ -381,95 +354,112 @@ where
         }
     }
 
-    /// A triangle replacing a refined one (`tri` beyond the mesh's
-    /// triangles), drawn like [`MeshDraw::triangle`].
-    #[inline(never)]
-    fn refined_triangle(
-        &self,
-        tri: u16,
-        resume: Option<(i32, i32)>,
-        band: &mut BandView<'_, K::Color>,
-    ) -> Option<Carry> {
-        let r = self
-            .refined
-            .triangles
-            .get(usize::from(tri).checked_sub(self.mesh.triangle_count())?)?;
-        let idx = [r[0], r[1], r[2]].map(usize::from);
-        let v = [
-            self.vertex(idx[0])?,
-            self.vertex(idx[1])?,
-            self.vertex(idx[2])?,
-        ];
-        if !(v[0].inside() && v[1].inside() && v[2].inside()) {
-            return self.clipped(tri, idx, band);
-        }
-        let xy = v.map(|c| (i32::from(c.x), i32::from(c.y)));
-        let eye = if K::NEEDS_POSITION {
-            idx.map(|i| self.position(i).map_or([0; 3], |p| self.transform.eye(p)))
+    /// The vertices of triangle `t`: a mesh triangle (`None` when the
+    /// refinement replaces it), then the refinement's.
+    #[inline(always)]
+    fn indices(&self, t: usize) -> Option<[usize; 3]> {
+        let nt = self.mesh.triangle_count();
+        if t < nt {
+            let idx = *self.mesh.triangles().get(t)?;
+            Some(idx.map(usize::from))
         } else {
-            [[0; 3]; 3]
-        };
-        let next = self.draw_setup(
-            xy,
-            [v[0].z, v[1].z, v[2].z],
-            [&v[0].v, &v[1].v, &v[2].v],
-            eye,
-            resume,
-            band,
-        )?;
-        Some(Carry {
-            tri,
-            long: next.0 as i16,
-            short: next.1 as i16,
-        })
+            let r = self.refined.triangles.get(t - nt)?;
+            Some([r[0], r[1], r[2]].map(usize::from))
+        }
     }
 
-    /// Resume records this frame needs (twice the largest number of
-    /// triangles crossing one band boundary).
-    pub fn carry_needed(&self) -> usize {
-        2 * self.bins.crossing
+    /// The clip space of the transform.
+    #[inline(always)]
+    fn clip_space(&self) -> ClipSpace {
+        ClipSpace {
+            centre: if P::PERSPECTIVE {
+                self.transform.centre_sub()
+            } else {
+                [0, 0]
+            },
+            near: self.transform.near_units(),
+            perspective: P::PERSPECTIVE,
+        }
+    }
+
+    /// The rows of triangle `t` in the frame, or `None` when it is culled,
+    /// replaced, degenerate or outside the frame.
+    #[inline(always)]
+    fn classify(&self, t: usize) -> Option<(u32, u32)> {
+        let nt = self.mesh.triangle_count();
+        if t < nt {
+            let idx = *self.mesh.triangles().get(t)?;
+            if self.refined.replaced(t, idx) {
+                return None;
+            }
+        }
+        let idx = self.indices(t)?;
+        let v = [self.vertex(idx[0])?, self.vertex(idx[1])?, self.vertex(idx[2])?];
+        let inside = v[0].inside() && v[1].inside() && v[2].inside();
+        let clip = || {
+            let c = [
+                self.transform.clip_point(self.position(idx[0])?),
+                self.transform.clip_point(self.position(idx[1])?),
+                self.transform.clip_point(self.position(idx[2])?),
+            ];
+            Some((c, self.clip_space()))
+        };
+        tri::classify(
+            inside.then(|| v.map(|c| c.screen())),
+            clip,
+            self.cull,
+            self.layout.width(),
+            self.layout.height(),
+        )
     }
 
     /// Draws triangle `tri` into `band`, starting at the band's first row when
-    /// `resume` holds its edge columns there; the edge columns at the next
-    /// band's first row when it continues.
+    /// `resume` holds its edge columns there; what the next band needs when
+    /// it continues.
+    #[inline(always)]
     fn triangle(
         &self,
         tri: u16,
         resume: Option<(i32, i32)>,
         band: &mut BandView<'_, K::Color>,
     ) -> Option<Carry> {
-        let Some(idx) = self.mesh.triangles().get(tri as usize) else {
-            return self.refined_triangle(tri, resume, band);
-        };
-        let idx = idx.map(usize::from);
+        let idx = self.indices(usize::from(tri))?;
         let v = [
-            self.cache.get(idx[0])?,
-            self.cache.get(idx[1])?,
-            self.cache.get(idx[2])?,
+            self.vertex(idx[0])?,
+            self.vertex(idx[1])?,
+            self.vertex(idx[2])?,
         ];
-        if !(v[0].inside() && v[1].inside() && v[2].inside()) {
-            return self.clipped(tri, idx, band);
-        }
-        let xy = v.map(|c| (i32::from(c.x), i32::from(c.y)));
         let eye = if K::NEEDS_POSITION {
-            idx.map(|i| {
-                self.mesh
-                    .positions()
-                    .get(i)
-                    .map_or([0; 3], |p| self.transform.eye(*p))
-            })
+            idx.map(|i| self.position(i).map_or([0; 3], |p| self.transform.eye(p)))
         } else {
             [[0; 3]; 3]
         };
-        let next = self.draw_setup(
-            xy,
-            [v[0].z, v[1].z, v[2].z],
-            [&v[0].v, &v[1].v, &v[2].v],
-            eye,
-            resume,
-            band,
-        )?;
+        let (t, var) = self.kernel.triangle([&v[0].v, &v[1].v, &v[2].v], &eye);
+        if !(v[0].inside() && v[1].inside() && v[2].inside()) {
+            return self.clipped(tri, idx, &t, &var, band);
+        }
+        let w = if P::PERSPECTIVE {
+            idx.map(|i| {
+                self.position(i)
+                    .map_or(1, |p| self.transform.clip_point(p).w)
+            })
+        } else {
+            [1; 3]
+        };
+        let c: [Corner<K::Varyings>; 3] = core::array::from_fn(|k| Corner {
+            s: Screen {
+                x: i32::from(v[k].x),
+                y: i32::from(v[k].y),
+                z: v[k].z,
+                w: w[k],
+            },
+            v: var[k],
+        });
+        let next = if P::PERSPECTIVE {
+            tri::draw::<K, true>(&self.kernel, &t, &c, resume, band)
+        } else {
+            tri::draw::<K, false>(&self.kernel, &t, &c, resume, band)
+        }?;
         Some(Carry {
             tri,
             long: next.0 as i16,
@@ -477,135 +467,39 @@ where
         })
     }
 
-    /// Sets up and draws one triangle inside the window; the edge columns at
-    /// the next band's first row when it continues.
-    fn draw_setup(
-        &self,
-        xy: [(i32, i32); 3],
-        z: [u16; 3],
-        pay: [&K::Vertex; 3],
-        eye: [[i32; 3]; 3],
-        resume: Option<(i32, i32)>,
-        band: &mut BandView<'_, K::Color>,
-    ) -> Option<(i32, i32)> {
-        let mut s = Setup::new(xy, Cull::None)?;
-        s.prepare_planes();
-        let o = s.order;
-        let row0 = s.rows.0;
-        let mut zp = s.plane(o.map(|i| i32::from(at3(&z, i))));
-        // depth with ATTR_FRAC bits, + ½ so that the shift rounds
-        let zbase = (i32::from(at3(&z, at3(&o, s.tmb[0]))) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
-        let (mut t, kclamp) =
-            self.kernel
-                .triangle(&s, o.map(|i| at3(&pay, i)), o.map(|i| at3(&eye, i)));
-        // depth values must stay in 0..65536 (with ATTR_FRAC bits)
-        let clamp =
-            kclamp || !crate::shade::within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
-        let rows = band.rows();
-        let mut w = match resume {
-            Some(cols) => Walker::resume(&s, rows.start, cols),
-            None => s.walker(rows.start),
-        };
-        let skip = w.y - row0;
-        if skip > 0 {
-            K::skip_rows(&mut t, skip);
-            zp.skip_rows(skip);
-        }
-        let last = w.last.min(rows.end - 1);
-        zp.row = zp.row.wrapping_add(zbase);
-        if clamp {
-            self.rows::<true>(&mut w, last, &mut t, &mut zp, band);
-        } else {
-            self.rows::<false>(&mut w, last, &mut t, &mut zp, band);
-        }
-        w.more().then(|| w.snapshot())
-    }
-
-    /// The rows `w.y..=last` of a set-up triangle: the walker's columns, the
-    /// depth test of each run (the depth plane `zp` holds absolute values), the
-    /// kernel on the passing pixels (all of them without a depth buffer: a
-    /// branch per row, not a second copy of the loop). `CLAMP`: values clamped
-    /// per run.
-    #[inline(always)]
-    fn rows<const CLAMP: bool>(
-        &self,
-        w: &mut Walker,
-        last: i32,
-        t: &mut K::Triangle,
-        zp: &mut crate::raster::Plane,
-        band: &mut BandView<'_, K::Color>,
-    ) {
-        let width = band.width as i32;
-        let start = band.rows.start;
-        let mut row = (w.y - start) as usize * band.width as usize;
-        while w.y <= last {
-            let y = w.y;
-            let (lo, hi) = w.next();
-            let (lo, hi) = (lo.max(0), hi.min(width - 1));
-            if lo <= hi {
-                let n = (hi - lo + 1) as usize;
-                let at = row + lo as usize;
-                if let Some(color) = band.color.get_mut(at..at + n) {
-                    if let Some(d) = band.depth.as_deref_mut() {
-                        let (z0, dz) = crate::shade::start::<CLAMP>(zp, lo, n);
-                        if let Some(depth) = d.get_mut(at..at + n) {
-                            crate::shade::depth_runs(z0, dz, depth, |k0, k1| {
-                                if let Some(c) = color.get_mut(k0..k1) {
-                                    self.kernel.shade::<CLAMP>(t, lo + k0 as i32, y, c);
-                                }
-                            });
-                        }
-                    } else {
-                        self.kernel.shade::<CLAMP>(t, lo, y, color);
-                    }
-                }
-            }
-            K::next_row(t);
-            zp.next_row();
-            row += band.width as usize;
-        }
-    }
-
     /// A triangle with a vertex outside the set-up window (or, in perspective,
-    /// behind the near plane): clipped in full precision (in clip space to the
-    /// near plane and the guard band, then to the window), the pieces drawn for
+    /// behind the near plane): clipped in clip space, the pieces drawn for
     /// this band; clipped and set up again in every band it continues into.
-    /// Never inlined: its polygons stay off the common path's stack.
     #[inline(never)]
     #[cold]
     fn clipped(
         &self,
         tri: u16,
         idx: [usize; 3],
+        t: &K::Triangle,
+        var: &[K::Varyings; 3],
         band: &mut BandView<'_, K::Color>,
     ) -> Option<Carry> {
-        let rows = band.rows();
-        let mut more = false;
-        pieces(
-            |i| self.position(i),
-            &self.transform,
-            |i| self.vertex(i).map(|c| c.v),
-            K::NEEDS_POSITION,
-            idx,
-            |pts| {
-                let mut poly = Polygon::new(pts);
-                poly.clip_to_window();
-                let mut t = *pts;
-                let mut k = 0;
-                while poly.fan(k, &mut t) {
-                    k += 1;
-                    // the pieces' rows beyond this band are drawn in later bands
-                    let bottom = t.iter().map(|p| p.y).max().unwrap_or(0);
-                    if ((bottom - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS) >= rows.end {
-                        more = true;
-                    }
-                    let xy = t.map(|p| (p.x, p.y));
-                    let z = t.map(|p| p.z.clamp(0, 65535) as u16);
-                    let eye = t.map(|p| p.eye);
-                    let _ = self.draw_setup(xy, z, [&t[0].v, &t[1].v, &t[2].v], eye, None, band);
-                }
+        let c: [ClipCorner<K::Varyings>; 3] = [
+            ClipCorner {
+                c: self.transform.clip_point(self.position(idx[0])?),
+                v: var[0],
             },
-        )?;
+            ClipCorner {
+                c: self.transform.clip_point(self.position(idx[1])?),
+                v: var[1],
+            },
+            ClipCorner {
+                c: self.transform.clip_point(self.position(idx[2])?),
+                v: var[2],
+            },
+        ];
+        let space = self.clip_space();
+        let more = if P::PERSPECTIVE {
+            tri::draw_clipped::<K, true>(&self.kernel, t, &c, &space, band)
+        } else {
+            tri::draw_clipped::<K, false>(&self.kernel, t, &c, &space, band)
+        };
         more.then_some(Carry {
             tri,
             long: Carry::CLIPPED,
@@ -614,10 +508,11 @@ where
     }
 }
 
-impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P>
-where
-    K::Vertex: Lerp,
-{
+impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
+    fn layout(&self) -> Option<Layout> {
+        Some(self.layout)
+    }
+
     fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
         let rows = band.rows();
         let b = self.layout.band_of(rows.start.max(0) as u32);
@@ -666,257 +561,4 @@ where
         self.half ^= 1;
         self.carry = carry;
     }
-}
-
-/// A vertex of the clipping path.
-#[derive(Clone, Copy, Debug, Default)]
-struct Point<V> {
-    x: i32,
-    y: i32,
-    z: i32,
-    v: V,
-    eye: [i32; 3],
-}
-
-/// A vertex payload the clipping path can interpolate.
-pub trait Lerp: Copy {
-    /// The payload `num/den` of the way from `self` to `other`.
-    fn lerp(&self, other: &Self, num: u32, den: u32) -> Self;
-}
-
-impl Lerp for [u16; 3] {
-    fn lerp(&self, o: &Self, num: u32, den: u32) -> Self {
-        core::array::from_fn(|i| lerp_i32(i32::from(self[i]), i32::from(o[i]), num, den) as u16)
-    }
-}
-
-impl Lerp for [i16; 3] {
-    fn lerp(&self, o: &Self, num: u32, den: u32) -> Self {
-        core::array::from_fn(|i| lerp_i32(i32::from(self[i]), i32::from(o[i]), num, den) as i16)
-    }
-}
-
-impl<V: Lerp + Default> ClipPoint for Point<V> {
-    #[inline]
-    fn xy(&self) -> (i32, i32) {
-        (self.x, self.y)
-    }
-
-    fn cut(&self, o: &Self, num: u32, den: u32, xy: (i32, i32)) -> Self {
-        let l = |a: i32, b: i32| lerp_i32(a, b, num, den);
-        Point {
-            x: xy.0,
-            y: xy.1,
-            z: l(self.z, o.z),
-            v: self.v.lerp(&o.v, num, den),
-            eye: core::array::from_fn(|i| l(self.eye[i], o.eye[i])),
-        }
-    }
-}
-
-/// A vertex of the perspective clipping path, in clip space.
-#[derive(Clone, Copy, Debug, Default)]
-struct HVertex<V> {
-    c: Clip,
-    v: V,
-    eye: [i32; 3],
-}
-
-impl<V: Lerp + Default> HPoint for HVertex<V> {
-    #[inline]
-    fn clip(&self) -> Clip {
-        self.c
-    }
-
-    fn hcut(&self, o: &Self, num: u32, den: u32, c: Clip) -> Self {
-        HVertex {
-            c,
-            v: self.v.lerp(&o.v, num, den),
-            eye: core::array::from_fn(|i| lerp_i32(self.eye[i], o.eye[i], num, den)),
-        }
-    }
-}
-
-impl Lerp for () {
-    fn lerp(&self, _: &Self, _: u32, _: u32) -> Self {}
-}
-
-/// Calls `f` with the screen triangles of mesh triangle `idx`, before window
-/// clipping: the triangle itself (orthographic), or the fan of its polygon
-/// clipped to the near plane and the guard band (perspective). `payload(i)`
-/// gives vertex `i`'s payload; eye positions are computed when `eye`.
-/// `None` when an index or payload lookup fails.
-fn pieces<V: Lerp + Default, P: Projection>(
-    pos: impl Fn(usize) -> Option<[i16; 3]>,
-    transform: &MeshTransform<P>,
-    payload: impl Fn(usize) -> Option<V>,
-    eye: bool,
-    idx: [usize; 3],
-    mut f: impl FnMut(&[Point<V>; 3]),
-) -> Option<()> {
-    let pos = [pos(idx[0])?, pos(idx[1])?, pos(idx[2])?];
-    let pay = [payload(idx[0])?, payload(idx[1])?, payload(idx[2])?];
-    let eyes = pos.map(|p| if eye { transform.eye(p) } else { [0; 3] });
-    if P::PERSPECTIVE {
-        let hv = [0, 1, 2].map(|k| HVertex {
-            c: transform.clip_coords(pos[k]),
-            v: pay[k],
-            eye: eyes[k],
-        });
-        let poly = HPolygon::clipped(&hv, transform.near_units());
-        let centre = transform.centre_sub();
-        let screen = |h: &HVertex<V>| {
-            let s = crate::camera::divide(centre, h.c);
-            Point {
-                x: s.x,
-                y: s.y,
-                z: i32::from(s.z),
-                v: h.v,
-                eye: h.eye,
-            }
-        };
-        let vs = poly.vertices();
-        for k in 1..vs.len().saturating_sub(1) {
-            f(&[screen(&vs[0]), screen(&vs[k]), screen(&vs[k + 1])]);
-        }
-    } else {
-        let mut pts = [Point::<V>::default(); 3];
-        for k in 0..3 {
-            let s = transform.screen(pos[k])?;
-            pts[k] = Point {
-                x: s.x,
-                y: s.y,
-                z: i32::from(s.z),
-                v: pay[k],
-                eye: eyes[k],
-            };
-        }
-        f(&pts);
-    }
-    Some(())
-}
-
-/// The rows of triangle `t` clamped to the frame, or `None` when it is culled,
-/// degenerate or outside the frame.
-#[inline(always)]
-fn classify<V, P: Projection>(
-    mesh: &Mesh<'_>,
-    transform: &MeshTransform<P>,
-    cache: &[CachedVertex<V>],
-    layout: &Layout,
-    cull: Cull,
-    t: usize,
-) -> Option<(u32, u32)> {
-    let idx = mesh.triangles().get(t)?.map(usize::from);
-    classify_idx(
-        idx,
-        |i| cache.get(i),
-        |i| mesh.positions().get(i).copied(),
-        transform,
-        layout,
-        cull,
-    )
-}
-
-/// [`classify`] for the triangle of vertices `idx`, looked up with `vert`
-/// (cache entries) and `pos` (raw positions).
-#[inline(always)]
-fn classify_idx<'c, V: 'c, P: Projection>(
-    idx: [usize; 3],
-    vert: impl Fn(usize) -> Option<&'c CachedVertex<V>>,
-    pos: impl Fn(usize) -> Option<[i16; 3]>,
-    transform: &MeshTransform<P>,
-    layout: &Layout,
-    cull: Cull,
-) -> Option<(u32, u32)> {
-    let v = [vert(idx[0])?, vert(idx[1])?, vert(idx[2])?];
-    let ((xmin, xmax, ymin, ymax), front) = if v[0].inside() && v[1].inside() && v[2].inside() {
-        let p = v.map(|c| (i32::from(c.x), i32::from(c.y)));
-        // A > 0: clockwise on the screen (a back face); products < 2^30
-        let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0);
-        if area == 0 {
-            return None;
-        }
-        let bbox = (
-            p[0].0.min(p[1].0).min(p[2].0),
-            p[0].0.max(p[1].0).max(p[2].0),
-            p[0].1.min(p[1].1).min(p[2].1),
-            p[0].1.max(p[1].1).max(p[2].1),
-        );
-        (bbox, area < 0)
-    } else {
-        let front = if P::PERSPECTIVE {
-            hclip::facing([
-                transform.clip_coords(pos(idx[0])?),
-                transform.clip_coords(pos(idx[1])?),
-                transform.clip_coords(pos(idx[2])?),
-            ])?
-        } else {
-            let p = idx.map(|i| {
-                pos(i)
-                    .and_then(|p| transform.screen(p))
-                    .map_or((0, 0), |s| (s.x, s.y))
-            });
-            let d1 = (
-                i64::from(p[1].0) - i64::from(p[0].0),
-                i64::from(p[1].1) - i64::from(p[0].1),
-            );
-            let d2 = (
-                i64::from(p[2].0) - i64::from(p[0].0),
-                i64::from(p[2].1) - i64::from(p[0].1),
-            );
-            match crate::raster::clip::cmp_products(d1.0, d2.1, d1.1, d2.0) {
-                core::cmp::Ordering::Equal => return None,
-                o => o == core::cmp::Ordering::Less,
-            }
-        };
-        // the bounding box of what remains after clipping in clip space
-        let mut bbox = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
-        pieces(
-            &pos,
-            transform,
-            |_| Some(()),
-            false,
-            idx,
-            |t| {
-                for p in t {
-                    bbox = (
-                        bbox.0.min(p.x),
-                        bbox.1.max(p.x),
-                        bbox.2.min(p.y),
-                        bbox.3.max(p.y),
-                    );
-                }
-            },
-        )?;
-        if bbox.0 > bbox.1 {
-            return None;
-        }
-        (bbox, front)
-    };
-    let culled = match cull {
-        Cull::None => false,
-        Cull::Back => !front,
-        Cull::Front => front,
-    };
-    if culled {
-        return None;
-    }
-    let half = 1 << (SUBPIXEL_BITS - 1);
-    // rows whose centre lies in [ymin, ymax], columns likewise
-    let r0 = (ymin
-        .saturating_sub(half)
-        .saturating_add((1 << SUBPIXEL_BITS) - 1))
-        >> SUBPIXEL_BITS;
-    let r1 = ymax.saturating_sub(half) >> SUBPIXEL_BITS;
-    let c0 = (xmin
-        .saturating_sub(half)
-        .saturating_add((1 << SUBPIXEL_BITS) - 1))
-        >> SUBPIXEL_BITS;
-    let c1 = xmax.saturating_sub(half) >> SUBPIXEL_BITS;
-    let (h, w) = (layout.height() as i32, layout.width() as i32);
-    if r1 < 0 || r0 >= h || r0 > r1 || c1 < 0 || c0 >= w || c0 > c1 {
-        return None;
-    }
-    Some((r0.max(0) as u32, r1.min(h - 1) as u32))
 }

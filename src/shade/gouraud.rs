@@ -1,112 +1,21 @@
 //! Gouraud shading: lit per vertex, encoded colour channels interpolated.
 
-use super::{
-    eye_point, raster_draw, unit_normal, Encoder, GouraudShading, Kernel, ModeState, ShadeVertex,
-    Shader, Shading,
-};
+use super::{eye_point, unit_normal, Encoder, GouraudShading, Kernel, ModeState, Shader};
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
-use crate::num::Scalar;
-use crate::raster::setup::at3;
-use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC};
-use crate::target::{DepthBuffer, Framebuffer};
+use crate::raster::ATTR_FRAC;
 
 impl<I: Illuminate, C> ModeState<I, C> for GouraudShading {
     type State = ();
     fn state(_: &I) {}
 }
 
-impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, GouraudShading, I, E, C> {
-    /// The encoded channel values of a vertex lit with the shader's lighting
-    /// (what a Gouraud vertex carries; each below 2^15).
-    pub fn vertex_values(
-        &self,
-        position: &crate::vector::Point3<I::Scalar>,
-        normal: crate::vector::Vec3<I::Scalar>,
-    ) -> [i32; 3] {
-        self.encoder.vertex(self.lighting.shade(position, normal))
-    }
-}
-
-/// Steps the encoded channels along a run (per-triangle API: the values carry
-/// [`ATTR_FRAC`] fraction bits, see [`Shading::draw`]).
-impl<I: Illuminate, E: Encoder<C>, C: OutputColor> SpanShader<3>
-    for Shader<'_, GouraudShading, I, E, C>
-{
-    type Color = C;
-    #[inline]
-    fn shade_span(&mut self, x: i32, y: i32, start: &[i32; 3], step: &[i32; 3], out: &mut [C]) {
-        let mut a = *start;
-        for (x, p) in (x..).zip(out.iter_mut()) {
-            // pixel k: channels = start + k·step
-            *p = self.encoder.pixel(a, x, y);
-            for i in 0..3 {
-                a[i] = a[i].wrapping_add(step[i]);
-            }
-        }
-    }
-}
-
-impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor>
-    Shader<'_, GouraudShading, I, E, C>
-{
-    fn draw_any<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[ShadeVertex<S>; 3],
-        opts: &RasterOptions,
-        perspective: bool,
-    ) -> Result<DrawStats, F::Error> {
-        // vertex values < 2^15, with ATTR_FRAC bits: < 2^29 (the attribute limit)
-        let v = tri.map(|t| {
-            t.raster(
-                self.vertex_values(&t.position, t.normal)
-                    .map(|a| a << ATTR_FRAC),
-            )
-        });
-        raster_draw(fb, depth, &v, opts, self, perspective)
-    }
-}
-
-impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Shading<S>
-    for Shader<'_, GouraudShading, I, E, C>
-{
-    type Color = C;
-
-    fn draw<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[ShadeVertex<S>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error> {
-        self.draw_any(fb, depth, tri, opts, false)
-    }
-
-    fn draw_perspective<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[ShadeVertex<S>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error> {
-        self.draw_any(fb, depth, tri, opts, true)
-    }
-}
-
-/// A Gouraud triangle in the mesh renderer: the planes of the three channels.
-#[derive(Clone, Copy, Debug)]
-pub struct GouraudTriangle {
-    planes: [Plane; 3],
-    /// Top vertex values with [`ATTR_FRAC`] bits.
-    base: [i32; 3],
-}
-
 impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, GouraudShading, I, E, C> {
     type Color = C;
+    /// The encoded channel values of the lit vertex.
     type Vertex = [u16; 3];
-    type Triangle = GouraudTriangle;
+    type Varyings = [i32; 3];
+    type Triangle = ();
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
 
     #[inline]
@@ -119,50 +28,29 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
         self.encoder.vertex(c).map(|v| v.clamp(0, 0x7FFF) as u16)
     }
 
-    #[inline]
-    fn triangle(&self, s: &Setup, v: [&[u16; 3]; 3], _p: [[i32; 3]; 3]) -> (GouraudTriangle, bool) {
-        let t = s.tmb[0];
-        let planes = core::array::from_fn(|i| s.plane([v[0][i], v[1][i], v[2][i]].map(i32::from)));
-        let top = at3(&v, t);
-        let base: [i32; 3] = core::array::from_fn(|i| i32::from(top[i]) << ATTR_FRAC);
-        let clamp = (0..3).any(|i| !super::within(s, &planes[i], base[i], E::safe(i)));
-        (GouraudTriangle { planes, base }, clamp)
-    }
-
-    #[inline]
-    fn skip_rows(t: &mut GouraudTriangle, rows: i32) {
-        for p in t.planes.iter_mut() {
-            p.skip_rows(rows);
-        }
+    #[inline(always)]
+    fn triangle(&self, v: [&[u16; 3]; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; 3]; 3]) {
+        ((), v.map(|c| c.map(i32::from)))
     }
 
     #[inline(always)]
-    fn next_row(t: &mut GouraudTriangle) {
-        for p in t.planes.iter_mut() {
-            p.next_row();
-        }
+    fn safe(&self, i: usize) -> (i32, i32) {
+        E::safe(i)
     }
 
     #[inline(always)]
-    fn shade<const CLAMP: bool>(&self, t: &GouraudTriangle, x: i32, y: i32, color: &mut [C]) {
-        let n = color.len();
-        let mut a = [0i32; 3];
-        let mut d = [0i32; 3];
-        for i in 0..3 {
-            let (s, st) = super::start::<CLAMP>(&t.planes[i], x, n);
-            a[i] = t.base[i].wrapping_add(s);
-            d[i] = st;
-        }
+    fn span(&self, _t: &(), a: &[i32; 3], d: &[i32; 3], x: i32, y: i32, color: &mut [C]) {
         if C::IS_RGB565 && E::LINEAR {
-            return fill565(a, d, color);
+            return fill565(*a, *d, color);
         }
         let enc = self.encoder;
-        let mut x = x;
+        let (mut a, mut x) = (*a, x);
         for c in color.iter_mut() {
+            // pixel k: channels = start + k·step
             *c = enc.pixel(a, x, y);
             for (a, d) in a.iter_mut().zip(d) {
                 // the values after the last pixel are not used: wrapping is harmless
-                *a = a.wrapping_add(d);
+                *a = a.wrapping_add(*d);
             }
             if E::POSITIONAL {
                 x += 1;

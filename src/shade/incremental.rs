@@ -1,17 +1,14 @@
 //! Incremental Phong shading: the Cortex-M0 fast path for directional lights and a
 //! viewer at infinity in the Q14 tier.
 
-use super::{
-    raster_draw, IncrementalPhongShading, Kernel, Linear, ModeState, PhongShading, ShadeVertex,
-    Shader, Shading,
-};
+use super::phong::{lit_span, PhongTriangle};
+use super::{IncrementalPhongShading, Kernel, Linear, ModeState, Shader};
 use crate::color::{OutputColor, Rgb};
 use crate::light::DirectionalLight;
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
-use crate::num::{Scalar, Q14};
-use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC};
-use crate::target::{DepthBuffer, Framebuffer};
+use crate::num::Q14;
+use crate::raster::ATTR_FRAC;
 
 /// The models [`IncrementalPhongShading`](super::IncrementalPhongShading) evaluates: [`Lambert`] and [`BlinnPhong`].
 pub trait IncrementalModel: Model {}
@@ -164,30 +161,16 @@ where
     IncrementalPhongShading:
         ModeState<DirectionalLighting<NW, K, M>, C, State = IncrementalState<K>>,
 {
-    /// The rasterizer attributes of a vertex: the normal (Q26), then `N·L` and
-    /// `N·H` of every light (Q26; affine over the triangle like the normal, so the
-    /// rasterizer interpolates them exactly).
-    fn attrs(&self, v: &ShadeVertex<Q14<NW>>) -> ([i32; 3], [[i32; 2]; K]) {
-        let n = [
-            v.normal.x.to_attr(),
-            v.normal.y.to_attr(),
-            v.normal.z.to_attr(),
-        ];
-        let dot = |d: &[i32; 3]| {
-            // Q26 · Q14 ≫ 14 = Q26, |N·L| ≤ |N| ≤ 2
-            ((n[0] as i64 * d[0] as i64 + n[1] as i64 * d[1] as i64 + n[2] as i64 * d[2] as i64)
-                >> 14) as i32
-        };
-        (
-            n,
-            core::array::from_fn(|j| [dot(&self.state.lights[j].l), dot(&self.state.lights[j].h)]),
-        )
-    }
-
-    /// Shades one span; `start`/`step` are `[Nx, Ny, Nz, N·L₁, N·H₁, …]`.
-    fn span(&self, x: i32, y: i32, start: &[i32], step: &[i32], out: &mut [C]) {
+    /// Shades one span; `a`/`d` are `[Nx, Ny, Nz, N·L₁, N·H₁, …]` (Q14 with
+    /// [`ATTR_FRAC`] bits).
+    fn shade_run(&self, x: i32, y: i32, a: &[i32], d: &[i32], out: &mut [C]) {
         let n = out.len() as i64;
-        let (n0, dn) = ([start[0], start[1], start[2]], [step[0], step[1], step[2]]);
+        // Q28 → Q26
+        let q26 = |v: Option<&i32>| v.copied().unwrap_or(0) >> 2;
+        let (n0, dn) = (
+            [q26(a.first()), q26(a.get(1)), q26(a.get(2))],
+            [q26(d.first()), q26(d.get(1)), q26(d.get(2))],
+        );
         // |N(k)|² = s0 + k·(2·N0·dN) + k²·|dN|², in Q28 (the normal is Q26)
         let s0 = n0
             .iter()
@@ -201,8 +184,19 @@ where
             >> 24;
         let dd = dn.iter().map(|&b| b as i64 * b as i64).sum::<i64>() >> 24;
         let general = |out: &mut [C]| {
-            Shader::<PhongShading, _, _, C>::new(PhongShading, self.lighting, Linear)
-                .shade_span(x, y, &n0, &dn, out)
+            let g = |v: &[i32]| [0, 1, 2].map(|i| v.get(i).copied().unwrap_or(0));
+            lit_span(
+                self.lighting,
+                &Linear,
+                &PhongTriangle::default(),
+                g(a),
+                g(d),
+                [0; 3],
+                [0; 3],
+                x,
+                y,
+                out,
+            )
         };
         if dd > 1 << 24 {
             // |dN| above ¼ per pixel
@@ -237,10 +231,10 @@ where
         };
         let dots: [[i32; 4]; K] = core::array::from_fn(|j| {
             [
-                start[3 + 2 * j],
-                step[3 + 2 * j],
-                start[4 + 2 * j],
-                step[4 + 2 * j],
+                q26(a.get(3 + 2 * j)),
+                q26(d.get(3 + 2 * j)),
+                q26(a.get(4 + 2 * j)),
+                q26(d.get(4 + 2 * j)),
             ]
         });
         // One Newton step per pixel from the previous pixel's 1/|N| leaves a relative
@@ -254,72 +248,18 @@ where
     }
 }
 
-/// `SpanShader`, `Shading` and `Kernel` for `K` lights, with `N = 3 + 2K` attributes.
+/// The `Kernel` for `K` lights, with `N = 3 + 2K` values.
 macro_rules! incremental_lights {
     ($($k:literal => $n:literal),*) => {$(
-        impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> SpanShader<$n>
-            for Inc<'_, NW, $k, M, E, C>
-        {
-            type Color = C;
-            fn shade_span(&mut self, x: i32, y: i32, start: &[i32; $n], step: &[i32; $n], out: &mut [C]) {
-                self.span(x, y, start, step, out)
-            }
-        }
-
-        impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> Inc<'_, NW, $k, M, E, C> {
-            fn draw_any<Fb: Framebuffer<Color = C>>(
-                &mut self,
-                fb: &mut Fb,
-                depth: Option<&mut DepthBuffer<'_>>,
-                tri: &[ShadeVertex<Q14<NW>>; 3],
-                opts: &RasterOptions,
-                perspective: bool,
-            ) -> Result<DrawStats, Fb::Error> {
-                let v = tri.map(|t| {
-                    let (n, dots) = self.attrs(&t);
-                    let mut a = [0i32; $n];
-                    a[..3].copy_from_slice(&n);
-                    for (j, d) in dots.iter().enumerate() {
-                        a[3 + 2 * j] = d[0];
-                        a[4 + 2 * j] = d[1];
-                    }
-                    t.raster(a)
-                });
-                raster_draw(fb, depth, &v, opts, self, perspective)
-            }
-        }
-
-        impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> Shading<Q14<NW>>
-            for Inc<'_, NW, $k, M, E, C>
-        {
-            type Color = C;
-            fn draw<Fb: Framebuffer<Color = C>>(
-                &mut self,
-                fb: &mut Fb,
-                depth: Option<&mut DepthBuffer<'_>>,
-                tri: &[ShadeVertex<Q14<NW>>; 3],
-                opts: &RasterOptions,
-            ) -> Result<DrawStats, Fb::Error> {
-                self.draw_any(fb, depth, tri, opts, false)
-            }
-            fn draw_perspective<Fb: Framebuffer<Color = C>>(
-                &mut self,
-                fb: &mut Fb,
-                depth: Option<&mut DepthBuffer<'_>>,
-                tri: &[ShadeVertex<Q14<NW>>; 3],
-                opts: &RasterOptions,
-            ) -> Result<DrawStats, Fb::Error> {
-                self.draw_any(fb, depth, tri, opts, true)
-            }
-        }
-
         impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> Kernel
             for Inc<'_, NW, $k, M, E, C>
         {
             type Color = C;
             /// The eye-space unit normal in Q14.
             type Vertex = [i16; 3];
-            type Triangle = IncTriangle<$n>;
+            /// The normal, then `N·L` and `N·H` per light (Q14).
+            type Varyings = [i32; $n];
+            type Triangle = ();
             const NEEDS_POSITION: bool = false;
 
             #[inline]
@@ -327,9 +267,11 @@ macro_rules! incremental_lights {
                 super::unit_q14(v.normal)
             }
 
-            fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], _p: [[i32; 3]; 3]) -> (IncTriangle<$n>, bool) {
-                // attributes per vertex: the normal and N·L, N·H per light (Q14)
-                let attrs = v.map(|n| {
+            #[inline(always)]
+            fn triangle(&self, v: [&[i16; 3]; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; $n]; 3]) {
+                // the normal and N·L, N·H per light (Q14): affine over the
+                // triangle like the normal
+                let var = v.map(|n| {
                     let n = n.map(i32::from);
                     let mut a = [0i32; $n];
                     a[..3].copy_from_slice(&n);
@@ -340,54 +282,25 @@ macro_rules! incremental_lights {
                     }
                     a
                 });
-                let t = s.tmb[0];
-                let tri = IncTriangle {
-                    planes: core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]])),
-                    base: core::array::from_fn(|i| crate::raster::setup::at3(&attrs, t)[i] << ATTR_FRAC),
-                };
+                ((), var)
+            }
+
+            #[inline(always)]
+            fn safe(&self, _i: usize) -> (i32, i32) {
                 // the span code checks |N|² itself; the values must only stay
                 // inside ±2 (Q14, with ATTR_FRAC bits) so that nothing wraps
                 let two = 1 << (15 + ATTR_FRAC);
-                let clamp = (0..$n).any(|i| !super::within(s, &tri.planes[i], tri.base[i], (-two, two - 1)));
-                (tri, clamp)
+                (-two, two - 1)
             }
 
-            fn skip_rows(t: &mut IncTriangle<$n>, rows: i32) {
-                for p in t.planes.iter_mut() {
-                    p.skip_rows(rows);
-                }
-            }
-
-            fn next_row(t: &mut IncTriangle<$n>) {
-                for p in t.planes.iter_mut() {
-                    p.next_row();
-                }
-            }
-
-            fn shade<const CLAMP: bool>(&self, t: &IncTriangle<$n>, x: i32, y: i32, color: &mut [C]) {
-                let len = color.len();
-                // Q14 with ATTR_FRAC bits (Q28) → Q26
-                let mut start = [0i32; $n];
-                let mut step = [0i32; $n];
-                for i in 0..$n {
-                    let (s0, d) = super::start::<CLAMP>(&t.planes[i], x, len);
-                    start[i] = t.base[i].wrapping_add(s0) >> 2;
-                    step[i] = d >> 2;
-                }
-                self.span(x, y, &start, &step, color)
+            #[inline(always)]
+            fn span(&self, _t: &(), a: &[i32; $n], d: &[i32; $n], x: i32, y: i32, out: &mut [C]) {
+                self.shade_run(x, y, a, d, out)
             }
         }
     )*};
 }
 incremental_lights!(1 => 5, 2 => 7, 3 => 9, 4 => 11);
-
-/// An incremental Phong triangle in the mesh renderer: planes of the normal
-/// and of `N·L`, `N·H` per light.
-#[derive(Clone, Copy, Debug)]
-pub struct IncTriangle<const N: usize> {
-    planes: [Plane; N],
-    base: [i32; N],
-}
 
 /// `|N|²` (Q28) with its forward differences, and `1/|N|` (Q14).
 #[derive(Clone, Copy, Debug)]

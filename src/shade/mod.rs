@@ -56,25 +56,21 @@ mod phong;
 mod quadratic;
 mod segment;
 mod textured;
-mod vertex_colors;
 
 pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
 pub use incremental::{DirectionalLighting, IncrementalModel};
 pub use normalmap::{
-    FastNormalMapShader, NormalMapPayload, NormalMapShader, NormalMapTriangle, NormalMapVertex,
-    TangentLightPayload, TangentLightTriangle,
+    FastNormalMapShader, NormalMapPayload, NormalMapShader, NormalMapTriangle, TangentLightPayload,
 };
+pub use phong::PhongTriangle;
 pub use quadratic::{QuadraticLighting, QuadraticModel, QuadraticTier};
-pub use textured::{
-    TexPayload, TextureBinding, TexturedGouraudShading, TexturedTriangle, TexturedVertex,
-};
+pub use textured::{TexPayload, TextureBinding, TexturedGouraudShading, TexturedTriangle};
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
-use crate::raster::{DrawStats, RasterOptions, RasterVertex, Setup};
-use crate::target::{DepthBuffer, Framebuffer};
-use crate::vector::{point_from_f32, Point3, Vec3};
+use crate::raster::interp::Varyings;
+use crate::vector::{Point3, Vec3};
 use core::marker::PhantomData;
 
 /// Flat shading: the triangle is lit once, at its centroid, with the normalised
@@ -226,76 +222,6 @@ impl<'l, M: Mode + ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor
     }
 }
 
-/// One vertex of a triangle to shade through the per-triangle API.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ShadeVertex<S: Scalar> {
-    /// Screen position in pixels with [`SUBPIXEL_BITS`](crate::raster::SUBPIXEL_BITS)
-    /// fractional bits, y down.
-    pub screen: [i32; 2],
-    /// Depth for the depth test (smaller is nearer).
-    pub z: u16,
-    /// `1/w` for perspective-correct interpolation (any positive scale shared by
-    /// the triangle; see [`RasterVertex::inv_w`]).
-    pub inv_w: i32,
-    /// Eye-space position (used by point and spot lights, a local viewer, fog).
-    pub position: Point3<S>,
-    /// Eye-space unit normal.
-    pub normal: Vec3<S>,
-}
-
-impl<S: Scalar> ShadeVertex<S> {
-    /// A vertex from `f32` eye-space position and normal (the normal is normalised).
-    pub fn new(screen: [i32; 2], z: u16, inv_w: i32, position: [f32; 3], normal: [f32; 3]) -> Self {
-        Self {
-            screen,
-            z,
-            inv_w,
-            position: point_from_f32::<S>(position),
-            normal: Vec3::from_f32(normal).normalize(),
-        }
-    }
-
-    /// The rasterizer vertex carrying `attrs`.
-    #[inline]
-    pub fn raster<const N: usize>(&self, attrs: [i32; N]) -> RasterVertex<N> {
-        RasterVertex {
-            x: self.screen[0],
-            y: self.screen[1],
-            z: self.z,
-            inv_w: self.inv_w,
-            attrs,
-        }
-    }
-}
-
-/// Drawing one triangle at a time (the per-triangle API).
-pub trait Shading<S: Scalar> {
-    /// The pixel colour written.
-    type Color;
-
-    /// Rasterizes and shades one triangle, attributes interpolated linearly in
-    /// screen space (see [`draw_triangle`](crate::raster::draw_triangle) for
-    /// coverage, clipping, culling and depth). Never panics; returns the
-    /// framebuffer's first error.
-    fn draw<F: Framebuffer<Color = Self::Color>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[ShadeVertex<S>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error>;
-
-    /// [`Shading::draw`] with perspective-correct attributes (see
-    /// [`draw_triangle_perspective`](crate::raster::draw_triangle_perspective)).
-    fn draw_perspective<F: Framebuffer<Color = Self::Color>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[ShadeVertex<S>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error>;
-}
-
 /// What the vertex stage hands a [`Kernel`] for one vertex.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
@@ -332,89 +258,78 @@ impl VertexIn {
     }
 }
 
-/// What the mesh renderer needs from a shader: the vertex payload stored in the
-/// vertex cache, the per-triangle state and the span kernel.
+/// A shading kernel: what the pipeline needs from a shader. Every shading
+/// mode implements it, and so may a program's own kernel.
 ///
-/// Implemented by every [`Shader`]; the renderer calls, per frame, `vertex`
-/// once per vertex, `triangle` once per visible triangle (and when it
-/// continues into the next band), `next_row` per row and `shade` per run of
-/// pixels that passed the depth test.
+/// Per frame the pipeline calls [`Kernel::vertex`] once per vertex (the vertex
+/// stage, into the vertex cache), [`Kernel::triangle`] once per visible
+/// triangle (its constants and the values to interpolate at its corners), and
+/// [`Kernel::span`] for every run of pixels that passed the depth test, with
+/// the interpolated values at the run's first pixel and their change per
+/// pixel (see [`crate::raster::interp`] for units and for how they are
+/// interpolated: screen-linear, or perspective-correct in sub-spans of 8
+/// pixels under a perspective projection).
 pub trait Kernel {
     /// The pixel colour written.
     type Color: Copy;
-    /// What the vertex cache holds per vertex for this mode.
+    /// What the vertex cache holds per vertex.
     type Vertex: Copy + Default + core::fmt::Debug;
-    /// What a triangle keeps while its rows are drawn.
+    /// The values interpolated across a triangle: `[i32; N]`, each within
+    /// ±[`VARYING_LIMIT`](crate::raster::interp::VARYING_LIMIT) at the
+    /// vertices.
+    type Varyings: Varyings;
+    /// The constants of one triangle (its flat colour, the origin of its
+    /// interpolated positions, …).
     type Triangle: Copy + core::fmt::Debug;
+    /// How many of the [`Kernel::Varyings`] are used (the first ones; the
+    /// others are zero and not interpolated).
+    const USED: usize = <Self::Varyings as Varyings>::LEN;
     /// Whether [`Kernel::vertex`] or [`Kernel::triangle`] read eye-space
-    /// positions (else the renderer passes zeros and skips computing them).
+    /// positions (else the pipeline passes zeros and skips computing them).
     const NEEDS_POSITION: bool;
-    /// Whether [`Kernel::vertex`] reads [`VertexIn::uv`] and [`VertexIn::w`]
-    /// (else the renderer passes zeros and ones).
+    /// Whether [`Kernel::vertex`] reads [`VertexIn::uv`] (else the pipeline
+    /// passes zeros).
     const NEEDS_TEXCOORD: bool = false;
     /// Whether [`Kernel::vertex`] reads [`VertexIn::tangent`] (else the
-    /// renderer passes zeros and skips transforming the mesh's tangents).
+    /// pipeline passes zeros and skips transforming the mesh's tangents).
     const NEEDS_TANGENT: bool = false;
 
     /// The payload of vertex `v`.
     fn vertex(&self, v: &VertexIn) -> Self::Vertex;
 
-    /// The state of set-up triangle `s` (its planes positioned at its first
-    /// row), from the payloads and eye positions of its oriented vertices, and
-    /// whether its values must be clamped per run (`true` when the error bound
-    /// of its planes exceeds the kernel's margin: then
-    /// [`Kernel::shade`]`::<true>` is used).
-    #[doc(hidden)]
+    /// The constants of the triangle with payloads `v` and eye-space positions
+    /// `eye` (Q16.16; zeros unless [`Kernel::NEEDS_POSITION`]), and the values
+    /// to interpolate at its three corners.
     fn triangle(
         &self,
-        s: &Setup,
         v: [&Self::Vertex; 3],
-        p: [[i32; 3]; 3],
-    ) -> (Self::Triangle, bool);
+        eye: &[[i32; 3]; 3],
+    ) -> (Self::Triangle, [Self::Varyings; 3]);
 
-    /// Moves the state `rows` rows down (exactly as `rows` calls of `next_row`).
-    fn skip_rows(t: &mut Self::Triangle, rows: i32);
+    /// The range (with [`ATTR_FRAC`](crate::raster::ATTR_FRAC) fraction bits)
+    /// that value `i` must stay in when handed to [`Kernel::span`]: where the
+    /// screen-linear interpolation's error bound could carry it out, the
+    /// pipeline clamps the run to the vertices' range. The default is
+    /// ±2^30 (no `i32` overflow in a kernel that adds steps).
+    #[inline(always)]
+    fn safe(&self, i: usize) -> (i32, i32) {
+        let _ = i;
+        (-(1 << 30), 1 << 30)
+    }
 
-    /// Moves the state to the next row.
-    fn next_row(t: &mut Self::Triangle);
-
-    /// Shades pixels `x..x + color.len()` of row `y` (they passed the depth
-    /// test); with `CLAMP` the interpolated values are clamped to the vertex
-    /// range.
-    fn shade<const CLAMP: bool>(
+    /// Shades pixels `x..x + out.len()` of row `y` (they passed the depth
+    /// test): pixel `k` has the values `start + k·step`, which stay within the
+    /// range of the corners' values (with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
+    /// fraction bits) up to the interpolation's error.
+    fn span(
         &self,
         t: &Self::Triangle,
+        start: &Self::Varyings,
+        step: &Self::Varyings,
         x: i32,
         y: i32,
-        color: &mut [Self::Color],
+        out: &mut [Self::Color],
     );
-}
-
-/// Whether a plane's values, with its error bound, stay in `safe` when added
-/// to `base` (so that they need no clamping).
-#[inline]
-pub(crate) fn within(s: &Setup, p: &crate::raster::Plane, base: i32, safe: (i32, i32)) -> bool {
-    let err = s.err(p);
-    if err >= 1 << 29 {
-        return false;
-    }
-    let err = err as i32;
-    // |base|, |lo|, |hi| < 2^30 and err < 2^29: no overflow in i32 arithmetic
-    // (computed in i64-free two steps)
-    let lo = base.saturating_add(p.lo).saturating_sub(err);
-    let hi = base.saturating_add(p.hi).saturating_add(err);
-    lo >= safe.0 && hi <= safe.1
-}
-
-/// The start value of a plane at column `x` and its step, clamped to the
-/// vertex range for `n` pixels when `CLAMP`.
-#[inline(always)]
-pub(crate) fn start<const CLAMP: bool>(p: &crate::raster::Plane, x: i32, n: usize) -> (i32, i32) {
-    if CLAMP {
-        p.clamped(x, n as i32)
-    } else {
-        (p.at(x), p.dx)
-    }
 }
 
 /// Keeps LLVM from unrolling the loop that calls it: an empty barrier (no
@@ -533,24 +448,4 @@ pub(crate) fn eye_point<S: Scalar>(p: [i32; 3]) -> Point3<S> {
         S::geo_from_attr(p[1]),
         S::geo_from_attr(p[2]),
     )
-}
-
-/// Runs a per-triangle draw with the screen-linear or perspective rasterizer.
-pub(crate) fn raster_draw<F, Sh, const N: usize>(
-    fb: &mut F,
-    depth: Option<&mut DepthBuffer<'_>>,
-    v: &[RasterVertex<N>; 3],
-    opts: &RasterOptions,
-    shader: &mut Sh,
-    perspective: bool,
-) -> Result<DrawStats, F::Error>
-where
-    F: Framebuffer,
-    Sh: crate::raster::SpanShader<N, Color = F::Color>,
-{
-    if perspective {
-        crate::raster::draw_triangle_perspective(fb, depth, v, opts, shader)
-    } else {
-        crate::raster::draw_triangle(fb, depth, v, opts, shader)
-    }
 }

@@ -1,102 +1,25 @@
 //! Normal-mapped Phong shading: per-pixel lighting with the normal of a
 //! [`NormalMap`] in the tangent frame of the surface.
 
-use super::{eye_point, raster_draw, unit_q14, Encoder, Kernel, ShadeVertex};
+use super::phong::PhongTriangle;
+use super::{eye_point, unit_q14, Encoder, Kernel};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::{Illuminate, Specular};
 use crate::normal_map::{NormalMap, NormalTexel, Wrap};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
-use crate::num::{Scalar, Q14};
-use crate::raster::setup::{at3, bit_length};
-use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC, ATTR_LIMIT};
-use crate::render::Lerp;
-use crate::target::{DepthBuffer, Framebuffer};
+use crate::num::Scalar;
+use crate::raster::ATTR_FRAC;
 use crate::vector::{Point3, Vec3};
 use core::marker::PhantomData;
 
 use super::incremental::{channel_units, DirectionalLighting, IncrementalModel, PowTable};
 
-/// One vertex of a normal-mapped triangle for the per-triangle API
-/// ([`NormalMapShader::draw`], [`FastNormalMapShader::draw`]): a
-/// [`ShadeVertex`] with texture coordinates and a tangent frame.
-///
-/// ```
-/// use fixshade::prelude::*;
-/// use fixshade::shade::NormalMapVertex;
-/// let v = ShadeVertex::<Q14>::new([0, 0], 0, 1, [0.0; 3], [0.0, 0.0, 1.0]);
-/// let nv = NormalMapVertex::new(v, [0.25, 0.5], [1.0, 0.0, 0.0, -1.0]);
-/// assert_eq!(nv.uv, [1024, 2048]);
-/// assert_eq!(nv.handedness, -1);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NormalMapVertex<S: Scalar> {
-    /// Screen position, depth, `1/w`, eye position and unit normal.
-    pub vertex: ShadeVertex<S>,
-    /// Texture coordinates with [`TEXCOORD_FRAC`](crate::mesh::TEXCOORD_FRAC)
-    /// (12) fraction bits; `|u|, |v| < 8`.
-    pub uv: [i32; 2],
-    /// Eye-space unit tangent (along increasing `u`, orthogonal to the normal).
-    pub tangent: Vec3<S>,
-    /// `+1` or `−1`: the bitangent is `handedness · N × T` (`−1` where the
-    /// texture is mirrored; see [`vertex_tangents`](crate::mesh::vertex_tangents)).
-    pub handedness: i8,
-}
-
-impl<S: Scalar> NormalMapVertex<S> {
-    /// A vertex from `f32` texture coordinates and an `f32` tangent
-    /// `[tx, ty, tz, w]` (normalised here; `w < 0` is handedness −1), as
-    /// [`vertex_tangents`](crate::mesh::vertex_tangents) produces.
-    pub fn new(vertex: ShadeVertex<S>, uv: [f32; 2], tangent: [f32; 4]) -> Self {
-        let q = |c: f32| libm::roundf(c.clamp(-8.0, 8.0) * 4096.0) as i32;
-        Self {
-            vertex,
-            uv: [q(uv[0]), q(uv[1])],
-            tangent: Vec3::from_f32([tangent[0], tangent[1], tangent[2]]).normalize(),
-            handedness: if tangent[3] < 0.0 { -1 } else { 1 },
-        }
-    }
-}
-
-/// Texture coordinate fraction bits in the per-triangle API's attributes
-/// (`Q12 << 12`).
-const TRI_UV_FRAC: u32 = 24;
-
-// ---- the general path -------------------------------------------------------------
-
 /// The general normal-mapped shader: every tier, every light kind, every
 /// reflection model, any [`Encoder`] (see [`NormalMapShading`](super::NormalMapShading)).
-///
-/// ```
-/// use fixshade::prelude::*;
-/// use fixshade::normal_map::{NormalMap, Wrap, FLAT_NORMAL};
-/// use fixshade::shade::{NormalMapShader, NormalMapVertex};
-/// use fixshade::raster::SUBPIXEL_BITS;
-///
-/// static MAP: [[i16; 3]; 4] = [FLAT_NORMAL, [0, 11585, 11585], FLAT_NORMAL, [11585, 0, 11585]];
-/// let map = NormalMap::new(&MAP, 1, 1, Wrap::Repeat).unwrap();
-/// let light = PointLight::<f32>::new([0.0, 0.0, 2.0], Attenuation::none::<f32>(), LightColors::white()).unwrap();
-/// let mat = Material::new(&MaterialDesc::classic([0.2, 0.6, 1.0], AmbientSource::Object, 0.1, 0.7, 0.4, 16.0)).unwrap();
-/// let lighting = Lighting::<f32, _, BlinnPhong>::new(light, mat);
-/// let v = |x: i32, y: i32, uv: [f32; 2]| NormalMapVertex::new(
-///     ShadeVertex::new([x << SUBPIXEL_BITS, y << SUBPIXEL_BITS], 0, 1, [x as f32 / 16.0, -y as f32 / 16.0, -1.0], [0.0, 0.0, 1.0]),
-///     uv, [1.0, 0.0, 0.0, 1.0]);
-/// let tri = [v(0, 0, [0.0, 0.0]), v(0, 32, [0.0, 4.0]), v(32, 0, [4.0, 0.0])];
-/// let mut pixels = [Rgb565::BLACK; 32 * 32];
-/// let mut fb = SliceFramebuffer::new(&mut pixels, 32, 32).unwrap();
-/// let mut shader = NormalMapShader::new(&lighting, map, Linear);
-/// let stats = shader.draw(&mut fb, None, &tri, &RasterOptions::default())?;
-/// assert!(stats.pixels > 400);
-/// # Ok::<(), core::convert::Infallible>(())
-/// ```
 pub struct NormalMapShader<'l, 'm, I: Illuminate, E, C> {
     lighting: &'l I,
     encoder: E,
     map: NormalMap<'m>,
-    /// Per-triangle API: the position origin, the shift of the position
-    /// attributes and the handedness of the triangle being drawn.
-    origin: Point3<I::Scalar>,
-    shift: u32,
-    hand: i32,
     color: PhantomData<C>,
 }
 
@@ -133,14 +56,10 @@ impl<'l, 'm, S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor
     /// A shader lighting with `lighting`, the surface detail from `map`, writing
     /// pixels through `encoder`.
     pub fn new(lighting: &'l I, map: NormalMap<'m>, encoder: E) -> Self {
-        let z = S::geo_from_f32(0.0);
         Self {
             lighting,
             encoder,
             map,
-            origin: Vec3::new(z, z, z),
-            shift: 0,
-            hand: 1,
             color: PhantomData,
         }
     }
@@ -174,116 +93,6 @@ impl<'l, 'm, S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor
         let np = t.scale(mx).add(b.scale(my)).add(n.scale(mz));
         self.lighting.shade(p, S::normalize_interpolated(np))
     }
-
-    fn draw_any<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[NormalMapVertex<S>; 3],
-        opts: &RasterOptions,
-        perspective: bool,
-    ) -> Result<DrawStats, F::Error> {
-        self.hand = majority(tri.map(|v| i32::from(v.handedness)));
-        let a = |t: &NormalMapVertex<S>| {
-            let (n, g) = (t.vertex.normal, t.tangent);
-            [
-                n.x.to_attr(),
-                n.y.to_attr(),
-                n.z.to_attr(),
-                g.x.to_attr(),
-                g.y.to_attr(),
-                g.z.to_attr(),
-                t.uv[0] << (TRI_UV_FRAC - 12),
-                t.uv[1] << (TRI_UV_FRAC - 12),
-            ]
-        };
-        if !I::NEEDS_POSITION {
-            let v = tri.map(|t| t.vertex.raster(a(&t)));
-            return raster_draw(fb, depth, &v, opts, self, perspective);
-        }
-        // positions relative to the first vertex, as in PhongShading
-        let o = tri[0].vertex.position;
-        let rel = tri.map(|t| {
-            let p = t.vertex.position;
-            [
-                S::geo_to_attr(S::geo_sub(p.x, o.x)),
-                S::geo_to_attr(S::geo_sub(p.y, o.y)),
-                S::geo_to_attr(S::geo_sub(p.z, o.z)),
-            ]
-        });
-        let big = rel
-            .iter()
-            .flatten()
-            .fold(0u32, |m, v| m.max(v.unsigned_abs()));
-        let limit_bits = bit_length(ATTR_LIMIT as u32) - 1;
-        self.shift = bit_length(big).saturating_sub(limit_bits);
-        self.origin = o;
-        let shift = self.shift;
-        let v = core::array::from_fn(|i| {
-            let b = a(&tri[i]);
-            let r = rel[i].map(|v| v >> shift);
-            let mut x = [0i32; 11];
-            x[..8].copy_from_slice(&b);
-            x[8..].copy_from_slice(&r);
-            tri[i].vertex.raster(x)
-        });
-        raster_draw(fb, depth, &v, opts, self, perspective)
-    }
-
-    /// Rasterizes and shades one triangle (per-triangle API), attributes
-    /// (normal, tangent, texture coordinates, position) interpolated linearly
-    /// in screen space. Never panics; returns the framebuffer's first error.
-    pub fn draw<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[NormalMapVertex<S>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error> {
-        self.draw_any(fb, depth, tri, opts, false)
-    }
-
-    /// [`NormalMapShader::draw`] with perspective-correct attributes
-    /// (texture coordinates included).
-    pub fn draw_perspective<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[NormalMapVertex<S>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error> {
-        self.draw_any(fb, depth, tri, opts, true)
-    }
-}
-
-impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor, const N: usize>
-    SpanShader<N> for NormalMapShader<'_, '_, I, E, C>
-{
-    type Color = C;
-    fn shade_span(&mut self, x: i32, y: i32, start: &[i32; N], step: &[i32; N], out: &mut [C]) {
-        if N < 8 {
-            return;
-        }
-        let mut a = *start;
-        let g = |v: i32| S::geo_from_attr(v << self.shift);
-        for (x, p) in (x..).zip(out.iter_mut()) {
-            let pos = if N >= 11 {
-                Vec3::new(
-                    S::geo_add(self.origin.x, g(a[8])),
-                    S::geo_add(self.origin.y, g(a[9])),
-                    S::geo_add(self.origin.z, g(a[10])),
-                )
-            } else {
-                self.origin
-            };
-            let m = self.map.sample_fixed(a[6], a[7], TRI_UV_FRAC);
-            let c = self.pixel([a[0], a[1], a[2]], [a[3], a[4], a[5]], self.hand, m, &pos);
-            *p = self.encoder.encode(c, x, y);
-            for i in 0..N {
-                a[i] = a[i].wrapping_add(step[i]);
-            }
-        }
-    }
 }
 
 /// What the vertex cache holds per vertex for the general path: the Q14
@@ -297,60 +106,18 @@ pub struct NormalMapPayload {
     uv: [i16; 2],
 }
 
-/// `a + (b − a)·num/den` rounded toward `a`, for `num ≤ den`.
-#[inline]
-fn lerp16(a: i16, b: i16, num: u32, den: u32) -> i16 {
-    if den == 0 {
-        return a;
-    }
-    let d = i64::from(b) - i64::from(a);
-    let v = i64::from(a) + d * i64::from(num.min(den)) / i64::from(den);
-    v.clamp(i64::from(i16::MIN), i64::from(i16::MAX)) as i16
-}
-
-impl Lerp for NormalMapPayload {
-    fn lerp(&self, o: &Self, num: u32, den: u32) -> Self {
-        let l3 = |a: [i16; 3], b: [i16; 3]| core::array::from_fn(|i| lerp16(a[i], b[i], num, den));
-        Self {
-            n: l3(self.n, o.n),
-            t: l3(self.t, o.t),
-            hand: if u64::from(num) * 2 <= u64::from(den) {
-                self.hand
-            } else {
-                o.hand
-            },
-            uv: [
-                lerp16(self.uv[0], o.uv[0], num, den),
-                lerp16(self.uv[1], o.uv[1], num, den),
-            ],
-        }
-    }
-}
-
 /// Clamps an `i32` to `i16`.
 #[inline]
 fn sat16(v: i32) -> i16 {
     v.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16
 }
 
-/// The planes of a normal-mapped triangle in the mesh renderer (general path):
-/// normal, tangent, texture coordinates and, when needed, position.
-#[derive(Clone, Copy, Debug)]
+/// A normal-mapped triangle (general path): the handedness of its tangent
+/// frame and the origin of its interpolated positions.
+#[derive(Clone, Copy, Debug, Default)]
 pub struct NormalMapTriangle {
-    /// normal (3), tangent (3), u, v
-    planes: [Plane; 8],
-    base: [i32; 8],
-    p: [Plane; 3],
-    p_base: [i32; 3],
+    pos: PhongTriangle,
     hand: i32,
-}
-
-/// The texture coordinate planes' base (relative to the top vertex) and fraction
-/// bits: `(top >> sa) << ATTR_FRAC`, with `12 + ATTR_FRAC − sa` bits.
-#[inline]
-fn uv_base(top: i32, p: &Plane) -> (i32, u32) {
-    let sa = p.sa.min(ATTR_FRAC);
-    ((top >> sa) << ATTR_FRAC, 12 + ATTR_FRAC - sa)
 }
 
 impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
@@ -358,7 +125,11 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
 {
     type Color = C;
     type Vertex = NormalMapPayload;
+    /// Normal (3), tangent (3) (Q14), `u`, `v` (Q12), then the position (see
+    /// [`PhongTriangle`]) when the lighting reads it.
+    type Varyings = [i32; 11];
     type Triangle = NormalMapTriangle;
+    const USED: usize = if I::NEEDS_POSITION { 11 } else { 8 };
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
     const NEEDS_TEXCOORD: bool = true;
     const NEEDS_TANGENT: bool = true;
@@ -375,106 +146,68 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
 
     fn triangle(
         &self,
-        s: &Setup,
         v: [&NormalMapPayload; 3],
-        p: [[i32; 3]; 3],
-    ) -> (NormalMapTriangle, bool) {
-        let attrs = v.map(|q| {
-            [
-                q.n[0], q.n[1], q.n[2], q.t[0], q.t[1], q.t[2], q.uv[0], q.uv[1],
-            ]
-            .map(i32::from)
-        });
-        let t = s.tmb[0];
-        let planes: [Plane; 8] =
-            core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]]));
-        let top = at3(&attrs, t);
-        let base = core::array::from_fn(|i| {
-            if i < 6 {
-                top[i] << ATTR_FRAC
-            } else {
-                uv_base(top[i], &planes[i]).0
-            }
-        });
-        let (pp, p_base) = if I::NEEDS_POSITION {
-            (
-                core::array::from_fn(|i| s.plane([p[0][i], p[1][i], p[2][i]])),
-                at3(&p, t),
-            )
+        eye: &[[i32; 3]; 3],
+    ) -> (NormalMapTriangle, [[i32; 11]; 3]) {
+        let (pos, p) = if I::NEEDS_POSITION {
+            PhongTriangle::new(eye)
         } else {
-            ([Plane::default(); 3], [0; 3])
+            (PhongTriangle::default(), [[0; 3]; 3])
         };
-        let one = 1 << (14 + ATTR_FRAC);
-        let clamp = (0..6).any(|i| !super::within(s, &planes[i], base[i], (-one, one)));
+        let var = core::array::from_fn(|k| {
+            let q = v[k];
+            let p = p[k];
+            [
+                i32::from(q.n[0]),
+                i32::from(q.n[1]),
+                i32::from(q.n[2]),
+                i32::from(q.t[0]),
+                i32::from(q.t[1]),
+                i32::from(q.t[2]),
+                i32::from(q.uv[0]),
+                i32::from(q.uv[1]),
+                p[0],
+                p[1],
+                p[2],
+            ]
+        });
         let tri = NormalMapTriangle {
-            planes,
-            base,
-            p: pp,
-            p_base,
+            pos,
             hand: majority(v.map(|q| i32::from(q.hand))),
         };
-        (tri, clamp)
+        (tri, var)
     }
 
-    fn skip_rows(t: &mut NormalMapTriangle, rows: i32) {
-        for p in t.planes.iter_mut() {
-            p.skip_rows(rows);
-        }
-        if I::NEEDS_POSITION {
-            for p in t.p.iter_mut() {
-                p.skip_rows(rows);
-            }
-        }
-    }
-
-    fn next_row(t: &mut NormalMapTriangle) {
-        for p in t.planes.iter_mut() {
-            p.next_row();
-        }
-        if I::NEEDS_POSITION {
-            for p in t.p.iter_mut() {
-                p.next_row();
-            }
+    #[inline(always)]
+    fn safe(&self, i: usize) -> (i32, i32) {
+        // the normal and tangent within [−1, 1] in Q14 (Q28 with ATTR_FRAC bits)
+        let one = 1 << (14 + ATTR_FRAC);
+        if i < 6 {
+            (-one, one)
+        } else {
+            (-(1 << 30), 1 << 30)
         }
     }
 
-    fn shade<const CLAMP: bool>(&self, t: &NormalMapTriangle, x: i32, y: i32, color: &mut [C]) {
-        let len = color.len();
-        let mut a = [0i32; 11];
-        let mut d = [0i32; 11];
-        for i in 0..8 {
-            let (s, st) = super::start::<CLAMP>(&t.planes[i], x, len);
-            a[i] = t.base[i].wrapping_add(s);
-            d[i] = st;
-        }
-        if I::NEEDS_POSITION {
-            for i in 0..3 {
-                let (s, st) = super::start::<CLAMP>(&t.p[i], x, len);
-                a[8 + i] = s;
-                d[8 + i] = st;
-            }
-        }
-        let uf = uv_base(0, &t.planes[6]).1;
-        let vf = uv_base(0, &t.planes[7]).1;
-        let psh: [u32; 3] = core::array::from_fn(|i| ATTR_FRAC - t.p[i].sa.min(ATTR_FRAC));
-        let m_len = if I::NEEDS_POSITION { 11 } else { 8 };
+    fn span(
+        &self,
+        t: &NormalMapTriangle,
+        a: &[i32; 11],
+        d: &[i32; 11],
+        x: i32,
+        y: i32,
+        color: &mut [C],
+    ) {
+        let (mut a, d) = (*a, *d);
+        let used = <Self as Kernel>::USED;
         for (x, c) in (x..).zip(color.iter_mut()) {
             let pos = if I::NEEDS_POSITION {
-                // exactly as PhongShading's kernel
-                let q = |i: usize| {
-                    let sh = psh[i];
-                    let r = if sh == 0 {
-                        a[8 + i]
-                    } else {
-                        ((a[8 + i] >> (sh - 1)) + 1) >> 1
-                    };
-                    t.p_base[i].wrapping_add(r)
-                };
-                eye_point::<S>([q(0), q(1), q(2)])
+                eye_point::<S>(t.pos.position([a[8], a[9], a[10]]))
             } else {
                 eye_point::<S>([0; 3])
             };
-            let m = sample2(&self.map, a[6], uf, a[7], vf);
+            // Q12 with ATTR_FRAC bits
+            let m = sample2(&self.map, a[6], UV_FRAC, a[7], UV_FRAC);
             // Q14 with ATTR_FRAC bits (Q28) → the tier's attribute (Q26)
             let lit = self.pixel(
                 [a[0] >> 2, a[1] >> 2, a[2] >> 2],
@@ -484,13 +217,17 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
                 &pos,
             );
             *c = self.encoder.encode(lit, x, y);
-            for (a, d) in a.iter_mut().zip(d).take(m_len) {
+            for (a, d) in a.iter_mut().zip(d).take(used) {
                 // the values after the last pixel are not used: wrapping is harmless
                 *a = a.wrapping_add(d);
             }
         }
     }
 }
+
+/// Fraction bits of interpolated texture coordinates: Q12 with
+/// [`ATTR_FRAC`] bits.
+const UV_FRAC: u32 = 12 + ATTR_FRAC;
 
 /// The texel at `(u, v)` with `uf`, `vf` fraction bits.
 #[inline(always)]
@@ -565,18 +302,6 @@ pub struct FastNormalMapShader<'l, 'm, const NW: u8, M: IncrementalModel, C> {
 pub struct TangentLightPayload {
     lh: [i16; 6],
     uv: [i16; 2],
-}
-
-impl Lerp for TangentLightPayload {
-    fn lerp(&self, o: &Self, num: u32, den: u32) -> Self {
-        Self {
-            lh: core::array::from_fn(|i| lerp16(self.lh[i], o.lh[i], num, den)),
-            uv: [
-                lerp16(self.uv[0], o.uv[0], num, den),
-                lerp16(self.uv[1], o.uv[1], num, den),
-            ],
-        }
-    }
 }
 
 /// `L` and `H` (Q14) in the tangent frame of Q14 normal `n` (any length),
@@ -713,61 +438,10 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
         }
     }
 
-    /// Rasterizes and shades one triangle (per-triangle API). Never panics;
-    /// returns the framebuffer's first error.
-    pub fn draw<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[NormalMapVertex<Q14<NW>>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error> {
-        self.draw_any(fb, depth, tri, opts, false)
-    }
-
-    /// [`FastNormalMapShader::draw`] with perspective-correct attributes.
-    pub fn draw_perspective<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[NormalMapVertex<Q14<NW>>; 3],
-        opts: &RasterOptions,
-    ) -> Result<DrawStats, F::Error> {
-        self.draw_any(fb, depth, tri, opts, true)
-    }
-
-    fn draw_any<F: Framebuffer<Color = C>>(
-        &mut self,
-        fb: &mut F,
-        depth: Option<&mut DepthBuffer<'_>>,
-        tri: &[NormalMapVertex<Q14<NW>>; 3],
-        opts: &RasterOptions,
-        perspective: bool,
-    ) -> Result<DrawStats, F::Error> {
-        let v = tri.map(|t| {
-            let q = |v: Vec3<Q14<NW>>| [v.x.raw(), v.y.raw(), v.z.raw()];
-            let p = self.payload(
-                q(t.vertex.normal),
-                q(t.tangent),
-                i32::from(t.handedness),
-                t.uv,
-            );
-            // Q14 → Q26, Q12 → Q24
-            let mut a = [0i32; 8];
-            for (a, &c) in a.iter_mut().zip(p.lh.iter()) {
-                *a = i32::from(c) << 12;
-            }
-            a[6] = t.uv[0] << (TRI_UV_FRAC - 12);
-            a[7] = t.uv[1] << (TRI_UV_FRAC - 12);
-            t.vertex.raster(a)
-        });
-        raster_draw(fb, depth, &v, opts, self, perspective)
-    }
-
     /// Shades one span: `lh`/`dlh` are `L` and `H` in Q24 with their steps,
     /// `uv`/`duv` the texture coordinates with `uvf` fraction bits.
     #[inline(always)]
-    fn span(
+    fn shade_run(
         &self,
         lh: [i32; 6],
         dlh: [i32; 6],
@@ -914,39 +588,14 @@ struct Span {
     dds: [i32; 2],
 }
 
-impl<const NW: u8, M: IncrementalModel, C: OutputColor> SpanShader<8>
-    for FastNormalMapShader<'_, '_, NW, M, C>
-{
-    type Color = C;
-    /// `start`/`step`: `L`, `H` (Q26), `u`, `v` (Q24).
-    fn shade_span(&mut self, _x: i32, _y: i32, start: &[i32; 8], step: &[i32; 8], out: &mut [C]) {
-        let lh = core::array::from_fn(|i| start[i] >> 2);
-        let dlh = core::array::from_fn(|i| step[i] >> 2);
-        self.span(
-            lh,
-            dlh,
-            [start[6], start[7]],
-            [step[6], step[7]],
-            [TRI_UV_FRAC; 2],
-            out,
-        )
-    }
-}
-
-/// A fast-path triangle in the mesh renderer: planes of `L`, `H` (tangent
-/// space) and the texture coordinates.
-#[derive(Clone, Copy, Debug)]
-pub struct TangentLightTriangle {
-    planes: [Plane; 8],
-    base: [i32; 8],
-}
-
 impl<const NW: u8, M: IncrementalModel, C: OutputColor> Kernel
     for FastNormalMapShader<'_, '_, NW, M, C>
 {
     type Color = C;
     type Vertex = TangentLightPayload;
-    type Triangle = TangentLightTriangle;
+    /// `L`, `H` in the tangent frame (Q14), `u`, `v` (Q12).
+    type Varyings = [i32; 8];
+    type Triangle = ();
     const NEEDS_POSITION: bool = false;
     const NEEDS_TEXCOORD: bool = true;
     const NEEDS_TANGENT: bool = true;
@@ -961,61 +610,32 @@ impl<const NW: u8, M: IncrementalModel, C: OutputColor> Kernel
         )
     }
 
-    fn triangle(
-        &self,
-        s: &Setup,
-        v: [&TangentLightPayload; 3],
-        _p: [[i32; 3]; 3],
-    ) -> (TangentLightTriangle, bool) {
-        let attrs = v.map(|q| {
+    #[inline(always)]
+    fn triangle(&self, v: [&TangentLightPayload; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; 8]; 3]) {
+        let var = v.map(|q| {
             let mut a = [0i32; 8];
             for (a, &c) in a.iter_mut().zip(q.lh.iter().chain(q.uv.iter())) {
                 *a = i32::from(c);
             }
             a
         });
-        let t = s.tmb[0];
-        let planes: [Plane; 8] =
-            core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]]));
-        let top = at3(&attrs, t);
-        let base = core::array::from_fn(|i| {
-            if i < 6 {
-                top[i] << ATTR_FRAC
-            } else {
-                uv_base(top[i], &planes[i]).0
-            }
-        });
+        ((), var)
+    }
+
+    #[inline(always)]
+    fn safe(&self, i: usize) -> (i32, i32) {
         let one = 1 << (14 + ATTR_FRAC);
-        let clamp = (0..6).any(|i| !super::within(s, &planes[i], base[i], (-one, one)));
-        (TangentLightTriangle { planes, base }, clamp)
-    }
-
-    fn skip_rows(t: &mut TangentLightTriangle, rows: i32) {
-        for p in t.planes.iter_mut() {
-            p.skip_rows(rows);
+        if i < 6 {
+            (-one, one)
+        } else {
+            (-(1 << 30), 1 << 30)
         }
     }
 
-    fn next_row(t: &mut TangentLightTriangle) {
-        for p in t.planes.iter_mut() {
-            p.next_row();
-        }
-    }
-
-    fn shade<const CLAMP: bool>(&self, t: &TangentLightTriangle, x: i32, _y: i32, color: &mut [C]) {
-        let len = color.len();
-        let mut a = [0i32; 8];
-        let mut d = [0i32; 8];
-        for i in 0..8 {
-            let (s0, st) = super::start::<CLAMP>(&t.planes[i], x, len);
-            a[i] = t.base[i].wrapping_add(s0);
-            d[i] = st;
-        }
+    fn span(&self, _t: &(), a: &[i32; 8], d: &[i32; 8], _x: i32, _y: i32, color: &mut [C]) {
         // Q28 → Q24
         let lh = core::array::from_fn(|i| a[i] >> 4);
         let dlh = core::array::from_fn(|i| d[i] >> 4);
-        let uf = uv_base(0, &t.planes[6]).1;
-        let vf = uv_base(0, &t.planes[7]).1;
-        self.span(lh, dlh, [a[6], a[7]], [d[6], d[7]], [uf, vf], color)
+        self.shade_run(lh, dlh, [a[6], a[7]], [d[6], d[7]], [UV_FRAC; 2], color)
     }
 }

@@ -6,17 +6,14 @@
 use super::segment::{
     self, Anchor, DiffuseTable, EncodeSink, Fast565Sink, PowTable, Probe, Walk, DFRAC, U_ONE,
 };
-use super::{
-    raster_draw, Encoder, Kernel, ModeState, QuadraticPhongShading, ShadeVertex, Shader, Shading,
-};
+use super::{Encoder, Kernel, ModeState, QuadraticPhongShading, Shader};
 use crate::color::{OutputColor, Rgb};
 use crate::light::DirectionalLight;
 use crate::lighting::{
     BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Phong, Specular,
 };
 use crate::num::{F32Fast, Scalar, Q14};
-use crate::raster::{DrawStats, Plane, RasterOptions, Setup, SpanShader, ATTR_FRAC};
-use crate::target::{DepthBuffer, Framebuffer};
+use crate::raster::ATTR_FRAC;
 use crate::vector::Vec3;
 
 /// The reflection models [`QuadraticPhongShading`] evaluates: [`Lambert`],
@@ -99,10 +96,6 @@ pub struct QuadraticState<const K: usize> {
     h: [[i32; 3]; K],
     /// `L·V` of each light (Phong), Q15.
     lv: [i32; K],
-    /// The two directions of each light in Q30 (the per-triangle API's
-    /// attributes).
-    l30: [[i32; 3]; K],
-    h30: [[i32; 3]; K],
     /// The `f32` tiers' anchor constants.
     fl: FloatConsts<K>,
     /// The diffuse table of the 5-6-5 fast path (one light, `Linear`).
@@ -207,7 +200,6 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
         map(c).map(|v| libm::roundf(v * 16384.0).clamp(-65536.0, 65536.0) as i32)
     };
     let q14v = |v: [f32; 3]| -> [i32; 3] { v.map(|c| libm::roundf(c * 16384.0) as i32) };
-    let q30v = |v: [f32; 3]| -> [i32; 3] { v.map(|c| libm::roundf(c * 1_073_741_824.0) as i32) };
     let spec = d.specular != Specular::None;
     let phong = d.specular == Specular::Phong;
     let n = d.n;
@@ -266,8 +258,6 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
         l: core::array::from_fn(|k| q14v(d.l[k])),
         h: core::array::from_fn(|k| if spec { q14v(d.h[k]) } else { [0; 3] }),
         lv,
-        l30: core::array::from_fn(|k| q30v(d.l[k])),
-        h30: core::array::from_fn(|k| if spec { q30v(d.h[k]) } else { [0; 3] }),
         fl: FloatConsts {
             base: map(d.base),
             kd: core::array::from_fn(|k| map(d.kd[k])),
@@ -614,26 +604,6 @@ impl<S: QuadraticTier, const K: usize, M: QuadraticModel, E: Encoder<C>, C: Outp
 where
     QuadraticPhongShading: ModeState<QuadraticLighting<S, K, M>, C, State = QuadraticState<K>>,
 {
-    /// The rasterizer attributes of a vertex: the normal (Q26), then per light
-    /// `N·L` and `N·H` (or `N·V`) (Q26; affine over the triangle like the normal,
-    /// so the rasterizer interpolates them exactly).
-    fn attrs(&self, v: &ShadeVertex<S>) -> ([i32; 3], [[i32; 2]; K]) {
-        let n = [
-            v.normal.x.to_attr(),
-            v.normal.y.to_attr(),
-            v.normal.z.to_attr(),
-        ];
-        let dot = |d: &[i32; 3]| {
-            // Q26 · Q30 ≫ 30 = Q26, |N·L| ≤ |N| ≤ 2
-            ((n[0] as i64 * d[0] as i64 + n[1] as i64 * d[1] as i64 + n[2] as i64 * d[2] as i64)
-                >> 30) as i32
-        };
-        (
-            n,
-            core::array::from_fn(|j| [dot(&self.state.l30[j]), dot(&self.state.h30[j])]),
-        )
-    }
-
     /// The general path's colour of pixel `k` of a span (the normal interpolated
     /// and normalised in the tier, the full lighting).
     #[inline(never)]
@@ -646,7 +616,7 @@ where
     }
 
     /// Shades one span; `start`/`step` are `[Nx, Ny, Nz, N·L₁, N·H₁, …]` (Q26).
-    fn span(&self, x: i32, y: i32, start: &[i32], step: &[i32], out: &mut [C]) {
+    fn shade_run(&self, x: i32, y: i32, start: &[i32], step: &[i32], out: &mut [C]) {
         let n = out.len();
         if n == 0 {
             return;
@@ -775,72 +745,18 @@ where
     }
 }
 
-/// `SpanShader`, `Shading` and `Kernel` for `K` lights, with `N = 3 + 2K` attributes.
+/// The `Kernel` for `K` lights, with `N = 3 + 2K` values.
 macro_rules! quadratic_lights {
     ($($k:literal => $n:literal),*) => {$(
-        impl<S: QuadraticTier, M: QuadraticModel, E: Encoder<C>, C: OutputColor> SpanShader<$n>
-            for Inc<'_, S, $k, M, E, C>
-        {
-            type Color = C;
-            fn shade_span(&mut self, x: i32, y: i32, start: &[i32; $n], step: &[i32; $n], out: &mut [C]) {
-                self.span(x, y, start, step, out)
-            }
-        }
-
-        impl<S: QuadraticTier, M: QuadraticModel, E: Encoder<C>, C: OutputColor> Inc<'_, S, $k, M, E, C> {
-            fn draw_any<Fb: Framebuffer<Color = C>>(
-                &mut self,
-                fb: &mut Fb,
-                depth: Option<&mut DepthBuffer<'_>>,
-                tri: &[ShadeVertex<S>; 3],
-                opts: &RasterOptions,
-                perspective: bool,
-            ) -> Result<DrawStats, Fb::Error> {
-                let v = tri.map(|t| {
-                    let (n, dots) = self.attrs(&t);
-                    let mut a = [0i32; $n];
-                    a[..3].copy_from_slice(&n);
-                    for (j, d) in dots.iter().enumerate() {
-                        a[3 + 2 * j] = d[0];
-                        a[4 + 2 * j] = d[1];
-                    }
-                    t.raster(a)
-                });
-                raster_draw(fb, depth, &v, opts, self, perspective)
-            }
-        }
-
-        impl<S: QuadraticTier, M: QuadraticModel, E: Encoder<C>, C: OutputColor> Shading<S>
-            for Inc<'_, S, $k, M, E, C>
-        {
-            type Color = C;
-            fn draw<Fb: Framebuffer<Color = C>>(
-                &mut self,
-                fb: &mut Fb,
-                depth: Option<&mut DepthBuffer<'_>>,
-                tri: &[ShadeVertex<S>; 3],
-                opts: &RasterOptions,
-            ) -> Result<DrawStats, Fb::Error> {
-                self.draw_any(fb, depth, tri, opts, false)
-            }
-            fn draw_perspective<Fb: Framebuffer<Color = C>>(
-                &mut self,
-                fb: &mut Fb,
-                depth: Option<&mut DepthBuffer<'_>>,
-                tri: &[ShadeVertex<S>; 3],
-                opts: &RasterOptions,
-            ) -> Result<DrawStats, Fb::Error> {
-                self.draw_any(fb, depth, tri, opts, true)
-            }
-        }
-
         impl<S: QuadraticTier, M: QuadraticModel, E: Encoder<C>, C: OutputColor> Kernel
             for Inc<'_, S, $k, M, E, C>
         {
             type Color = C;
             /// The eye-space unit normal in Q14.
             type Vertex = [i16; 3];
-            type Triangle = QuadTriangle<$n>;
+            /// The normal, then `N·L` and `N·H` (or `N·V`) per light (Q14).
+            type Varyings = [i32; $n];
+            type Triangle = ();
             const NEEDS_POSITION: bool = false;
 
             #[inline]
@@ -848,9 +764,10 @@ macro_rules! quadratic_lights {
                 super::unit_q14(v.normal)
             }
 
-            fn triangle(&self, s: &Setup, v: [&[i16; 3]; 3], _p: [[i32; 3]; 3]) -> (QuadTriangle<$n>, bool) {
-                // attributes per vertex: the normal and N·L, N·H (or N·V) per light (Q14)
-                let attrs = v.map(|n| {
+            #[inline(always)]
+            fn triangle(&self, v: [&[i16; 3]; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; $n]; 3]) {
+                // the normal and N·L, N·H (or N·V) per light (Q14)
+                let var = v.map(|n| {
                     let n = n.map(i32::from);
                     let mut a = [0i32; $n];
                     a[..3].copy_from_slice(&n);
@@ -861,54 +778,26 @@ macro_rules! quadratic_lights {
                     }
                     a
                 });
-                let t = s.tmb[0];
-                let tri = QuadTriangle {
-                    planes: core::array::from_fn(|i| s.plane([attrs[0][i], attrs[1][i], attrs[2][i]])),
-                    base: core::array::from_fn(|i| attrs[t][i] << ATTR_FRAC),
-                };
+                ((), var)
+            }
+
+            #[inline(always)]
+            fn safe(&self, _i: usize) -> (i32, i32) {
                 // the span code checks |N|² itself; the values must only stay
                 // inside ±2 (Q14, with ATTR_FRAC bits) so that nothing wraps
                 let two = 1 << (15 + ATTR_FRAC);
-                let clamp = (0..$n).any(|i| !super::within(s, &tri.planes[i], tri.base[i], (-two, two - 1)));
-                (tri, clamp)
+                (-two, two - 1)
             }
 
-            fn skip_rows(t: &mut QuadTriangle<$n>, rows: i32) {
-                for p in t.planes.iter_mut() {
-                    p.skip_rows(rows);
-                }
-            }
-
-            fn next_row(t: &mut QuadTriangle<$n>) {
-                for p in t.planes.iter_mut() {
-                    p.next_row();
-                }
-            }
-
-            fn shade<const CLAMP: bool>(&self, t: &QuadTriangle<$n>, x: i32, y: i32, color: &mut [C]) {
-                let len = color.len();
+            #[inline(always)]
+            fn span(&self, _t: &(), a: &[i32; $n], d: &[i32; $n], x: i32, y: i32, out: &mut [C]) {
                 // Q14 with ATTR_FRAC bits (Q28) → Q26
-                let mut start = [0i32; $n];
-                let mut step = [0i32; $n];
-                for i in 0..$n {
-                    let (s0, d) = super::start::<CLAMP>(&t.planes[i], x, len);
-                    start[i] = t.base[i].wrapping_add(s0) >> 2;
-                    step[i] = d >> 2;
-                }
-                self.span(x, y, &start, &step, color)
+                self.shade_run(x, y, &a.map(|v| v >> 2), &d.map(|v| v >> 2), out)
             }
         }
     )*};
 }
 quadratic_lights!(1 => 5, 2 => 7, 3 => 9, 4 => 11);
-
-/// An incremental Phong triangle in the mesh renderer: planes of the normal
-/// and of `N·L`, `N·H` (or `N·V`) per light.
-#[derive(Clone, Copy, Debug)]
-pub struct QuadTriangle<const N: usize> {
-    planes: [Plane; N],
-    base: [i32; N],
-}
 
 #[cfg(test)]
 mod tests {

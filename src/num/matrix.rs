@@ -1,20 +1,20 @@
 //! 4×4 matrices in `f32`: model, view and projection, composed once per frame
-//! (the fixed-point stages take them from here: [`Camera`](crate::camera::Camera)
-//! for the mesh renderer, [`FixedMat4`](super::FixedMat4) for the per-triangle
-//! pipeline).
+//! (the fixed-point vertex stage takes them from here through
+//! [`Camera`](crate::camera::Camera)).
 
-use super::error::{finite, MeshError};
+use crate::error::{finite, ParamError};
 
 /// A 4×4 matrix in `f32`, row-major (`m[row][col]`), applied to column vectors:
 /// `p' = M·p`. [`Mat4::mul`] composes so that `a.mul(&b)` applies `b` first, as
 /// in OpenGL: `mvp = projection.mul(&view).mul(&model)`.
 ///
-/// Constructors whose parameters can be invalid return a [`MeshError`]; the
+/// Constructors whose parameters can be invalid return a [`ParamError`]; the
 /// others accept any `f32` and produce a non-finite matrix from non-finite
-/// input, which [`FixedMat4::new`](super::FixedMat4::new) then rejects.
+/// input, which [`Camera::mesh_transform`](crate::camera::Camera::mesh_transform)
+/// then rejects.
 ///
 /// ```
-/// use fixshade::mesh::Mat4;
+/// use fixshade::camera::Mat4;
 /// let m = Mat4::translate([1.0, 2.0, 3.0]).mul(&Mat4::scale([2.0, 2.0, 2.0]));
 /// assert_eq!(m.transform_point([1.0, 1.0, 1.0]), [3.0, 4.0, 5.0, 1.0]);
 /// ```
@@ -132,17 +132,17 @@ impl Mat4 {
     ///
     /// # Errors
     ///
-    /// [`MeshError::NotFinite`] for NaN or infinite input;
-    /// [`MeshError::Degenerate`] when `eye = target` or `up` is zero or parallel
+    /// [`ParamError::NotFinite`] for NaN or infinite input;
+    /// [`ParamError::ZeroDirection`] when `eye = target` or `up` is zero or parallel
     /// to the view direction.
     ///
     /// ```
-    /// use fixshade::mesh::Mat4;
+    /// use fixshade::camera::Mat4;
     /// let v = Mat4::look_at([0.0, 0.0, 5.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0])?;
     /// assert_eq!(v, Mat4::translate([0.0, 0.0, -5.0]));
-    /// # Ok::<(), fixshade::mesh::MeshError>(())
+    /// # Ok::<(), fixshade::error::ParamError>(())
     /// ```
-    pub fn look_at(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Result<Self, MeshError> {
+    pub fn look_at(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Result<Self, ParamError> {
         for v in eye {
             finite("eye", v)?;
         }
@@ -152,8 +152,8 @@ impl Mat4 {
         for v in up {
             finite("up", v)?;
         }
-        let f = unit3(sub3(target, eye)).ok_or(MeshError::Degenerate("eye/target"))?;
-        let s = unit3(cross3(f, up)).ok_or(MeshError::Degenerate("up"))?;
+        let f = unit3(sub3(target, eye)).ok_or(ParamError::ZeroDirection("eye/target"))?;
+        let s = unit3(cross3(f, up)).ok_or(ParamError::ZeroDirection("up"))?;
         let u = cross3(s, f);
         let m = Self {
             m: [
@@ -171,38 +171,38 @@ impl Mat4 {
     /// `z_c = (far + near)/(near − far)·z + 2·far·near/(near − far)`, `w_c = −z`.
     /// Eye-space points at `z = −near` get `z_c/w_c = −1`, at `z = −far` `+1`;
     /// `w_c` is the distance in front of the eye, so the near plane is
-    /// `w_c = near` (pass `near` to [`ScreenTransform::new`](super::ScreenTransform::new) and
-    /// [`clip_near`](super::clip_near)).
+    /// `w_c = near` (where [`Camera::perspective`](crate::camera::Camera::perspective)
+    /// clips).
     ///
     /// # Errors
     ///
-    /// [`MeshError::NotFinite`] for NaN or infinite input;
-    /// [`MeshError::OutOfRange`] unless `0 < fovy_rad < π`, `aspect > 0`,
+    /// [`ParamError::NotFinite`] for NaN or infinite input;
+    /// [`ParamError::OutOfRange`] unless `0 < fovy_rad < π`, `aspect > 0`,
     /// `near > 0` and `far > near`.
     ///
     /// ```
-    /// use fixshade::mesh::Mat4;
+    /// use fixshade::camera::Mat4;
     /// let p = Mat4::perspective(core::f32::consts::FRAC_PI_2, 2.0, 1.0, 3.0)?;
     /// assert_eq!(p.transform_point([2.0, 1.0, -1.0]), [1.0, 1.0, -1.0, 1.0]);
     /// assert!(Mat4::perspective(1.0, 1.0, 0.0, 10.0).is_err());
-    /// # Ok::<(), fixshade::mesh::MeshError>(())
+    /// # Ok::<(), fixshade::error::ParamError>(())
     /// ```
-    pub fn perspective(fovy_rad: f32, aspect: f32, near: f32, far: f32) -> Result<Self, MeshError> {
+    pub fn perspective(fovy_rad: f32, aspect: f32, near: f32, far: f32) -> Result<Self, ParamError> {
         let fovy = finite("fovy", fovy_rad)?;
         let aspect = finite("aspect", aspect)?;
         let near = finite("near", near)?;
         let far = finite("far", far)?;
         if !(fovy > 0.0 && fovy < core::f32::consts::PI) {
-            return Err(MeshError::OutOfRange("fovy"));
+            return Err(ParamError::OutOfRange("fovy"));
         }
         if aspect <= 0.0 {
-            return Err(MeshError::OutOfRange("aspect"));
+            return Err(ParamError::OutOfRange("aspect"));
         }
         if near <= 0.0 {
-            return Err(MeshError::OutOfRange("near"));
+            return Err(ParamError::OutOfRange("near"));
         }
         if far <= near {
-            return Err(MeshError::OutOfRange("far"));
+            return Err(ParamError::OutOfRange("far"));
         }
         let f = 1.0 / libm::tanf(fovy * 0.5);
         let d = near - far;
@@ -220,22 +220,20 @@ impl Mat4 {
     /// An orthographic projection (`glOrtho`): the box `left..right`,
     /// `bottom..top`, `z = −near..−far` maps to `−1..1` on each axis; `w_c = 1`.
     ///
-    /// With `w_c = 1` everywhere the near plane is not a `w` plane: pass any
-    /// `near_w` in `(0, 1)` to [`ScreenTransform::new`](super::ScreenTransform::new) and
-    /// [`clip_near`](super::clip_near) (nothing is clipped); depths outside
-    /// `near..far` saturate to 0 or 65535.
+    /// With `w_c = 1` everywhere the near plane is not a `w` plane: nothing
+    /// is clipped at it; depths outside `near..far` saturate to 0 or 65535.
     ///
     /// # Errors
     ///
-    /// [`MeshError::NotFinite`] for NaN or infinite input;
-    /// [`MeshError::Degenerate`] when `left = right`, `bottom = top` or
+    /// [`ParamError::NotFinite`] for NaN or infinite input;
+    /// [`ParamError::ZeroDirection`] when `left = right`, `bottom = top` or
     /// `near = far`.
     ///
     /// ```
-    /// use fixshade::mesh::Mat4;
+    /// use fixshade::camera::Mat4;
     /// let o = Mat4::orthographic(0.0, 4.0, 0.0, 2.0, 1.0, 3.0)?;
     /// assert_eq!(o.transform_point([4.0, 1.0, -2.0]), [1.0, 0.0, 0.0, 1.0]);
-    /// # Ok::<(), fixshade::mesh::MeshError>(())
+    /// # Ok::<(), fixshade::error::ParamError>(())
     /// ```
     pub fn orthographic(
         left: f32,
@@ -244,18 +242,18 @@ impl Mat4 {
         top: f32,
         near: f32,
         far: f32,
-    ) -> Result<Self, MeshError> {
+    ) -> Result<Self, ParamError> {
         let (l, r) = (finite("left", left)?, finite("right", right)?);
         let (b, t) = (finite("bottom", bottom)?, finite("top", top)?);
         let (n, f) = (finite("near", near)?, finite("far", far)?);
         if l == r {
-            return Err(MeshError::Degenerate("left/right"));
+            return Err(ParamError::ZeroDirection("left/right"));
         }
         if b == t {
-            return Err(MeshError::Degenerate("bottom/top"));
+            return Err(ParamError::ZeroDirection("bottom/top"));
         }
         if n == f {
-            return Err(MeshError::Degenerate("near/far"));
+            return Err(ParamError::ZeroDirection("near/far"));
         }
         Self {
             m: [
@@ -269,11 +267,11 @@ impl Mat4 {
     }
 
     /// `Ok(self)` when every element is finite.
-    fn checked(self, name: &'static str) -> Result<Self, MeshError> {
+    fn checked(self, name: &'static str) -> Result<Self, ParamError> {
         if self.is_finite() {
             Ok(self)
         } else {
-            Err(MeshError::NotFinite(name))
+            Err(ParamError::NotFinite(name))
         }
     }
 
@@ -373,7 +371,7 @@ mod tests {
         assert_eq!(v, want);
         // the target ends on −z at its distance
         assert_eq!(v.transform_point([5.0, 2.0, 3.0]), [0.0, 0.0, -4.0, 1.0]);
-        let d = |r| Err::<Mat4, _>(MeshError::Degenerate(r));
+        let d = |r| Err::<Mat4, _>(ParamError::ZeroDirection(r));
         assert_eq!(
             Mat4::look_at([1.0; 3], [1.0; 3], [0.0, 1.0, 0.0]),
             d("eye/target")
@@ -387,7 +385,7 @@ mod tests {
 
     #[test]
     fn projection_parameters_are_validated() {
-        let o = |r| Err::<Mat4, _>(MeshError::OutOfRange(r));
+        let o = |r| Err::<Mat4, _>(ParamError::OutOfRange(r));
         assert_eq!(Mat4::perspective(0.0, 1.0, 1.0, 2.0), o("fovy"));
         assert_eq!(Mat4::perspective(3.2, 1.0, 1.0, 2.0), o("fovy"));
         assert_eq!(Mat4::perspective(1.0, -1.0, 1.0, 2.0), o("aspect"));
@@ -395,15 +393,15 @@ mod tests {
         assert_eq!(Mat4::perspective(1.0, 1.0, 2.0, 2.0), o("far"));
         assert_eq!(
             Mat4::perspective(1.0, f32::NAN, 1.0, 2.0),
-            Err(MeshError::NotFinite("aspect"))
+            Err(ParamError::NotFinite("aspect"))
         );
         assert_eq!(
             Mat4::perspective(1.0, 1.0, 1.0, f32::INFINITY),
-            Err(MeshError::NotFinite("far"))
+            Err(ParamError::NotFinite("far"))
         );
         assert_eq!(
             Mat4::perspective(1.0, 1.0e-40, 1.0, 2.0),
-            Err(MeshError::NotFinite("perspective"))
+            Err(ParamError::NotFinite("perspective"))
         );
         assert!(Mat4::orthographic(1.0, 1.0, 0.0, 1.0, 0.0, 1.0).is_err());
         assert!(Mat4::orthographic(0.0, 1.0, 0.0, 1.0, 1.0, 1.0).is_err());

@@ -1,0 +1,70 @@
+//! The screen rectangle a camera draws into.
+
+use crate::error::ParamError;
+
+/// The largest viewport side and offset: 32768 pixels.
+const LIMIT: i32 = 1 << 15;
+
+/// The screen rectangle clip space maps to: `x0..x0 + width` left to right,
+/// `y0..y0 + height` top to bottom (y down), depth `−1..1` to `0..=65535`.
+///
+/// ```
+/// use fixshade::camera::Viewport;
+/// let vp = Viewport::new(0, 0, 240, 135)?;
+/// assert_eq!((vp.width(), vp.height()), (240, 135));
+/// assert!(Viewport::new(0, 0, 0, 10).is_err());
+/// # Ok::<(), fixshade::error::ParamError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Viewport {
+    x0: i32,
+    y0: i32,
+    width: i32,
+    height: i32,
+}
+
+impl Viewport {
+    /// A viewport with its top-left corner at pixel `(x0, y0)`.
+    ///
+    /// # Errors
+    ///
+    /// [`ParamError::OutOfRange`] unless `1 ≤ width, height ≤ 32768` and
+    /// `|x0|, |y0| ≤ 32768`.
+    pub const fn new(x0: i32, y0: i32, width: i32, height: i32) -> Result<Self, ParamError> {
+        if width < 1 || width > LIMIT {
+            return Err(ParamError::OutOfRange("width"));
+        }
+        if height < 1 || height > LIMIT {
+            return Err(ParamError::OutOfRange("height"));
+        }
+        if x0 < -LIMIT || x0 > LIMIT {
+            return Err(ParamError::OutOfRange("x0"));
+        }
+        if y0 < -LIMIT || y0 > LIMIT {
+            return Err(ParamError::OutOfRange("y0"));
+        }
+        Ok(Self {
+            x0,
+            y0,
+            width,
+            height,
+        })
+    }
+
+    /// Left column.
+    pub const fn x0(&self) -> i32 {
+        self.x0
+    }
+    /// Top row.
+    pub const fn y0(&self) -> i32 {
+        self.y0
+    }
+    /// Width in pixels.
+    pub const fn width(&self) -> i32 {
+        self.width
+    }
+    /// Height in pixels.
+    pub const fn height(&self) -> i32 {
+        self.height
+    }
+}

@@ -1,0 +1,295 @@
+//! Attribute interpolation over a set-up triangle: what a shading kernel gets
+//! for a run of pixels, screen-linear under an orthographic projection,
+//! perspective-correct under a perspective one.
+//!
+//! A kernel's *varyings* are `[i32; N]` values at the three vertices, each
+//! within ±[`VARYING_LIMIT`] (2^15 − 1; larger values are clamped). For a run of
+//! pixels the kernel receives the values at its first pixel and their change
+//! per pixel, both with [`ATTR_FRAC`] fraction bits.
+//!
+//! - **Screen-linear** ([`Linear`]): one 32-bit plane per varying
+//!   ([`Setup::plane`]: 14-bit barycentric coefficients), evaluated once per
+//!   run. When a plane's error bound could carry values out of the range the
+//!   kernel can take ([`Setup::err`]), runs are clamped to the vertex range.
+//! - **Perspective-correct** ([`Persp`]), as OpenGL interpolates: with `βᵢ`
+//!   the screen-space barycentric weights and `wᵢ` the clip `w` of the
+//!   vertices, a pixel gets `Σ βᵢ·aᵢ/wᵢ / Σ βᵢ/wᵢ`. It is evaluated exactly
+//!   (to the arithmetic below) at the ends of sub-spans of
+//!   [`PERSPECTIVE_SPAN`](super::PERSPECTIVE_SPAN) = 8 pixels and linearly in
+//!   between; the end after a run's last sub-span may lie beyond the
+//!   triangle, where the weights are clamped to `[0, 1]`. Every value is a
+//!   convex combination of the vertex values: no clamping is needed.
+//!   Arithmetic: `1/wᵢ` as the product of the other two `w` (16-bit
+//!   mantissas, no division), the weights in Q14 from one table-and-Newton
+//!   reciprocal per sub-span end ([`crate::num::recip`]), so a value is off by
+//!   about `2^−14·max|aⱼ − a₀|` plus the weights' relative error, which grows
+//!   with the ratio of the vertices' `w` (about `2^−16·w_max/w_min`).
+//!
+//! Depth (`z/w`) is screen-linear under both projections.
+
+use super::setup::{ClampTo, Plane, Setup};
+use super::ATTR_FRAC;
+use crate::num::recip::{normalise, recip16};
+
+/// Varyings at the vertices are clamped to ±(2^15 − 1), so that the
+/// differences of two fit the set-up's 17-bit plane inputs.
+pub const VARYING_LIMIT: i32 = (1 << 15) - 1;
+
+mod sealed {
+    pub trait Sealed {}
+    impl<const N: usize> Sealed for [i32; N] {}
+}
+
+/// The values a shading kernel interpolates across a triangle: `[i32; N]`
+/// (sealed; see the [module docs](self) for units and precision).
+pub trait Varyings: Copy + core::fmt::Debug + sealed::Sealed + 'static {
+    /// How many values.
+    const LEN: usize;
+    /// One plane per value.
+    #[doc(hidden)]
+    type Planes: Copy + core::fmt::Debug + AsRef<[Plane]> + AsMut<[Plane]>;
+    /// The values `f(0), f(1), …`.
+    #[doc(hidden)]
+    fn from_fn(f: impl FnMut(usize) -> i32) -> Self;
+    /// The planes `f(0), f(1), …`.
+    #[doc(hidden)]
+    fn planes_from_fn(f: impl FnMut(usize) -> Plane) -> Self::Planes;
+    /// The values as a slice.
+    #[doc(hidden)]
+    fn values(&self) -> &[i32];
+    /// The values as a mutable slice.
+    #[doc(hidden)]
+    fn values_mut(&mut self) -> &mut [i32];
+}
+
+impl<const N: usize> Varyings for [i32; N] {
+    const LEN: usize = N;
+    type Planes = [Plane; N];
+    #[inline(always)]
+    fn from_fn(f: impl FnMut(usize) -> i32) -> Self {
+        core::array::from_fn(f)
+    }
+    #[inline(always)]
+    fn planes_from_fn(f: impl FnMut(usize) -> Plane) -> [Plane; N] {
+        core::array::from_fn(f)
+    }
+    #[inline(always)]
+    fn values(&self) -> &[i32] {
+        self
+    }
+    #[inline(always)]
+    fn values_mut(&mut self) -> &mut [i32] {
+        self
+    }
+}
+
+/// Value `i` of `v` (0 past the end: no panic path).
+#[inline(always)]
+pub(crate) fn get<V: Varyings>(v: &V, i: usize) -> i32 {
+    v.values().get(i).copied().unwrap_or(0)
+}
+
+/// `a` interpolated `num/den` of the way to `b` (clipping), each value exact
+/// to rounding.
+#[inline]
+pub(crate) fn lerp<V: Varyings>(a: &V, b: &V, num: u32, den: u32) -> V {
+    V::from_fn(|i| crate::num::wide::lerp_i32(get(a, i), get(b, i), num, den))
+}
+
+/// The vertex values clamped to ±[`VARYING_LIMIT`].
+#[inline(always)]
+pub(crate) fn limited<V: Varyings>(v: &V) -> V {
+    V::from_fn(|i| get(v, i).clamp_to(-VARYING_LIMIT, VARYING_LIMIT))
+}
+
+/// The values of the oriented vertices (`s.order`).
+#[inline(always)]
+pub(crate) fn oriented<T: Copy>(s: &Setup, v: &[T; 3]) -> [T; 3] {
+    s.order.map(|i| super::setup::at3(v, i))
+}
+
+/// Screen-linear interpolation: one absolute plane per varying.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Linear<V: Varyings> {
+    planes: V::Planes,
+    /// Whether runs are clamped to the vertex range.
+    pub clamp: bool,
+}
+
+impl<V: Varyings> Linear<V> {
+    /// The planes of the first `used` of the oriented vertices' values `v`
+    /// (within ±2^15; the others are not interpolated), and whether a run
+    /// must be clamped so that every value stays in `safe(i)` (with
+    /// [`ATTR_FRAC`] bits), positioned at the triangle's first row.
+    #[inline(always)]
+    pub(crate) fn new(
+        s: &Setup,
+        v: &[V; 3],
+        used: usize,
+        safe: impl Fn(usize) -> (i32, i32),
+    ) -> Self {
+        let top = super::setup::at3(v, s.tmb[0]);
+        let mut clamp = false;
+        let planes = V::planes_from_fn(|i| {
+            if i >= used {
+                return Plane::default();
+            }
+            let p = s.plane([get(&v[0], i), get(&v[1], i), get(&v[2], i)]);
+            let base = get(&top, i) << ATTR_FRAC;
+            clamp |= !within(s, &p, base, safe(i));
+            p.absolute(base)
+        });
+        Linear { planes, clamp }
+    }
+
+    /// The next row.
+    #[inline(always)]
+    pub(crate) fn next_row(&mut self, used: usize) {
+        for p in self.planes.as_mut().iter_mut().take(used) {
+            p.next_row();
+        }
+    }
+
+    /// `n` rows down.
+    #[inline(always)]
+    pub(crate) fn skip_rows(&mut self, n: i32, used: usize) {
+        for p in self.planes.as_mut().iter_mut().take(used) {
+            p.skip_rows(n);
+        }
+    }
+
+    /// `(start, step)` of a run of `n ≥ 1` pixels from column `x` (the first
+    /// `used` values; the others zero).
+    #[inline(always)]
+    pub(crate) fn run<const CLAMP: bool>(&self, x: i32, n: usize, used: usize) -> (V, V) {
+        let mut start = V::from_fn(|_| 0);
+        let mut step = start;
+        let values = start.values_mut().iter_mut().zip(step.values_mut());
+        for (p, (s, d)) in self.planes.as_ref().iter().zip(values).take(used) {
+            (*s, *d) = if CLAMP {
+                p.clamped(x, n as i32)
+            } else {
+                (p.at(x), p.dx)
+            };
+        }
+        (start, step)
+    }
+}
+
+/// Whether a plane's values, with its error bound, stay in `safe` when added
+/// to `base` (so that they need no clamping).
+#[inline]
+pub(crate) fn within(s: &Setup, p: &Plane, base: i32, safe: (i32, i32)) -> bool {
+    let err = s.err(p);
+    if err >= 1 << 29 {
+        return false;
+    }
+    let err = err as i32;
+    // |base|, |lo|, |hi| < 2^30 and err < 2^29: saturating, no overflow
+    let lo = base.saturating_add(p.lo).saturating_sub(err);
+    let hi = base.saturating_add(p.hi).saturating_add(err);
+    lo >= safe.0 && hi <= safe.1
+}
+
+/// Perspective-correct interpolation (see the [module docs](self)).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Persp<V: Varyings> {
+    /// `β₁`, `β₂` of oriented vertices 1 and 2, Q14 with [`ATTR_FRAC`] bits.
+    beta: [Plane; 2],
+    /// `1/wᵢ` up to a common factor, at most 2^16.
+    q: [u32; 3],
+    /// Vertex 0's values with [`ATTR_FRAC`] bits, and the differences
+    /// `a₁ − a₀`, `a₂ − a₀`.
+    a0: V,
+    d1: V,
+    d2: V,
+}
+
+impl<V: Varyings> Persp<V> {
+    /// The interpolation of the oriented vertices' values `v` (within
+    /// ±2^15) and clip `w` (positive), positioned at the triangle's first row.
+    pub(crate) fn new(s: &Setup, v: &[V; 3], w: [i32; 3]) -> Self {
+        let one = 1 << 14;
+        let top = s.tmb[0];
+        let beta = [1usize, 2].map(|k| {
+            let mut e = [0; 3];
+            e[k] = one;
+            let base = super::setup::at3(&e, top) << ATTR_FRAC;
+            s.plane(e).absolute(base)
+        });
+        Persp {
+            beta,
+            q: inverse_w(w),
+            a0: V::from_fn(|i| get(&v[0], i) << ATTR_FRAC),
+            d1: V::from_fn(|i| get(&v[1], i) - get(&v[0], i)),
+            d2: V::from_fn(|i| get(&v[2], i) - get(&v[0], i)),
+        }
+    }
+
+    /// The next row.
+    #[inline(always)]
+    pub(crate) fn next_row(&mut self) {
+        self.beta[0].next_row();
+        self.beta[1].next_row();
+    }
+
+    /// `n` rows down.
+    #[inline(always)]
+    pub(crate) fn skip_rows(&mut self, n: i32) {
+        self.beta[0].skip_rows(n);
+        self.beta[1].skip_rows(n);
+    }
+
+    /// The values at column `x` of the current row, with [`ATTR_FRAC`] bits.
+    #[inline]
+    pub(crate) fn at(&self, x: i32) -> V {
+        let one = 1i32 << 14;
+        let b1 = (self.beta[0].at(x) >> ATTR_FRAC).clamp_to(0, one);
+        let b2 = (self.beta[1].at(x) >> ATTR_FRAC).clamp_to(0, one - b1);
+        let b0 = one - b1 - b2;
+        // tᵢ = βᵢ·qᵢ ≤ 2^30; the weights tᵢ / Σt in Q14
+        let t = [b0 as u32 * self.q[0], b1 as u32 * self.q[1], b2 as u32 * self.q[2]];
+        let sum = t[0] + t[1] + t[2];
+        let (sn, m) = normalise(sum, 15);
+        if sn == 0 {
+            return self.a0;
+        }
+        let r = recip16(sn);
+        // tᵢ·2^m ≤ sn < 2^16 and r ≤ 2^16: the product fits 32 bits
+        let weight = |ti: u32| {
+            let tn = if m >= 0 { ti << m } else { ti >> -m };
+            ((tn * r) >> 17).min(1 << 14) as i32
+        };
+        let (w1, w2) = (weight(t[1]), weight(t[2]));
+        // a₀ + w₁·(a₁ − a₀) + w₂·(a₂ − a₀): a convex combination, |wⱼ·dⱼ| ≤ 2^30
+        V::from_fn(|i| {
+            get(&self.a0, i)
+                .wrapping_add(w1 * get(&self.d1, i))
+                .wrapping_add(w2 * get(&self.d2, i))
+        })
+    }
+}
+
+/// `qᵢ ∝ 1/wᵢ`, the largest at most 2^16: `qᵢ = ∏_{j≠i} wⱼ` from 16-bit
+/// mantissas of the `w` (no division).
+fn inverse_w(w: [i32; 3]) -> [u32; 3] {
+    let w = w.map(|v| v.max(1) as u32);
+    let big = w[0].max(w[1]).max(w[2]);
+    let sh = super::setup::bit_length(big).saturating_sub(16);
+    // mantissas below 2^16 (at least 1): products below 2^32
+    let m = w.map(|v| (v >> sh).max(1));
+    let q = [m[1] * m[2], m[0] * m[2], m[0] * m[1]];
+    let qmax = q[0].max(q[1]).max(q[2]);
+    let s = super::setup::bit_length(qmax).saturating_sub(16);
+    q.map(|v| (v >> s).max(1))
+}
+
+/// The change per pixel between two sub-span ends 8 pixels apart (rounded
+/// toward zero, so that every pixel's value lies between the ends).
+#[inline(always)]
+pub(crate) fn eighth<V: Varyings>(a: &V, b: &V) -> V {
+    V::from_fn(|i| {
+        let d = get(b, i).wrapping_sub(get(a, i));
+        (d + ((d >> 31) & 7)) >> 3
+    })
+}

@@ -1,0 +1,345 @@
+//! One triangle through clipping, set-up, interpolation and the kernel into a
+//! band: the stages every triangle of a frame goes through, whether it comes
+//! from a mesh ([`MeshDraw`](super::MeshDraw)) or from the per-triangle front
+//! ([`draw_triangle`](super::draw_triangle)).
+
+use super::BandView;
+use crate::camera::Clip;
+use crate::raster::clip::{ClipPoint, ClipSpace, Polygon, Screen};
+use crate::raster::interp::{self, eighth, within, Linear, Persp, Varyings};
+use crate::raster::setup::at3;
+use crate::raster::{Cull, Plane, Setup, Walker, ATTR_FRAC, PERSPECTIVE_SPAN, SUBPIXEL_BITS};
+use crate::shade::{depth_runs, Kernel};
+
+/// A corner of a triangle in clip space, with the kernel's values.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ClipCorner<V> {
+    pub c: Clip,
+    pub v: V,
+}
+
+impl<V: Varyings> ClipPoint for ClipCorner<V> {
+    #[inline]
+    fn clip(&self) -> Clip {
+        self.c
+    }
+
+    fn cut(&self, o: &Self, num: u32, den: u32, c: Clip) -> Self {
+        ClipCorner {
+            c,
+            v: interp::lerp(&self.v, &o.v, num, den),
+        }
+    }
+}
+
+/// A corner on the screen, inside the set-up window, with the kernel's values.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Corner<V> {
+    pub s: Screen,
+    pub v: V,
+}
+
+/// Sets up the triangle of corners `c` (inside the window) and draws the part
+/// of it in `band` with `kernel` (triangle constants `t`), starting at the
+/// band's first row from the edge columns `resume` when given. Returns the
+/// edge columns at the next band's first row when the triangle continues.
+/// `PERSP`: perspective-correct values (the corners' `w`), else screen-linear.
+#[inline(always)]
+pub(crate) fn draw<K: Kernel, const PERSP: bool>(
+    kernel: &K,
+    t: &K::Triangle,
+    c: &[Corner<K::Varyings>; 3],
+    resume: Option<(i32, i32)>,
+    band: &mut BandView<'_, K::Color>,
+) -> Option<(i32, i32)> {
+    let mut s = Setup::new(c.map(|c| (c.s.x, c.s.y)), Cull::None)?;
+    s.prepare_planes();
+    let row0 = s.rows.0;
+    // depth with ATTR_FRAC bits, + ½ so that the shift rounds; values must stay
+    // in 0..65536
+    let z = interp::oriented(&s, &c.map(|c| i32::from(c.s.z)));
+    let zp = s.plane(z);
+    let zbase = (at3(&z, s.tmb[0]) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
+    let zclamp = !within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
+    let mut zp = zp.absolute(zbase);
+    let v = interp::oriented(&s, &c.map(|c| interp::limited(&c.v)));
+    let rows = band.rows();
+    let mut w = match resume {
+        Some(cols) => Walker::resume(&s, rows.start, cols),
+        None => s.walker(rows.start),
+    };
+    let skip = w.y - row0;
+    let last = w.last.min(rows.end - 1);
+    if skip > 0 {
+        zp.skip_rows(skip);
+    }
+    if PERSP {
+        let mut p = Persp::new(&s, &v, interp::oriented(&s, &c.map(|c| c.s.w)));
+        if skip > 0 {
+            p.skip_rows(skip);
+        }
+        if zclamp {
+            draw_rows::<K, _, true>(kernel, t, &mut w, last, &mut zp, band, &mut p);
+        } else {
+            draw_rows::<K, _, false>(kernel, t, &mut w, last, &mut zp, band, &mut p);
+        }
+    } else {
+        let mut l = Linear::new(&s, &v, K::USED, |i| kernel.safe(i));
+        if skip > 0 {
+            l.skip_rows(skip, K::USED);
+        }
+        if l.clamp || zclamp {
+            draw_rows::<K, _, true>(kernel, t, &mut w, last, &mut zp, band, &mut l);
+        } else {
+            draw_rows::<K, _, false>(kernel, t, &mut w, last, &mut zp, band, &mut l);
+        }
+    }
+    w.more().then(|| w.snapshot())
+}
+
+/// How a triangle's values reach the kernel along its rows: screen-linear
+/// planes or perspective-correct sub-spans.
+trait Runs<K: Kernel> {
+    /// Moves the values a row down.
+    fn next_row(&mut self);
+    /// Shades the `out.len()` pixels of row `y` from column `x`; `CLAMP`:
+    /// the values are clamped to the vertex range per run.
+    fn run<const CLAMP: bool>(
+        &self,
+        kernel: &K,
+        t: &K::Triangle,
+        x: i32,
+        y: i32,
+        out: &mut [K::Color],
+    );
+}
+
+impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
+    #[inline(always)]
+    fn next_row(&mut self) {
+        Linear::next_row(self, K::USED)
+    }
+
+    #[inline(always)]
+    fn run<const CLAMP: bool>(
+        &self,
+        kernel: &K,
+        t: &K::Triangle,
+        x: i32,
+        y: i32,
+        out: &mut [K::Color],
+    ) {
+        let (a, d) = Linear::run::<CLAMP>(self, x, out.len(), K::USED);
+        kernel.span(t, &a, &d, x, y, out)
+    }
+}
+
+impl<K: Kernel> Runs<K> for Persp<K::Varyings> {
+    #[inline(always)]
+    fn next_row(&mut self) {
+        Persp::next_row(self)
+    }
+
+    #[inline(always)]
+    fn run<const CLAMP: bool>(
+        &self,
+        kernel: &K,
+        t: &K::Triangle,
+        x: i32,
+        y: i32,
+        out: &mut [K::Color],
+    ) {
+        perspective_run(kernel, t, self, x, y, out)
+    }
+}
+
+/// The rows `w.y..=last` of a set-up triangle: the walker's columns, the
+/// depth test of each run (the depth plane `zp`), and the kernel on the
+/// passing pixels (all of them without a depth buffer: a branch per row, not
+/// a second copy of the loop). `CLAMP`: depth and values clamped per run.
+#[inline(always)]
+fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
+    kernel: &K,
+    t: &K::Triangle,
+    w: &mut Walker,
+    last: i32,
+    zp: &mut Plane,
+    band: &mut BandView<'_, K::Color>,
+    values: &mut R,
+) {
+    let width = band.width as i32;
+    let start = band.rows.start;
+    let mut row = (w.y - start) as usize * band.width as usize;
+    while w.y <= last {
+        let y = w.y;
+        let (lo, hi) = w.next();
+        let (lo, hi) = (lo.max(0), hi.min(width - 1));
+        if lo <= hi {
+            let n = (hi - lo + 1) as usize;
+            let at = row + lo as usize;
+            if let Some(color) = band.color.get_mut(at..at + n) {
+                if let Some(d) = band.depth.as_deref_mut() {
+                    let (z0, dz) = if CLAMP {
+                        zp.clamped(lo, n as i32)
+                    } else {
+                        (zp.at(lo), zp.dx)
+                    };
+                    if let Some(depth) = d.get_mut(at..at + n) {
+                        depth_runs(z0, dz, depth, |k0, k1| {
+                            if let Some(c) = color.get_mut(k0..k1) {
+                                values.run::<CLAMP>(kernel, t, lo + k0 as i32, y, c);
+                            }
+                        });
+                    }
+                } else {
+                    values.run::<CLAMP>(kernel, t, lo, y, color);
+                }
+            }
+        }
+        values.next_row();
+        zp.next_row();
+        row += band.width as usize;
+    }
+}
+
+/// A run of pixels from column `x` with perspective-correct values: exact at
+/// every [`PERSPECTIVE_SPAN`]-th pixel from `x`, linear in between.
+#[inline(always)]
+fn perspective_run<K: Kernel>(
+    kernel: &K,
+    t: &K::Triangle,
+    p: &Persp<K::Varyings>,
+    x: i32,
+    y: i32,
+    out: &mut [K::Color],
+) {
+    let mut x = x;
+    let mut a = p.at(x);
+    for part in out.chunks_mut(PERSPECTIVE_SPAN) {
+        let b = p.at(x + PERSPECTIVE_SPAN as i32);
+        kernel.span(t, &a, &eighth(&a, &b), x, y, part);
+        a = b;
+        x += PERSPECTIVE_SPAN as i32;
+    }
+}
+
+/// Clips the triangle of clip-space corners `c` (in the clip space `space`)
+/// and draws the pieces' rows in `band` with `kernel` (triangle constants
+/// `t`). Returns whether a piece reaches below the band (the triangle is
+/// clipped and drawn again in the next band). Never inlined: its polygons stay
+/// off the common path's stack.
+#[inline(never)]
+#[cold]
+pub(crate) fn draw_clipped<K: Kernel, const PERSP: bool>(
+    kernel: &K,
+    t: &K::Triangle,
+    c: &[ClipCorner<K::Varyings>; 3],
+    space: &ClipSpace,
+    band: &mut BandView<'_, K::Color>,
+) -> bool {
+    let rows = band.rows();
+    let mut more = false;
+    pieces(c, space, |p| {
+        let bottom = p.iter().map(|c| c.s.y).max().unwrap_or(0);
+        // the pieces' rows beyond this band are drawn in later bands
+        if ((bottom - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS) >= rows.end {
+            more = true;
+        }
+        let _ = draw::<K, PERSP>(kernel, t, p, None, band);
+    });
+    more
+}
+
+/// Calls `f` with the screen triangles (a fan) of the clip-space triangle `c`
+/// clipped to the near plane and the set-up window.
+#[inline]
+pub(crate) fn pieces<V: Varyings>(
+    c: &[ClipCorner<V>; 3],
+    space: &ClipSpace,
+    mut f: impl FnMut(&[Corner<V>; 3]),
+) {
+    let poly = Polygon::clipped(c, space);
+    let vs = poly.vertices();
+    let screen = |p: &ClipCorner<V>| Corner {
+        s: space.screen(p.c),
+        v: p.v,
+    };
+    if let Some(first) = vs.first() {
+        let a = screen(first);
+        for k in 1..vs.len().saturating_sub(1) {
+            if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
+                f(&[a, screen(b), screen(c)]);
+            }
+        }
+    }
+}
+
+/// The rows `(first, last)` of a triangle whose corners are inside the window
+/// or, for `None` corners, of the clip-space triangle `clip` after clipping,
+/// clamped to a frame of `width` × `height` pixels; `None` when it is culled,
+/// degenerate or outside the frame.
+pub(crate) fn classify(
+    screen: Option<[(i32, i32); 3]>,
+    clip: impl FnOnce() -> Option<([Clip; 3], ClipSpace)>,
+    cull: Cull,
+    width: u32,
+    height: u32,
+) -> Option<(u32, u32)> {
+    let ((xmin, xmax, ymin, ymax), front) = match screen {
+        Some(p) => {
+            // A > 0: clockwise on the screen (a back face); products < 2^30
+            let area =
+                (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0);
+            if area == 0 {
+                return None;
+            }
+            let bbox = (
+                p[0].0.min(p[1].0).min(p[2].0),
+                p[0].0.max(p[1].0).max(p[2].0),
+                p[0].1.min(p[1].1).min(p[2].1),
+                p[0].1.max(p[1].1).max(p[2].1),
+            );
+            (bbox, area < 0)
+        }
+        None => clipped_bounds(clip)?,
+    };
+    if cull.skips(front) {
+        return None;
+    }
+    let half = 1 << (SUBPIXEL_BITS - 1);
+    let one = (1 << SUBPIXEL_BITS) - 1;
+    // rows whose centre lies in [ymin, ymax], columns likewise
+    let r0 = (ymin.saturating_sub(half).saturating_add(one)) >> SUBPIXEL_BITS;
+    let r1 = ymax.saturating_sub(half) >> SUBPIXEL_BITS;
+    let c0 = (xmin.saturating_sub(half).saturating_add(one)) >> SUBPIXEL_BITS;
+    let c1 = xmax.saturating_sub(half) >> SUBPIXEL_BITS;
+    let (h, w) = (height as i32, width as i32);
+    if r1 < 0 || r0 >= h || r0 > r1 || c1 < 0 || c0 >= w || c0 > c1 {
+        return None;
+    }
+    Some((r0.max(0) as u32, r1.min(h - 1) as u32))
+}
+
+/// The bounding box and facing of what remains of a clip-space triangle after
+/// clipping (the rare path).
+#[inline(never)]
+#[cold]
+fn clipped_bounds(
+    clip: impl FnOnce() -> Option<([Clip; 3], ClipSpace)>,
+) -> Option<((i32, i32, i32, i32), bool)> {
+    let (c, space) = clip()?;
+    let front = crate::raster::clip::facing(c)?;
+    let corners = c.map(|c| ClipCorner { c, v: [0i32; 0] });
+    let mut bbox = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
+    pieces(&corners, &space, |t| {
+        for p in t {
+            bbox = (
+                bbox.0.min(p.s.x),
+                bbox.1.max(p.s.x),
+                bbox.2.min(p.s.y),
+                bbox.3.max(p.s.y),
+            );
+        }
+    });
+    (bbox.0 <= bbox.1).then_some((bbox, front))
+}
