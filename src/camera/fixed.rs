@@ -7,11 +7,11 @@
 //! 16 × 16-bit ones, [`crate::num::wide`]): no soft float, no
 //! `__aeabi_lmul`, no division.
 
-use super::{Camera, EyeRows, MeshTransform, NormalRows, Projection, Row};
+use super::{Camera, ClipSpace, EyeRows, MeshTransform, NormalRows, Projection, Row};
 use crate::error::ParamError;
 use crate::num::wide::mul_u32;
-use crate::raster::setup::at3;
-use crate::raster::SUBPIXEL_BITS;
+use super::SUBPIXEL_BITS;
+use crate::num::at3;
 use core::marker::PhantomData;
 
 /// An angle as a fraction of a turn: `65536` is 360°, so every `u16` is an
@@ -485,9 +485,12 @@ impl<P: Projection> FixedCamera<P> {
             y,
             z,
             w,
-            centre: self.centre,
+            space: if P::PERSPECTIVE {
+                ClipSpace::perspective(self.centre, near_w)
+            } else {
+                ClipSpace::SCREEN
+            },
             near: self.near,
-            near_w,
             normal,
             eye: EyeRows { r: eye },
             kind: PhantomData,

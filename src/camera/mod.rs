@@ -20,8 +20,11 @@ pub use crate::num::Mat4;
 pub use viewport::Viewport;
 
 use crate::error::ParamError;
-use crate::raster::SUBPIXEL_BITS;
 use core::marker::PhantomData;
+
+/// Fractional bits of screen positions: 4, i.e. positions are in 1/16
+/// pixel.
+pub const SUBPIXEL_BITS: u32 = 4;
 
 /// How eye space is projected: [`Orthographic`] or [`Perspective`]. A type, so
 /// that a scene pays only for the projection it uses.
@@ -60,7 +63,7 @@ impl Projection for Perspective {
 ///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
 /// let t = cam.mesh_transform(&Mat4::IDENTITY, 14)?;
 /// // the model origin lands at the centre of the screen, depth (5 − 1)/9 of the range
-/// let v = t.project([0, 0, 0]);
+/// let v = t.project([0, 0, 0]).expect("an orthographic transform has no near plane");
 /// assert_eq!((v.x, v.y), (120 << 4, 120 << 4));
 /// assert_eq!(v.z, (65535.0f32 * 4.0 / 9.0).round() as u16);
 /// # Ok::<(), fixshade::error::ParamError>(())
@@ -192,9 +195,8 @@ impl<P: Projection> Camera<P> {
                 y,
                 z,
                 w,
-                centre: [cx as i32, cy as i32],
+                space: ClipSpace::perspective([cx as i32, cy as i32], near_w),
                 near: self.near,
-                near_w,
                 normal: NormalRows::new(&nm),
                 eye: EyeRows::new(&mv, inv),
                 kind: PhantomData,
@@ -211,9 +213,8 @@ impl<P: Projection> Camera<P> {
                 y: row(m[1], -h8, cy),
                 z: row(m[2], 65535.0 * 0.5, 65535.0 * 0.5),
                 w: Row::default(),
-                centre: [cx as i32, cy as i32],
+                space: ClipSpace::SCREEN,
                 near: self.near,
-                near_w: 1,
                 normal: NormalRows::new(&nm),
                 eye: EyeRows::new(&mv, inv),
                 kind: PhantomData,
@@ -428,46 +429,120 @@ pub struct MeshTransform<P: Projection> {
     y: Row,
     z: Row,
     w: Row,
-    centre: [i32; 2],
+    space: ClipSpace,
     near: f32,
-    /// The near plane in `w` units (perspective), at least 1.
-    near_w: i32,
     normal: NormalRows,
     eye: EyeRows,
     kind: PhantomData<P>,
 }
 
-impl MeshTransform<Orthographic> {
-    /// The screen position and depth of a raw position.
-    #[inline(always)]
-    pub fn project(&self, p: [i16; 3]) -> Projected {
-        let z = self.z.apply_round(p);
-        Projected {
-            x: self.x.apply_round(p),
-            y: self.y.apply_round(p),
-            z: if z < 0 {
-                0
-            } else if z > 65535 {
-                65535
-            } else {
-                z as u16
-            },
-        }
-    }
-}
-
-/// Clip coordinates of a vertex in one fixed-point unit (see
-/// [`MeshTransform::clip`]).
+/// Clip coordinates of a vertex in one fixed-point unit: the screen position
+/// is `centre + (x/w, y/w)` sub-pixels (see [`ClipSpace`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Clip {
-    /// `8W·x_c`: the column is `cx + x/w` sub-pixels.
+    /// `8W·x_c` (perspective) or the column in sub-pixels (orthographic).
     pub x: i32,
-    /// `−8H·y_c`: the row is `cy + y/w` sub-pixels.
+    /// `−8H·y_c` (perspective) or the row in sub-pixels (orthographic).
     pub y: i32,
-    /// `z_c`.
+    /// `z_c` (perspective) or the depth, 0 to 65535 (orthographic).
     pub z: i32,
-    /// `w_c` (the distance in front of the eye).
+    /// `w_c`, the distance in front of the eye (perspective), or 1.
     pub w: i32,
+}
+
+/// Where clip coordinates land on the screen: the screen centre, the near
+/// plane and whether `w` varies.
+///
+/// Under a perspective projection a point `(x, y, z, w)` with `w` at least
+/// the near plane is drawn at `centre + (x/w, y/w)` sub-pixels with depth
+/// `round((z/w + 1)/2·65535)` (saturated: no far-plane clipping); any common
+/// positive factor of the four coordinates gives the same point. Under an
+/// orthographic one ([`ClipSpace::SCREEN`]) `x`, `y` are the sub-pixel
+/// position, `z` the depth and `w = 1`: a program that computes screen
+/// positions itself uses this space.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct ClipSpace {
+    centre: [i32; 2],
+    near: i32,
+    perspective: bool,
+}
+
+impl ClipSpace {
+    /// Screen space: `x`, `y` in sub-pixels, `z` the depth (0 to 65535),
+    /// `w = 1`.
+    pub const SCREEN: ClipSpace = ClipSpace {
+        centre: [0, 0],
+        near: 1,
+        perspective: false,
+    };
+
+    /// A perspective clip space: the screen centre in sub-pixels and the near
+    /// plane in `w` units (at least 1).
+    pub const fn perspective(centre: [i32; 2], near: i32) -> ClipSpace {
+        ClipSpace {
+            centre,
+            near: if near < 1 { 1 } else { near },
+            perspective: true,
+        }
+    }
+
+    /// The screen position of `x = y = 0`, in sub-pixels.
+    pub const fn centre(&self) -> [i32; 2] {
+        self.centre
+    }
+
+    /// The near plane in `w` units (1 in screen space).
+    pub const fn near(&self) -> i32 {
+        self.near
+    }
+
+    /// Whether `w` varies.
+    pub const fn is_perspective(&self) -> bool {
+        self.perspective
+    }
+
+    /// The screen position and depth of `c`, or `None` behind the near
+    /// plane. The position saturates to `i32`.
+    #[inline]
+    pub fn project(&self, c: Clip) -> Option<Projected> {
+        if self.perspective {
+            self.project_as::<true>(c)
+        } else {
+            self.project_as::<false>(c)
+        }
+    }
+
+    /// [`ClipSpace::project`] for a space known to be perspective
+    /// (`PERSP`) or not: the other case's code is not linked.
+    #[inline(always)]
+    pub(crate) fn project_as<const PERSP: bool>(&self, c: Clip) -> Option<Projected> {
+        if PERSP && c.w < self.near {
+            return None;
+        }
+        Some(self.screen::<PERSP>(c))
+    }
+
+    /// [`ClipSpace::project_as`] without the near-plane test (`w` below 1
+    /// counts as 1).
+    #[inline(always)]
+    pub(crate) fn screen<const PERSP: bool>(&self, c: Clip) -> Projected {
+        let sat = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
+        if PERSP {
+            let w = i64::from(c.w.max(1));
+            let z = div_round((i64::from(c.z) + w) * 65535, 2 * w);
+            Projected {
+                x: sat(i64::from(self.centre[0]) + div_round(i64::from(c.x), w)),
+                y: sat(i64::from(self.centre[1]) + div_round(i64::from(c.y), w)),
+                z: z.clamp(0, 65535) as u16,
+            }
+        } else {
+            Projected {
+                x: c.x,
+                y: c.y,
+                z: c.z.clamp(0, 65535) as u16,
+            }
+        }
+    }
 }
 
 /// `round(n / d)` (halves away from zero) for `d > 0`.
@@ -481,118 +556,20 @@ fn div_round(n: i64, d: i64) -> i64 {
     }
 }
 
-/// See [`MeshTransform::to_screen`].
-#[inline]
-fn to_screen(centre: [i32; 2], c: Clip) -> Option<Projected> {
-    if c.w < 1 {
-        return None;
-    }
-    let (w, g) = (i64::from(c.w), i64::from(GUARD));
-    if i64::from(c.x).abs() > g * w || i64::from(c.y).abs() > g * w {
-        return None;
-    }
-    Some(divide(centre, c))
-}
-
-/// The division by `w` of clip coordinates with `w ≥ 1` (smaller `w` count as
-/// 1) within about the guard band (the result saturates to `i32`).
-#[inline]
-pub(crate) fn divide(centre: [i32; 2], c: Clip) -> Projected {
-    let w = i64::from(c.w.max(1));
-    let z = div_round((i64::from(c.z) + w) * 65535, 2 * w);
-    let sat = |v: i64| v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32;
-    Projected {
-        x: sat(i64::from(centre[0]) + div_round(i64::from(c.x), w)),
-        y: sat(i64::from(centre[1]) + div_round(i64::from(c.y), w)),
-        z: z.clamp(0, 65535) as u16,
-    }
-}
-
-/// The guard band of the perspective path: clip-space polygons are cut to
-/// `|x/w|, |y/w| ≤ GUARD` sub-pixels around the screen centre before the
-/// division, so that every projected point is a plain `i32` (no clamping, no
-/// folded triangles) and the window clipper then works exactly.
-pub const GUARD: i32 = 1 << 26;
-
-impl MeshTransform<Perspective> {
-    /// The clip coordinates of a raw position, all four in the same unit.
-    #[inline]
-    pub fn clip(&self, p: [i16; 3]) -> Clip {
-        Clip {
-            x: self.x.apply(p),
-            y: self.y.apply(p),
-            z: self.z.apply(p),
-            w: self.w.apply(p),
-        }
-    }
-
-    /// The near plane in the unit of [`Clip::w`].
-    pub fn near_w(&self) -> i32 {
-        self.near_w
-    }
-
-    /// The screen position and depth of clip coordinates with `w ≥ 1` inside
-    /// the guard band ([`GUARD`]), or `None`. Depth is
-    /// `round((z/w + 1)/2·65535)`, saturated (points beyond the far plane get
-    /// 65535: no far-plane clipping).
-    #[inline]
-    pub fn to_screen(&self, c: Clip) -> Option<Projected> {
-        to_screen(self.centre, c)
-    }
-
-    /// [`MeshTransform::to_screen`] of a vertex in front of the near plane.
-    #[inline]
-    pub fn project(&self, p: [i16; 3]) -> Option<Projected> {
-        let c = self.clip(p);
-        if c.w < self.near_w {
-            return None;
-        }
-        self.to_screen(c)
-    }
-}
-
 impl<P: Projection> MeshTransform<P> {
-    /// The screen position of a vertex: always for an orthographic transform;
-    /// for a perspective one when it lies in front of the near plane and
-    /// inside the guard band.
-    #[inline(always)]
-    pub(crate) fn screen(&self, p: [i16; 3]) -> Option<Projected> {
-        if P::PERSPECTIVE {
-            let c = self.clip_coords(p);
-            if c.w < self.near_w {
-                return None;
-            }
-            to_screen(self.centre, c)
-        } else {
-            let z = self.z.apply_round(p);
-            Some(Projected {
-                x: self.x.apply_round(p),
-                y: self.y.apply_round(p),
-                z: z.clamp(0, 65535) as u16,
-            })
-        }
-    }
-
-    /// The clip coordinates of a raw position (perspective transforms; an
-    /// orthographic one has no `w` row).
-    #[inline]
-    pub(crate) fn clip_coords(&self, p: [i16; 3]) -> Clip {
-        Clip {
-            x: self.x.apply(p),
-            y: self.y.apply(p),
-            z: self.z.apply(p),
-            w: self.w.apply(p),
-        }
-    }
-
-    /// The clip coordinates of a raw position, as the clipper takes them: for
-    /// a perspective transform `(x, y, z, w)` with the screen position at
-    /// `centre + (x/w, y/w)`; for an orthographic one the screen position in
+    /// The clip coordinates of a raw position (see [`Clip`] and
+    /// [`MeshTransform::clip_space`]): for a perspective transform `(x, y, z,
+    /// w)` in one unit, for an orthographic one the screen position in
     /// sub-pixels, the depth and `w = 1`.
     #[inline]
-    pub(crate) fn clip_point(&self, p: [i16; 3]) -> Clip {
+    pub fn clip(&self, p: [i16; 3]) -> Clip {
         if P::PERSPECTIVE {
-            self.clip_coords(p)
+            Clip {
+                x: self.x.apply(p),
+                y: self.y.apply(p),
+                z: self.z.apply(p),
+                w: self.w.apply(p),
+            }
         } else {
             Clip {
                 x: self.x.apply_round(p),
@@ -603,16 +580,17 @@ impl<P: Projection> MeshTransform<P> {
         }
     }
 
-    /// The near plane in `w` units (1 for an orthographic transform).
+    /// Where this transform's clip coordinates land on the screen.
     #[inline]
-    pub(crate) fn near_units(&self) -> i32 {
-        self.near_w
+    pub fn clip_space(&self) -> ClipSpace {
+        self.space
     }
 
-    /// The screen centre in sub-pixels.
+    /// The screen position and depth of a raw position, or `None` behind the
+    /// near plane (perspective).
     #[inline]
-    pub(crate) fn centre_sub(&self) -> [i32; 2] {
-        self.centre
+    pub fn project(&self, p: [i16; 3]) -> Option<Projected> {
+        self.space.project(self.clip(p))
     }
 
     /// The eye-space normal (unnormalised, Q14) of a Q14 normal.
@@ -630,11 +608,6 @@ impl<P: Projection> MeshTransform<P> {
     /// The near plane distance.
     pub fn near(&self) -> f32 {
         self.near
-    }
-
-    /// The screen centre in sub-pixels.
-    pub fn centre(&self) -> [i32; 2] {
-        self.centre
     }
 }
 

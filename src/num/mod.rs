@@ -53,6 +53,15 @@ pub use q30::Q30;
 use crate::vector::Vec3;
 use core::fmt::Debug;
 
+/// `a[i]` for a vertex index `i < 3` (a triangle's vertex): the
+/// index is limited to 2 so that no bounds check (and no panic path) is left
+/// in the image; for `i < 3` it is `a[i]`.
+#[inline(always)]
+pub(crate) fn at3<T: Copy>(a: &[T; 3], i: usize) -> T {
+    a[i.min(2)]
+}
+
+
 /// `v · 2^-shift` rounded to nearest (ties up), for `shift` in 0..=62: an
 /// arithmetic shift, so it cannot overflow for any `v` whose magnitude is below
 /// 2^62.

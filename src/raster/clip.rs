@@ -18,23 +18,12 @@
 //! rare path only.
 
 use super::{WINDOW_MAX, WINDOW_MIN};
-use crate::camera::Clip;
-use crate::num::wide::lerp_i32;
+use crate::camera::{Clip, ClipSpace};
+use crate::num::wide::{lerp_i32, mul_u32};
+use core::cmp::Ordering;
 
 /// At most 3 + 5 vertices: each plane adds at most one.
 pub(crate) const MAX: usize = 8;
-
-/// Where clip coordinates land on the screen.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct ClipSpace {
-    /// The screen position of `x = y = 0`, in sub-pixels.
-    pub centre: [i32; 2],
-    /// The near plane in `w` units (at least 1).
-    pub near: i32,
-    /// Whether `w` varies (a perspective projection: `z/w` is the depth
-    /// in `[−1, 1]`); else `w = 1` and `z` is the depth in `0..=65535`.
-    pub perspective: bool,
-}
 
 /// A point on the screen after clipping: sub-pixel position inside the
 /// window, depth, and the clip `w` (1 for an orthographic projection).
@@ -46,39 +35,17 @@ pub(crate) struct Screen {
     pub w: i32,
 }
 
-impl ClipSpace {
-    /// The screen position of clip coordinates `c` (with `w ≥ 1` under a
-    /// perspective projection), clamped to the window.
-    pub(crate) fn screen(&self, c: Clip) -> Screen {
-        let clamp = |v: i64| v.clamp(i64::from(WINDOW_MIN), i64::from(WINDOW_MAX)) as i32;
-        if self.perspective {
-            let w = i64::from(c.w.max(1));
-            let z = div_round((i64::from(c.z) + w) * 65535, 2 * w);
-            Screen {
-                x: clamp(i64::from(self.centre[0]) + div_round(i64::from(c.x), w)),
-                y: clamp(i64::from(self.centre[1]) + div_round(i64::from(c.y), w)),
-                z: z.clamp(0, 65535) as u16,
-                w: c.w.max(1),
-            }
-        } else {
-            Screen {
-                x: clamp(i64::from(c.x)),
-                y: clamp(i64::from(c.y)),
-                z: c.z.clamp(0, 65535) as u16,
-                w: 1,
-            }
-        }
-    }
-}
-
-/// `round(n / d)` (halves away from zero) for `d > 0`.
+/// The screen position of clip coordinates `c` after clipping (inside the
+/// window up to the rounding of a cut: clamped to it); `PERSP`: a perspective
+/// clip space.
 #[inline]
-pub(crate) fn div_round(n: i64, d: i64) -> i64 {
-    let q = (2 * n.unsigned_abs() + d as u64) / (2 * d as u64);
-    if n < 0 {
-        -(q as i64)
-    } else {
-        q as i64
+pub(crate) fn screen<const PERSP: bool>(s: &ClipSpace, c: Clip) -> Screen {
+    let p = s.screen::<PERSP>(c);
+    Screen {
+        x: p.x.clamp(WINDOW_MIN, WINDOW_MAX),
+        y: p.y.clamp(WINDOW_MIN, WINDOW_MAX),
+        z: p.z,
+        w: if PERSP { c.w.max(1) } else { 1 },
     }
 }
 
@@ -107,18 +74,22 @@ enum Plane {
 }
 
 impl Plane {
-    /// The signed distance of `c` (exact: every product below 2^48).
+    /// The signed distance of `c` (exact: every product below 2^48, from
+    /// 32-bit multiplications; `PERSP`: a perspective clip space, else
+    /// `w = 1` and the centre is 0).
     #[inline]
-    fn distance(self, c: &Clip, s: &ClipSpace) -> i64 {
+    fn distance<const PERSP: bool>(self, c: &Clip, s: &ClipSpace) -> i64 {
         let w = i64::from(c.w);
-        let lo = |centre: i32| (i64::from(WINDOW_MIN) - i64::from(centre)) * w;
-        let hi = |centre: i32| (i64::from(WINDOW_MAX) - i64::from(centre)) * w;
+        let times_w = |k: i64| if PERSP { mul_i64(k, c.w) } else { k };
+        let lo = |centre: i32| times_w(i64::from(WINDOW_MIN) - i64::from(centre));
+        let hi = |centre: i32| times_w(i64::from(WINDOW_MAX) - i64::from(centre));
+        let centre = s.centre();
         match self {
-            Plane::Near => w - i64::from(s.near),
-            Plane::XMin => i64::from(c.x) - lo(s.centre[0]),
-            Plane::XMax => hi(s.centre[0]) - i64::from(c.x),
-            Plane::YMin => i64::from(c.y) - lo(s.centre[1]),
-            Plane::YMax => hi(s.centre[1]) - i64::from(c.y),
+            Plane::Near => w - i64::from(s.near()),
+            Plane::XMin => i64::from(c.x) - lo(centre[0]),
+            Plane::XMax => hi(centre[0]) - i64::from(c.x),
+            Plane::YMin => i64::from(c.y) - lo(centre[1]),
+            Plane::YMax => hi(centre[1]) - i64::from(c.y),
         }
     }
 }
@@ -130,8 +101,9 @@ pub(crate) struct Polygon<V: ClipPoint> {
 }
 
 impl<V: ClipPoint> Polygon<V> {
-    /// Triangle `t` clipped to the near plane (perspective) and the window.
-    pub(crate) fn clipped(t: &[V; 3], s: &ClipSpace) -> Self {
+    /// Triangle `t` clipped to the near plane (`PERSP`: a perspective clip
+    /// space) and the window.
+    pub(crate) fn clipped<const PERSP: bool>(t: &[V; 3], s: &ClipSpace) -> Self {
         let mut v = [t[0]; MAX];
         v[..3].copy_from_slice(t);
         let mut p = Polygon { v, n: 3 };
@@ -142,11 +114,11 @@ impl<V: ClipPoint> Polygon<V> {
             Plane::YMin,
             Plane::YMax,
         ];
-        for plane in planes.iter().skip(usize::from(!s.perspective)) {
+        for plane in planes.iter().skip(usize::from(!PERSP)) {
             if p.n < 3 {
                 break;
             }
-            p.clip(*plane, s);
+            p.clip::<PERSP>(*plane, s);
         }
         if p.n < 3 {
             p.n = 0;
@@ -159,11 +131,12 @@ impl<V: ClipPoint> Polygon<V> {
         self.v.get(..self.n).unwrap_or(&[])
     }
 
-    fn clip(&mut self, plane: Plane, s: &ClipSpace) {
+    #[inline(never)]
+    fn clip<const PERSP: bool>(&mut self, plane: Plane, s: &ClipSpace) {
         let n = self.n.min(MAX);
         let d: [i64; MAX] = core::array::from_fn(|i| {
             if i < n {
-                plane.distance(&self.v[i].clip(), s)
+                plane.distance::<PERSP>(&self.v[i].clip(), s)
             } else {
                 0
             }
@@ -219,19 +192,64 @@ fn cut<V: ClipPoint>(p: &V, dp: i64, q: &V, dq: i64) -> V {
     a.cut(b, num, den, c)
 }
 
-/// The facing of a clip-space triangle, valid for any signs of `w`: `Some(true)`
-/// for a front face (counter-clockwise on the screen), `None` for zero area
-/// (`sign det[x y w]`, exactly, in 128 bits: the rare path only).
-pub(crate) fn facing(c: [Clip; 3]) -> Option<bool> {
+/// `k·w` exactly (`|k| < 2^17`), from 32-bit multiplications.
+#[inline]
+fn mul_i64(k: i64, w: i32) -> i64 {
+    let m = mul_u32(k.unsigned_abs() as u32, w.unsigned_abs()) as i64;
+    if (k < 0) != (w < 0) {
+        -m
+    } else {
+        m
+    }
+}
+
+/// `sign(a·b − c·d)` for differences of `i32` values (magnitudes below 2^32),
+/// from 32-bit multiplications.
+pub(crate) fn cmp_products(a: i64, b: i64, c: i64, d: i64) -> Ordering {
+    let prod = |x: i64, y: i64| {
+        let m = mul_u32(x.unsigned_abs() as u32, y.unsigned_abs() as u32);
+        ((x < 0) != (y < 0) && m != 0, m)
+    };
+    let (n1, m1) = prod(a, b);
+    let (n2, m2) = prod(c, d);
+    match (n1, n2) {
+        (false, true) => Ordering::Greater,
+        (true, false) => Ordering::Less,
+        (false, false) => m1.cmp(&m2),
+        (true, true) => m2.cmp(&m1),
+    }
+}
+
+/// The facing of a clip-space triangle: `Some(true)` for a front face
+/// (counter-clockwise on the screen), `None` for zero area. `PERSP`: valid
+/// for any signs of `w` (`sign det[x y w]`, exactly, in 128 bits: the rare
+/// path only); else `w = 1` and it is the sign of the screen area (64-bit
+/// values from 32-bit multiplications).
+pub(crate) fn facing<const PERSP: bool>(c: [Clip; 3]) -> Option<bool> {
+    if !PERSP {
+        let d = |i: usize| {
+            (
+                i64::from(c[i].x) - i64::from(c[0].x),
+                i64::from(c[i].y) - i64::from(c[0].y),
+            )
+        };
+        let (d1, d2) = (d(1), d(2));
+        // A = d1.x·d2.y − d1.y·d2.x: positive is clockwise (a back face)
+        return match cmp_products(d1.0, d2.1, d1.1, d2.0) {
+            Ordering::Greater => Some(false),
+            Ordering::Less => Some(true),
+            Ordering::Equal => None,
+        };
+    }
     let m = |a: i32, b: i32| i128::from(a) * i128::from(b);
     let det = i128::from(c[0].x) * (m(c[1].y, c[2].w) - m(c[2].y, c[1].w))
         - i128::from(c[0].y) * (m(c[1].x, c[2].w) - m(c[2].x, c[1].w))
         + i128::from(c[0].w) * (m(c[1].x, c[2].y) - m(c[2].x, c[1].y));
     // positive: clockwise on the screen (y points down), a back face
     match det.cmp(&0) {
-        core::cmp::Ordering::Greater => Some(false),
-        core::cmp::Ordering::Less => Some(true),
-        core::cmp::Ordering::Equal => None,
+        Ordering::Greater => Some(false),
+        Ordering::Less => Some(true),
+        Ordering::Equal => None,
     }
 }
 
@@ -253,17 +271,13 @@ mod tests {
     fn c(x: i32, y: i32, w: i32) -> P {
         P(Clip { x, y, z: 0, w })
     }
-    const PERSP: ClipSpace = ClipSpace {
-        centre: [1920, 1920],
-        near: 1000,
-        perspective: true,
-    };
+    const PERSP: ClipSpace = ClipSpace::perspective([1920, 1920], 1000);
 
     #[test]
     fn near_plane_cuts_are_canonical_and_on_the_plane() {
         let (a, b) = (c(-500, 300, -7000), c(900, -100, 40000));
-        let t1 = Polygon::clipped(&[a, b, c(0, 5000, 30000)], &PERSP);
-        let t2 = Polygon::clipped(&[b, a, c(7, -5000, 25000)], &PERSP);
+        let t1 = Polygon::clipped::<true>(&[a, b, c(0, 5000, 30000)], &PERSP);
+        let t2 = Polygon::clipped::<true>(&[b, a, c(7, -5000, 25000)], &PERSP);
         let on = |p: &Polygon<P>| -> Vec<Clip> {
             p.vertices()
                 .iter()
@@ -282,32 +296,28 @@ mod tests {
     #[test]
     fn behind_the_eye_is_empty_and_the_window_holds() {
         assert!(
-            Polygon::clipped(&[c(0, 0, -5), c(10, 0, -5), c(0, 10, -1)], &PERSP)
+            Polygon::clipped::<true>(&[c(0, 0, -5), c(10, 0, -5), c(0, 10, -1)], &PERSP)
                 .vertices()
                 .is_empty()
         );
-        let far = Polygon::clipped(
+        let far = Polygon::clipped::<true>(
             &[c(i32::MAX, 0, 1000), c(0, i32::MAX, 1000), c(0, 0, 1000)],
             &PERSP,
         );
         assert!(!far.vertices().is_empty());
         for v in far.vertices() {
-            let s = PERSP.screen(v.0);
-            assert!((WINDOW_MIN..=WINDOW_MAX).contains(&s.x), "{v:?}");
-            // on or inside the window up to the rounding of the cut (1 unit of w)
-            let x = PERSP.centre[0] as i64 + div_round(v.0.x as i64, v.0.w as i64);
-            assert!(x <= WINDOW_MAX as i64 + 1, "{v:?} {x}");
+            // on or inside the window up to the rounding of the cut
+            let x = PERSP.screen::<true>(v.0).x;
+            assert!(x <= WINDOW_MAX + 1, "{v:?} {x}");
         }
     }
 
     #[test]
     fn orthographic_clips_to_the_window_only() {
-        let ortho = ClipSpace {
-            centre: [0, 0],
-            near: 1,
-            perspective: false,
-        };
-        let p = Polygon::clipped(&[c(-100_000, 0, 1), c(100, 0, 1), c(100, 200, 1)], &ortho);
+        let p = Polygon::clipped::<false>(
+            &[c(-100_000, 0, 1), c(100, 0, 1), c(100, 200, 1)],
+            &ClipSpace::SCREEN,
+        );
         assert!(p.vertices().len() >= 3);
         for v in p.vertices() {
             assert!(v.0.x >= WINDOW_MIN - 1, "{v:?}");
@@ -318,10 +328,12 @@ mod tests {
     fn facing_matches_the_screen_orientation() {
         // counter-clockwise on a y-down screen: (0,0) → (0,10) → (10,0)
         let t = [c(0, 0, 1), c(0, 10, 1), c(10, 0, 1)].map(|p| p.0);
-        assert_eq!(facing(t), Some(true));
-        assert_eq!(facing([t[0], t[2], t[1]]), Some(false));
+        assert_eq!(facing::<true>(t), Some(true));
+        assert_eq!(facing::<false>(t), Some(true));
+        assert_eq!(facing::<true>([t[0], t[2], t[1]]), Some(false));
+        assert_eq!(facing::<false>([t[0], t[2], t[1]]), Some(false));
         // scaling a vertex by a positive w does not change it
         let s = [c(0, 0, 1), c(0, 70, 7), c(30, 0, 3)].map(|p| p.0);
-        assert_eq!(facing(s), Some(true));
+        assert_eq!(facing::<true>(s), Some(true));
     }
 }

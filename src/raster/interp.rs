@@ -90,22 +90,25 @@ pub(crate) fn get<V: Varyings>(v: &V, i: usize) -> i32 {
 }
 
 /// `a` interpolated `num/den` of the way to `b` (clipping), each value exact
-/// to rounding.
-#[inline]
+/// to rounding. Not inlined: the rare path.
+#[inline(never)]
 pub(crate) fn lerp<V: Varyings>(a: &V, b: &V, num: u32, den: u32) -> V {
     V::from_fn(|i| crate::num::wide::lerp_i32(get(a, i), get(b, i), num, den))
 }
 
-/// The vertex values clamped to ±[`VARYING_LIMIT`].
-#[inline(always)]
-pub(crate) fn limited<V: Varyings>(v: &V) -> V {
-    V::from_fn(|i| get(v, i).clamp_to(-VARYING_LIMIT, VARYING_LIMIT))
-}
 
 /// The values of the oriented vertices (`s.order`).
 #[inline(always)]
 pub(crate) fn oriented<T: Copy>(s: &Setup, v: &[T; 3]) -> [T; 3] {
     s.order.map(|i| super::setup::at3(v, i))
+}
+
+/// Value `i` of the oriented vertex `k` of `v` (the vertices as given, `s`
+/// orients them), clamped to ±[`VARYING_LIMIT`].
+#[inline(always)]
+fn corner<V: Varyings>(s: &Setup, v: &[V; 3], k: usize, i: usize) -> i32 {
+    let c = super::setup::at3(&s.order, k);
+    get(&v[c.min(2)], i).clamp_to(-VARYING_LIMIT, VARYING_LIMIT)
 }
 
 /// Screen-linear interpolation: one absolute plane per varying.
@@ -117,10 +120,11 @@ pub(crate) struct Linear<V: Varyings> {
 }
 
 impl<V: Varyings> Linear<V> {
-    /// The planes of the first `used` of the oriented vertices' values `v`
-    /// (within ±2^15; the others are not interpolated), and whether a run
-    /// must be clamped so that every value stays in `safe(i)` (with
-    /// [`ATTR_FRAC`] bits), positioned at the triangle's first row.
+    /// The planes of the first `used` of the vertices' values `v` (in the
+    /// order given to [`Setup::new`]; clamped to ±[`VARYING_LIMIT`]; the
+    /// others are not interpolated), and whether a run must be clamped so
+    /// that every value stays in `safe(i)` (with [`ATTR_FRAC`] bits),
+    /// positioned at the triangle's first row.
     #[inline(always)]
     pub(crate) fn new(
         s: &Setup,
@@ -128,17 +132,15 @@ impl<V: Varyings> Linear<V> {
         used: usize,
         safe: impl Fn(usize) -> (i32, i32),
     ) -> Self {
-        let top = super::setup::at3(v, s.tmb[0]);
         let mut clamp = false;
-        let planes = V::planes_from_fn(|i| {
-            if i >= used {
-                return Plane::default();
-            }
-            let p = s.plane([get(&v[0], i), get(&v[1], i), get(&v[2], i)]);
-            let base = get(&top, i) << ATTR_FRAC;
-            clamp |= !within(s, &p, base, safe(i));
-            p.absolute(base)
-        });
+        let mut planes = V::planes_from_fn(|_| Plane::default());
+        for (i, p) in planes.as_mut().iter_mut().enumerate().take(used) {
+            let a = [0, 1, 2].map(|k| corner(s, v, k, i));
+            let plane = s.plane(a);
+            let base = super::setup::at3(&a, s.tmb[0]) << ATTR_FRAC;
+            clamp |= !within(s, &plane, base, safe(i));
+            *p = plane.absolute(base);
+        }
         Linear { planes, clamp }
     }
 
@@ -206,9 +208,11 @@ pub(crate) struct Persp<V: Varyings> {
 }
 
 impl<V: Varyings> Persp<V> {
-    /// The interpolation of the oriented vertices' values `v` (within
-    /// ±2^15) and clip `w` (positive), positioned at the triangle's first row.
+    /// The interpolation of the vertices' values `v` and clip `w`
+    /// (positive), in the order given to [`Setup::new`], positioned at the
+    /// triangle's first row.
     pub(crate) fn new(s: &Setup, v: &[V; 3], w: [i32; 3]) -> Self {
+        let w = oriented(s, &w);
         let one = 1 << 14;
         let top = s.tmb[0];
         let beta = [1usize, 2].map(|k| {
@@ -220,9 +224,9 @@ impl<V: Varyings> Persp<V> {
         Persp {
             beta,
             q: inverse_w(w),
-            a0: V::from_fn(|i| get(&v[0], i) << ATTR_FRAC),
-            d1: V::from_fn(|i| get(&v[1], i) - get(&v[0], i)),
-            d2: V::from_fn(|i| get(&v[2], i) - get(&v[0], i)),
+            a0: V::from_fn(|i| corner(s, v, 0, i) << ATTR_FRAC),
+            d1: V::from_fn(|i| corner(s, v, 1, i) - corner(s, v, 0, i)),
+            d2: V::from_fn(|i| corner(s, v, 2, i) - corner(s, v, 0, i)),
         }
     }
 

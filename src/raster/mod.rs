@@ -48,8 +48,7 @@ pub use setup::ATTR_FRAC;
 #[doc(hidden)]
 pub use setup::{Plane, Setup};
 
-/// Fractional bits of screen positions: 4, i.e. positions are in 1/16 pixel.
-pub const SUBPIXEL_BITS: u32 = 4;
+pub use crate::camera::SUBPIXEL_BITS;
 
 /// The smallest sub-pixel coordinate set-up works on: −512 pixels.
 pub const WINDOW_MIN: i32 = -(1 << 13);

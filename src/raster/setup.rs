@@ -8,6 +8,8 @@
 //! sub-pixels, so coordinate differences are below 2^15 and edge-function
 //! products below 2^30.
 
+pub(crate) use crate::num::at3;
+
 use super::edge::Walker;
 use super::{Cull, SUBPIXEL_BITS};
 
@@ -55,13 +57,6 @@ pub(crate) fn next3(i: usize) -> usize {
     }
 }
 
-/// `a[i]` for a vertex index `i < 3` (from [`next3`], `order`, `tmb`): the
-/// index is limited to 2 so that no bounds check (and no panic path) is left
-/// in the image; for `i < 3` it is `a[i]`.
-#[inline(always)]
-pub(crate) fn at3<T: Copy>(a: &[T; 3], i: usize) -> T {
-    a[i.min(2)]
-}
 
 /// `v · 2^s` for a signed shift `s`: a right shift rounds to nearest, a left
 /// shift saturates at ±2^30 (gradients of triangles smaller than a pixel).
@@ -435,10 +430,11 @@ impl ClampTo for i32 {
 
 /// `a·b`, or `u32::MAX` when the product may not fit (decided from the bit
 /// lengths, without the 32×32→64 multiply that `saturating_mul` needs on
-/// thumbv6m): an upper bound of the saturated product.
+/// thumbv6m, nor a count-leading-zeros call): an upper bound of the
+/// saturated product.
 #[inline]
 fn mul_bound(a: u32, b: u32) -> u32 {
-    if a.leading_zeros() + b.leading_zeros() >= 32 {
+    if (a | b) <= 0xFFFF || bit_length(a) + bit_length(b) <= 32 {
         a * b
     } else {
         u32::MAX

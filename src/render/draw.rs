@@ -2,12 +2,11 @@
 
 use super::bins::{self, Bins};
 use super::refine::{self, Refine, RefineStats, Refined};
-use super::tri::{self, ClipCorner, Corner};
+use super::tri::{self, ClipCorner};
 use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
 use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
-use crate::raster::clip::{ClipSpace, Screen};
 use crate::raster::Cull;
 use crate::shade::Kernel;
 
@@ -193,7 +192,9 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         opts: DrawOptions,
         memory: MeshMemory<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
-        Self::prepare(layout, mesh, transform, kernel, opts, memory, None)
+        Self::prepare(layout, mesh, transform, kernel, opts, memory, |_, _, _| {
+            Ok(Refined::default())
+        })
     }
 
     /// [`MeshDraw::with_options`] with silhouette refinement: after the vertex
@@ -249,10 +250,17 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         memory: MeshMemory<'a, K::Vertex>,
         refine: Refine<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
-        Self::prepare(layout, mesh, transform, kernel, opts, memory, Some(refine))
+        Self::prepare(layout, mesh, transform, kernel, opts, memory, |m, t, k| {
+            refine::build(m, t, k, refine).map_err(|e| RenderError::BufferTooSmall {
+                which: e.buffer,
+                needed: e.needed,
+                got: e.got,
+            })
+        })
     }
 
-    /// The vertex stage, the optional refinement and the bins.
+    /// The vertex stage, the refinement (`refine`: none for a plain mesh, so
+    /// that its code is not linked) and the bins.
     fn prepare(
         layout: Layout,
         mesh: Mesh<'a>,
@@ -260,7 +268,11 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         kernel: K,
         opts: DrawOptions,
         memory: MeshMemory<'a, K::Vertex>,
-        refine: Option<Refine<'a, K::Vertex>>,
+        refine: impl FnOnce(
+            &Mesh<'a>,
+            &MeshTransform<P>,
+            &K,
+        ) -> Result<Refined<'a, K::Vertex>, RenderError>,
     ) -> Result<Self, RenderError> {
         let MeshMemory {
             vertices: cache,
@@ -281,16 +293,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             });
         }
         vertex::stage(&mesh, transform, &kernel, cache);
-        let refined = match refine {
-            Some(r) => refine::build(&mesh, transform, &kernel, r).map_err(|e| {
-                RenderError::BufferTooSmall {
-                    which: e.buffer,
-                    needed: e.needed,
-                    got: e.got,
-                }
-            })?,
-            None => Refined::default(),
-        };
+        let refined = refine(&mesh, transform, &kernel)?;
         let mut draw = MeshDraw {
             mesh,
             transform: *transform,
@@ -368,20 +371,6 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         }
     }
 
-    /// The clip space of the transform.
-    #[inline(always)]
-    fn clip_space(&self) -> ClipSpace {
-        ClipSpace {
-            centre: if P::PERSPECTIVE {
-                self.transform.centre_sub()
-            } else {
-                [0, 0]
-            },
-            near: self.transform.near_units(),
-            perspective: P::PERSPECTIVE,
-        }
-    }
-
     /// The rows of triangle `t` in the frame, or `None` when it is culled,
     /// replaced, degenerate or outside the frame.
     #[inline(always)]
@@ -398,19 +387,19 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         let inside = v[0].inside() && v[1].inside() && v[2].inside();
         let clip = || {
             let c = [
-                self.transform.clip_point(self.position(idx[0])?),
-                self.transform.clip_point(self.position(idx[1])?),
-                self.transform.clip_point(self.position(idx[2])?),
+                self.transform.clip(self.position(idx[0])?),
+                self.transform.clip(self.position(idx[1])?),
+                self.transform.clip(self.position(idx[2])?),
             ];
-            Some((c, self.clip_space()))
+            Some((c, self.transform.clip_space()))
         };
-        tri::classify(
-            inside.then(|| v.map(|c| c.screen())),
-            clip,
-            self.cull,
-            self.layout.width(),
-            self.layout.height(),
-        )
+        let screen = inside.then(|| v.map(|c| c.screen()));
+        let (w, h) = (self.layout.width(), self.layout.height());
+        if P::PERSPECTIVE {
+            tri::classify::<true>(screen, clip, self.cull, w, h)
+        } else {
+            tri::classify::<false>(screen, clip, self.cull, w, h)
+        }
     }
 
     /// Draws triangle `tri` into `band`, starting at the band's first row when
@@ -441,24 +430,17 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         let w = if P::PERSPECTIVE {
             idx.map(|i| {
                 self.position(i)
-                    .map_or(1, |p| self.transform.clip_point(p).w)
+                    .map_or(1, |p| self.transform.clip(p).w)
             })
         } else {
             [1; 3]
         };
-        let c: [Corner<K::Varyings>; 3] = core::array::from_fn(|k| Corner {
-            s: Screen {
-                x: i32::from(v[k].x),
-                y: i32::from(v[k].y),
-                z: v[k].z,
-                w: w[k],
-            },
-            v: var[k],
-        });
+        let xy = v.map(|c| (i32::from(c.x), i32::from(c.y)));
+        let z = v.map(|c| c.z);
         let next = if P::PERSPECTIVE {
-            tri::draw::<K, true>(&self.kernel, &t, &c, resume, band)
+            tri::draw::<K, true>(&self.kernel, &t, xy, z, w, &var, resume, band)
         } else {
-            tri::draw::<K, false>(&self.kernel, &t, &c, resume, band)
+            tri::draw::<K, false>(&self.kernel, &t, xy, z, w, &var, resume, band)
         }?;
         Some(Carry {
             tri,
@@ -482,19 +464,19 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     ) -> Option<Carry> {
         let c: [ClipCorner<K::Varyings>; 3] = [
             ClipCorner {
-                c: self.transform.clip_point(self.position(idx[0])?),
+                c: self.transform.clip(self.position(idx[0])?),
                 v: var[0],
             },
             ClipCorner {
-                c: self.transform.clip_point(self.position(idx[1])?),
+                c: self.transform.clip(self.position(idx[1])?),
                 v: var[1],
             },
             ClipCorner {
-                c: self.transform.clip_point(self.position(idx[2])?),
+                c: self.transform.clip(self.position(idx[2])?),
                 v: var[2],
             },
         ];
-        let space = self.clip_space();
+        let space = self.transform.clip_space();
         let more = if P::PERSPECTIVE {
             tri::draw_clipped::<K, true>(&self.kernel, t, &c, &space, band)
         } else {

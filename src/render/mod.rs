@@ -33,6 +33,7 @@ pub mod vertex;
 pub use crate::framebuffer::{BandView, Bands, DrawBand, FullFrame, Layout, MAX_SIZE};
 pub use draw::{Carry, DrawOptions, MeshBuffers, MeshDraw, MeshMemory};
 pub use refine::{Refine, RefineBuffers, RefineMemory, RefineStats};
+pub use tri::{draw_triangle, Corner};
 pub use vertex::CachedVertex;
 
 pub use crate::error::RenderError;

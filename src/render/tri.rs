@@ -1,15 +1,15 @@
 //! One triangle through clipping, set-up, interpolation and the kernel into a
 //! band: the stages every triangle of a frame goes through, whether it comes
 //! from a mesh ([`MeshDraw`](super::MeshDraw)) or from the per-triangle front
-//! ([`draw_triangle`](super::draw_triangle)).
+//! ([`draw_triangle`]).
 
 use super::BandView;
-use crate::camera::Clip;
-use crate::raster::clip::{ClipPoint, ClipSpace, Polygon, Screen};
+use crate::camera::{Clip, ClipSpace};
+use crate::raster::clip::{self, ClipPoint, Polygon, Screen};
 use crate::raster::interp::{self, eighth, within, Linear, Persp, Varyings};
 use crate::raster::setup::at3;
 use crate::raster::{Cull, Plane, Setup, Walker, ATTR_FRAC, PERSPECTIVE_SPAN, SUBPIXEL_BITS};
-use crate::shade::{depth_runs, Kernel};
+use crate::shade::{depth_runs, Kernel, VertexIn};
 
 /// A corner of a triangle in clip space, with the kernel's values.
 #[derive(Clone, Copy, Debug)]
@@ -34,35 +34,40 @@ impl<V: Varyings> ClipPoint for ClipCorner<V> {
 
 /// A corner on the screen, inside the set-up window, with the kernel's values.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Corner<V> {
+pub(crate) struct ScreenCorner<V> {
     pub s: Screen,
     pub v: V,
 }
 
-/// Sets up the triangle of corners `c` (inside the window) and draws the part
-/// of it in `band` with `kernel` (triangle constants `t`), starting at the
-/// band's first row from the edge columns `resume` when given. Returns the
-/// edge columns at the next band's first row when the triangle continues.
-/// `PERSP`: perspective-correct values (the corners' `w`), else screen-linear.
-#[inline(always)]
+/// Sets up the triangle of screen positions `xy` (inside the window), depths
+/// `z`, clip `cw` and values `v` and draws the part of it in `band` with
+/// `kernel` (triangle constants `t`), starting at the band's first row from
+/// the edge columns `resume` when given. Returns the edge columns at the next
+/// band's first row when the triangle continues. `PERSP`:
+/// perspective-correct values (from `cw`), else screen-linear. Not inlined:
+/// the common path and the clipping path share one copy.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn draw<K: Kernel, const PERSP: bool>(
     kernel: &K,
     t: &K::Triangle,
-    c: &[Corner<K::Varyings>; 3],
+    xy: [(i32, i32); 3],
+    z: [u16; 3],
+    cw: [i32; 3],
+    v: &[K::Varyings; 3],
     resume: Option<(i32, i32)>,
     band: &mut BandView<'_, K::Color>,
 ) -> Option<(i32, i32)> {
-    let mut s = Setup::new(c.map(|c| (c.s.x, c.s.y)), Cull::None)?;
+    let mut s = Setup::new(xy, Cull::None)?;
     s.prepare_planes();
     let row0 = s.rows.0;
     // depth with ATTR_FRAC bits, + ½ so that the shift rounds; values must stay
     // in 0..65536
-    let z = interp::oriented(&s, &c.map(|c| i32::from(c.s.z)));
+    let z = interp::oriented(&s, &z.map(i32::from));
     let zp = s.plane(z);
     let zbase = (at3(&z, s.tmb[0]) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
     let zclamp = !within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
     let mut zp = zp.absolute(zbase);
-    let v = interp::oriented(&s, &c.map(|c| interp::limited(&c.v)));
     let rows = band.rows();
     let mut w = match resume {
         Some(cols) => Walker::resume(&s, rows.start, cols),
@@ -74,7 +79,7 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
         zp.skip_rows(skip);
     }
     if PERSP {
-        let mut p = Persp::new(&s, &v, interp::oriented(&s, &c.map(|c| c.s.w)));
+        let mut p = Persp::new(&s, v, cw);
         if skip > 0 {
             p.skip_rows(skip);
         }
@@ -84,7 +89,7 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
             draw_rows::<K, _, false>(kernel, t, &mut w, last, &mut zp, band, &mut p);
         }
     } else {
-        let mut l = Linear::new(&s, &v, K::USED, |i| kernel.safe(i));
+        let mut l = Linear::new(&s, v, K::USED, |i| kernel.safe(i));
         if skip > 0 {
             l.skip_rows(skip, K::USED);
         }
@@ -239,29 +244,32 @@ pub(crate) fn draw_clipped<K: Kernel, const PERSP: bool>(
 ) -> bool {
     let rows = band.rows();
     let mut more = false;
-    pieces(c, space, |p| {
+    pieces::<_, PERSP>(c, space, |p| {
         let bottom = p.iter().map(|c| c.s.y).max().unwrap_or(0);
         // the pieces' rows beyond this band are drawn in later bands
         if ((bottom - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS) >= rows.end {
             more = true;
         }
-        let _ = draw::<K, PERSP>(kernel, t, p, None, band);
+        let xy = p.map(|c| (c.s.x, c.s.y));
+        let v = p.map(|c| c.v);
+        let _ = draw::<K, PERSP>(kernel, t, xy, p.map(|c| c.s.z), p.map(|c| c.s.w), &v, None, band);
     });
     more
 }
 
 /// Calls `f` with the screen triangles (a fan) of the clip-space triangle `c`
-/// clipped to the near plane and the set-up window.
+/// clipped to the near plane (`PERSP`: a perspective clip space) and the
+/// set-up window.
 #[inline]
-pub(crate) fn pieces<V: Varyings>(
+pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     c: &[ClipCorner<V>; 3],
     space: &ClipSpace,
-    mut f: impl FnMut(&[Corner<V>; 3]),
+    mut f: impl FnMut(&[ScreenCorner<V>; 3]),
 ) {
-    let poly = Polygon::clipped(c, space);
+    let poly = Polygon::clipped::<PERSP>(c, space);
     let vs = poly.vertices();
-    let screen = |p: &ClipCorner<V>| Corner {
-        s: space.screen(p.c),
+    let screen = |p: &ClipCorner<V>| ScreenCorner {
+        s: clip::screen::<PERSP>(space, p.c),
         v: p.v,
     };
     if let Some(first) = vs.first() {
@@ -275,10 +283,12 @@ pub(crate) fn pieces<V: Varyings>(
 }
 
 /// The rows `(first, last)` of a triangle whose corners are inside the window
-/// or, for `None` corners, of the clip-space triangle `clip` after clipping,
-/// clamped to a frame of `width` × `height` pixels; `None` when it is culled,
-/// degenerate or outside the frame.
-pub(crate) fn classify(
+/// or, for `None` corners, of the clip-space triangle `clip` after clipping
+/// (`PERSP`: a perspective clip space), clamped to a frame of `width` ×
+/// `height` pixels; `None` when it is culled, degenerate or outside the
+/// frame.
+#[inline(always)]
+pub(crate) fn classify<const PERSP: bool>(
     screen: Option<[(i32, i32); 3]>,
     clip: impl FnOnce() -> Option<([Clip; 3], ClipSpace)>,
     cull: Cull,
@@ -301,7 +311,7 @@ pub(crate) fn classify(
             );
             (bbox, area < 0)
         }
-        None => clipped_bounds(clip)?,
+        None => clipped_bounds::<PERSP>(clip)?,
     };
     if cull.skips(front) {
         return None;
@@ -324,14 +334,14 @@ pub(crate) fn classify(
 /// clipping (the rare path).
 #[inline(never)]
 #[cold]
-fn clipped_bounds(
+fn clipped_bounds<const PERSP: bool>(
     clip: impl FnOnce() -> Option<([Clip; 3], ClipSpace)>,
 ) -> Option<((i32, i32, i32, i32), bool)> {
     let (c, space) = clip()?;
-    let front = crate::raster::clip::facing(c)?;
+    let front = clip::facing::<PERSP>(c)?;
     let corners = c.map(|c| ClipCorner { c, v: [0i32; 0] });
     let mut bbox = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
-    pieces(&corners, &space, |t| {
+    pieces::<_, PERSP>(&corners, &space, |t| {
         for p in t {
             bbox = (
                 bbox.0.min(p.s.x),
@@ -342,4 +352,108 @@ fn clipped_bounds(
         }
     });
     (bbox.0 <= bbox.1).then_some((bbox, front))
+}
+
+/// One corner of a triangle a program brings itself: its clip coordinates
+/// (in the [`ClipSpace`] it is drawn with) and what the vertex stage hands a
+/// kernel (normal, eye position, texture coordinates, tangent).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Corner {
+    /// Clip coordinates (see [`Clip`]).
+    pub clip: Clip,
+    /// The kernel's input for this corner.
+    pub vertex: VertexIn,
+}
+
+/// Draws one triangle into `band` with `kernel`: the per-triangle entry of
+/// the pipeline, for programs that bring their own screen- or clip-space
+/// triangles. The corners go through the kernel's vertex stage, then the same
+/// culling (`cull`), clipping (near plane and window, in clip space),
+/// set-up, interpolation and span kernel as a mesh triangle: a mesh drawn
+/// triangle by triangle with the corners of its transform
+/// ([`MeshTransform::clip`](crate::camera::MeshTransform::clip), its normal
+/// and eye rows) gives the pixels of [`MeshDraw`](super::MeshDraw) bit for
+/// bit. Draws the triangle's rows that the band holds (call it for every
+/// band, e.g. from a [`DrawBand`](super::DrawBand) of your own); never
+/// panics.
+///
+/// ```
+/// use fixshade::camera::{Clip, ClipSpace};
+/// use fixshade::prelude::*;
+/// use fixshade::render::{draw_triangle, Corner, DrawBand, BandView};
+/// use fixshade::shade::VertexIn;
+///
+/// /// A triangle in screen space (sub-pixels, depth, w = 1), lit from the front.
+/// struct One<K>(K);
+/// impl<K: Kernel<Color = Rgb565>> DrawBand<Rgb565> for One<K> {
+///     fn draw_band(&mut self, band: &mut BandView<'_, Rgb565>) {
+///         let c = |x: i32, y: i32| Corner {
+///             clip: Clip { x: x << 4, y: y << 4, z: 100, w: 1 },
+///             vertex: VertexIn::new([0, 0, 16384], [0; 3]),
+///         };
+///         let tri = [c(2, 2), c(2, 30), c(30, 16)];
+///         draw_triangle(band, &ClipSpace::SCREEN, &self.0, &tri, Cull::Back);
+///     }
+/// }
+/// let lighting = fixshade::standard::blinn::<Q14>()?;
+/// let mut item = One(Shader::new(GouraudShading, &lighting, Linear));
+/// let (mut color, mut depth) = ([Rgb565::BLACK; 32 * 32], [0u16; 32 * 32]);
+/// let mut frame = FullFrame::new(32, 32, &mut color, Some(&mut depth))?;
+/// frame.render(Rgb565::BLACK, &mut [&mut item])?;
+/// assert!(frame.pixels().iter().filter(|&&p| p != Rgb565::BLACK).count() > 300);
+/// # Ok::<(), fixshade::error::Error>(())
+/// ```
+pub fn draw_triangle<K: Kernel>(
+    band: &mut BandView<'_, K::Color>,
+    space: &ClipSpace,
+    kernel: &K,
+    corners: &[Corner; 3],
+    cull: Cull,
+) {
+    if space.is_perspective() {
+        front::<K, true>(band, space, kernel, corners, cull)
+    } else {
+        front::<K, false>(band, space, kernel, corners, cull)
+    }
+}
+
+/// [`draw_triangle`] in a clip space known to be perspective (`PERSP`) or
+/// not.
+fn front<K: Kernel, const PERSP: bool>(
+    band: &mut BandView<'_, K::Color>,
+    space: &ClipSpace,
+    kernel: &K,
+    corners: &[Corner; 3],
+    cull: Cull,
+) {
+    let v = corners.map(|c| kernel.vertex(&c.vertex));
+    let eye = if K::NEEDS_POSITION {
+        corners.map(|c| c.vertex.eye)
+    } else {
+        [[0; 3]; 3]
+    };
+    let clip = corners.map(|c| c.clip);
+    let screen = clip.map(|c| super::vertex::window::<PERSP>(space, c));
+    let inside = screen.iter().all(Option::is_some);
+    let xy = screen.map(|s| s.map_or((0, 0), |s| (i32::from(s.0), i32::from(s.1))));
+    let rows = classify::<PERSP>(
+        inside.then_some(xy),
+        || Some((clip, *space)),
+        cull,
+        band.width,
+        u32::MAX,
+    );
+    if rows.is_none() {
+        return;
+    }
+    let (t, var) = kernel.triangle([&v[0], &v[1], &v[2]], &eye);
+    if inside {
+        let z = screen.map(|s| s.map_or(0, |s| s.2));
+        let w = clip.map(|c| if PERSP { c.w } else { 1 });
+        let _ = draw::<K, PERSP>(kernel, &t, xy, z, w, &var, None, band);
+    } else {
+        let c: [ClipCorner<K::Varyings>; 3] =
+            core::array::from_fn(|k| ClipCorner { c: clip[k], v: var[k] });
+        draw_clipped::<K, PERSP>(kernel, &t, &c, space, band);
+    }
 }

@@ -1,7 +1,7 @@
 //! The vertex stage: every vertex of a mesh transformed, projected and (for
 //! flat and Gouraud shading) lit once per frame, into the caller's vertex cache.
 
-use crate::camera::{MeshTransform, Projection};
+use crate::camera::{Clip, ClipSpace, MeshTransform, Projection};
 use crate::mesh::Mesh;
 use crate::raster::{WINDOW_MAX, WINDOW_MIN};
 use crate::shade::{Kernel, VertexIn};
@@ -47,14 +47,13 @@ impl<V> CachedVertex<V> {
     }
 }
 
-/// The window position as `i16`, or [`CachedVertex::OUTSIDE`].
+/// The window position and depth of clip coordinates `c`, or `None` behind
+/// the near plane or outside the window (`PERSP`: a perspective clip space).
 #[inline(always)]
-fn window(x: i32, y: i32) -> (i16, i16) {
-    if (WINDOW_MIN..=WINDOW_MAX).contains(&x) && (WINDOW_MIN..=WINDOW_MAX).contains(&y) {
-        (x as i16, y as i16)
-    } else {
-        (i16::MIN, 0)
-    }
+pub(crate) fn window<const PERSP: bool>(space: &ClipSpace, c: Clip) -> Option<(i16, i16, u16)> {
+    let s = space.project_as::<PERSP>(c)?;
+    let inside = |v: i32| (WINDOW_MIN..=WINDOW_MAX).contains(&v);
+    (inside(s.x) && inside(s.y)).then_some((s.x as i16, s.y as i16, s.z))
 }
 
 /// Runs the vertex stage of a mesh: `cache[i]` for every vertex `i` (the cache
@@ -66,6 +65,7 @@ pub(crate) fn stage<K: Kernel, P: Projection>(
     kernel: &K,
     cache: &mut [CachedVertex<K::Vertex>],
 ) {
+    let space = t.clip_space();
     let uvs = mesh.texcoords();
     let tangents = mesh.tangents();
     for (i, ((slot, p), n)) in cache
@@ -74,24 +74,19 @@ pub(crate) fn stage<K: Kernel, P: Projection>(
         .zip(mesh.normals().iter())
         .enumerate()
     {
-        let (x, y, z) = match t.screen(*p) {
-            Some(s) => {
-                let (x, y) = window(s.x, s.y);
-                (x, y, s.z)
-            }
-            None => (CachedVertex::<K::Vertex>::OUTSIDE, 0, 0),
+        let c = t.clip(*p);
+        let s = if P::PERSPECTIVE {
+            window::<true>(&space, c)
+        } else {
+            window::<false>(&space, c)
         };
+        let (x, y, z) = s.unwrap_or((CachedVertex::<K::Vertex>::OUTSIDE, 0, 0));
         let mut input = VertexIn::new(
             t.normal(*n),
             if K::NEEDS_POSITION { t.eye(*p) } else { [0; 3] },
         );
         if K::NEEDS_TEXCOORD {
             input.uv = uvs.get(i).map_or([0; 2], |c| c.map(i32::from));
-            input.w = if P::PERSPECTIVE {
-                t.clip_coords(*p).w
-            } else {
-                1
-            };
         }
         if K::NEEDS_TANGENT {
             if let Some(g) = tangents.get(i) {

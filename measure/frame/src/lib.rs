@@ -24,7 +24,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::prelude::*;
 use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, Lerp, MeshDraw,
+    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, MeshDraw,
     MeshMemory, Refine, RefineBuffers, RenderError,
 };
 use fixshade::shade::{DirectionalLighting, Kernel};
@@ -118,7 +118,6 @@ pub fn draw_full<K, D>(
 ) -> Result<(), Fail>
 where
     K: Kernel<Color = Rgb565>,
-    K::Vertex: Lerp,
     D: DrawTarget<Color = Rgb565>,
 {
     let layout = Layout::full(W as u32, W as u32)?;
@@ -134,7 +133,7 @@ where
         },
     )?;
     let mut frame = FullFrame::new(W as u32, W as u32, b.color, Some(b.depth))?;
-    frame.render(Rgb565::BLACK, &mut [&mut draw]);
+    frame.render(Rgb565::BLACK, &mut [&mut draw])?;
     frame.flush(display).map_err(|_| Fail::Render)
 }
 
@@ -149,7 +148,6 @@ pub fn draw_bands<K, D>(
 ) -> Result<(), Fail>
 where
     K: Kernel<Color = Rgb565>,
-    K::Vertex: Lerp,
     D: DrawTarget<Color = Rgb565>,
 {
     let layout = Layout::banded(W as u32, W as u32, BAND_ROWS as u32)?;
@@ -182,7 +180,6 @@ pub fn draw_full_refine<K, D>(
 ) -> Result<(), Fail>
 where
     K: Kernel<Color = Rgb565>,
-    K::Vertex: Lerp,
     D: DrawTarget<Color = Rgb565>,
 {
     let layout = Layout::full(W as u32, W as u32)?;
@@ -204,7 +201,7 @@ where
         },
     )?;
     let mut frame = FullFrame::new(W as u32, W as u32, b.color, Some(b.depth))?;
-    frame.render(Rgb565::BLACK, &mut [&mut draw]);
+    frame.render(Rgb565::BLACK, &mut [&mut draw])?;
     frame.flush(display).map_err(|_| Fail::Render)
 }
 
@@ -218,7 +215,6 @@ pub fn draw_bands_refine<K, D>(
 ) -> Result<(), Fail>
 where
     K: Kernel<Color = Rgb565>,
-    K::Vertex: Lerp,
     D: DrawTarget<Color = Rgb565>,
 {
     let layout = Layout::banded(W as u32, W as u32, BAND_ROWS as u32)?;

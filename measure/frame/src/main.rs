@@ -4,7 +4,7 @@
 //!   firmware image with one `extern "C"` entry per configuration and frame
 //!   kind, `frame_<config>` (whole frame) and `frame_<config>_band8`, each
 //!   rendering one complete frame of the standard scene into a
-//!   `fixshade::target::Checksum<Rgb565>` and returning
+//!   `fixshade::framebuffer::Checksum<Rgb565>` and returning
 //!   `status << 32 | checksum` (status 0: drawn, all 57 600 pixels sent).
 //!   `init()` converts the camera (`standard::fixed_camera()`, `f32`) and
 //!   builds every configuration's lighting once into statics; each frame builds
@@ -31,7 +31,7 @@ mod firmware {
     use embedded_graphics_core::pixelcolor::Rgb565;
     use fixshade::camera::{FixedCamera, MeshTransform, Orthographic};
     use fixshade::render::{CachedVertex, Carry};
-    use fixshade::target::Checksum;
+    use fixshade::framebuffer::Checksum;
     use fixshade_frame::{
         Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, W,
     };
@@ -214,7 +214,7 @@ fn main() {
     use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
     use embedded_graphics_core::prelude::*;
     use fixshade::render::Carry;
-    use fixshade::target::Checksum;
+    use fixshade::framebuffer::Checksum;
     use fixshade_frame::*;
 
     /// Checksums the stream like the firmware and counts the non-black pixels.
