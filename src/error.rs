@@ -79,7 +79,7 @@ fn too_small(f: &mut fmt::Formatter<'_>, which: &str, needed: usize, got: usize)
 /// of panicking. Each variant names the offending parameter.
 ///
 /// ```
-/// use fixshade::light::DirectionalLight;
+/// use fixshade::lighting::DirectionalLight;
 /// use fixshade::error::ParamError;
 /// let err = DirectionalLight::<f32>::white([0.0, 0.0, 0.0]).unwrap_err();
 /// assert_eq!(err, ParamError::ZeroDirection("direction"));
@@ -123,7 +123,7 @@ pub enum ParamError {
         limit: u32,
     },
     /// An OpenGL light of another kind than the light type asked for (e.g. a
-    /// positional `GL_POSITION` for a [`DirectionalLight`](crate::light::DirectionalLight)).
+    /// positional `GL_POSITION` for a [`DirectionalLight`](crate::lighting::DirectionalLight)).
     LightKind(&'static str),
     /// More lights than the light set holds.
     LightCount {
@@ -292,8 +292,8 @@ impl core::error::Error for MeshError {}
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum TextureError {
-    /// A side's `log2` exceeds
-    /// [`MAX_LOG2_SIZE`](crate::texture::MAX_LOG2_SIZE).
+    /// A side's `log2` exceeds [`MAX_LOG2_SIZE`](crate::texture::MAX_LOG2_SIZE)
+    /// (a texture) or [`NormalMap::MAX_LOG2_SIZE`](crate::texture::NormalMap::MAX_LOG2_SIZE).
     TooLarge {
         /// The `log2` given.
         log2: u8,
@@ -319,11 +319,7 @@ pub enum TextureError {
 impl fmt::Display for TextureError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::TooLarge { log2 } => write!(
-                f,
-                "texture side 2^{log2} exceeds 2^{}",
-                crate::texture::MAX_LOG2_SIZE
-            ),
+            Self::TooLarge { log2 } => write!(f, "texture side 2^{log2} too large"),
             Self::BufferTooSmall { which, needed, got } => too_small(f, which, *needed, *got),
             Self::PaletteTooLong => f.write_str("palette longer than 256 colours"),
             Self::NotFinite(p) => write!(f, "{p}: NaN or infinite"),

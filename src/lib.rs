@@ -18,7 +18,7 @@
 //!
 //! What a pixel reflects — the lighting equation, written once, generic over
 //! the number tier and over which terms exist — lives in [`lighting`], with
-//! [`light`], [`material`] and [`gl`] (OpenGL 1.x parameter sets). The number
+//! [`light`](crate::lighting), [`material`](crate::lighting) and [`gl`](crate::lighting::gl) (OpenGL 1.x parameter sets). The number
 //! tiers are in [`num`]: [`Q14`](num::Q14) (16-bit products, the Cortex-M0
 //! fast path), [`Q30`](num::Q30) (64-bit products, ≤ 1 LSB), `f32` and
 //! [`F32Fast`](num::F32Fast) (FPU targets). The `f64` reference model
@@ -97,12 +97,8 @@ pub mod camera;
 pub mod color;
 pub mod error;
 pub mod framebuffer;
-pub mod gl;
-pub mod light;
 pub mod lighting;
-pub mod material;
 pub mod mesh;
-pub mod normal_map;
 pub mod num;
 pub mod raster;
 #[cfg(feature = "reference")]
@@ -111,7 +107,6 @@ pub mod render;
 pub mod shade;
 pub mod standard;
 pub mod texture;
-pub mod vector;
 
 /// The types most programs need, for `use fixshade::prelude::*`.
 pub mod prelude {
@@ -120,14 +115,14 @@ pub mod prelude {
     };
     pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
     pub use crate::error::{Error, ParamError};
-    pub use crate::light::{
+    pub use crate::lighting::{
         AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight,
     };
     pub use crate::lighting::{
         BlinnPhong, Full, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer, NoFog, Phong,
         Terms,
     };
-    pub use crate::material::{AmbientSource, Material, MaterialDesc};
+    pub use crate::lighting::{AmbientSource, Material, MaterialDesc};
     pub use crate::framebuffer::Checksum;
     pub use crate::mesh::{uv_sphere_counts, Mesh, MeshData};
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
@@ -137,7 +132,7 @@ pub mod prelude {
         Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Kernel, Linear,
         PhongShading, QuadraticPhongShading, Shader,
     };
-    pub use crate::vector::Vec3;
+    pub use crate::num::Vec3;
     pub use embedded_graphics_core::geometry::Size;
     pub use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888, RgbColor};
 }

@@ -12,9 +12,9 @@
 
 use crate::camera::{Camera, FixedCamera, MeshTransform, Orthographic, Pose};
 use crate::error::ParamError;
-use crate::light::{DirectionalLight, LightColors};
+use crate::lighting::{DirectionalLight, LightColors};
 use crate::lighting::{BlinnPhong, Lambert, Lighting};
-use crate::material::{Material, MaterialDesc};
+use crate::lighting::{Material, MaterialDesc};
 use crate::camera::{Mat4, Viewport};
 use crate::mesh::{uv_sphere_counts, MeshData};
 use crate::num::Scalar;

@@ -11,7 +11,7 @@
 //! # Conventions
 //!
 //! - **Space**: right-handed; the eye looks down −z with +y up (OpenGL), as in
-//!   [`crate::gl`] and the lighting core.
+//!   [`crate::lighting::gl`] and the lighting core.
 //! - **Winding**: a triangle `[a, b, c]` is front-facing when `a → b → c` runs
 //!   counter-clockwise as seen from the side its normal points to, i.e. its
 //!   geometric normal is `(b − a) × (c − a)`. Generated meshes wind

@@ -4,7 +4,7 @@
 use super::error::check_len;
 use crate::error::MeshError;
 use crate::num::{Geo16, Scalar, Q14};
-use crate::vector::Vec3;
+use crate::num::Vec3;
 
 /// How [`vertex_normals`] weights the faces around a vertex.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -284,7 +284,7 @@ pub(crate) fn geo16(p: [f32; 3]) -> Vec3<Geo16> {
 /// ```
 /// use fixshade::mesh::normals_to_tier;
 /// use fixshade::num::{Scalar, Q14};
-/// use fixshade::vector::Vec3;
+/// use fixshade::num::Vec3;
 /// let mut dst = [Vec3::<Q14>::default(); 1];
 /// normals_to_tier(&[[0.0, 0.6, 0.8]], &mut dst)?;
 /// assert_eq!(dst[0].y, Q14::from_f32(0.6));
@@ -312,7 +312,7 @@ pub fn normals_to_tier<S: Scalar>(
 /// ```
 /// use fixshade::mesh::positions_to_geo16;
 /// use fixshade::num::Geo16;
-/// use fixshade::vector::Vec3;
+/// use fixshade::num::Vec3;
 /// let mut dst = [Vec3::new(Geo16::ZERO, Geo16::ZERO, Geo16::ZERO); 1];
 /// positions_to_geo16(&[[1.5, -2.0, 1.0e9]], &mut dst)?;
 /// assert_eq!(dst[0].x, Geo16::from_num(1.5));

@@ -2,7 +2,7 @@
 //! approximate inverse square root).
 
 use super::Scalar;
-use crate::vector::Vec3;
+use crate::num::Vec3;
 
 /// The linear fog ramp of the float tiers (see [`Scalar::ramp`]):
 /// `clamp((end − d)·scale·inv, 0, 1)` with `end` as given and

@@ -34,6 +34,7 @@
 mod float;
 mod geo;
 mod matrix;
+mod vector;
 mod pow;
 mod q14;
 mod q30;
@@ -44,14 +45,18 @@ pub(crate) mod wide;
 pub use float::{F32Fast, RampF32, F32_LIMIT};
 pub use geo::{GeoScalar, InvQuadratic16};
 pub use matrix::Mat4;
+pub use vector::{point_from_f32, point_sub, Point3, Vec3};
 pub use pow::Exponent;
 pub use q14::RampQ14;
 pub use q14::Q14;
 pub use q30::RampQ30;
 pub use q30::Q30;
 
-use crate::vector::Vec3;
 use core::fmt::Debug;
+
+/// Fraction bits of interpolated values: a value `v` is `v · 2^ATTR_FRAC`
+/// (what the rasterizer hands the shading kernels, and the encoders read).
+pub const ATTR_FRAC: u32 = 14;
 
 /// `a[i]` for a vertex index `i < 3` (a triangle's vertex): the
 /// index is limited to 2 so that no bounds check (and no panic path) is left

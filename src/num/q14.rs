@@ -3,7 +3,7 @@
 use super::geo::{shift_u32, InvQuadratic16, RampParts};
 use super::rsqrt::{rsqrt_q14_mantissa, split_u32};
 use super::{round_shr, Geo16, Scalar};
-use crate::vector::Vec3;
+use crate::num::Vec3;
 
 /// The fast 32-bit tier: a Q2.14 fixed-point value, range [−2, 2), resolution 2⁻¹⁴.
 ///

@@ -4,7 +4,7 @@ use super::geo::{shift_u64, InvQuadratic16, RampParts};
 use super::q14::{geo16_direction, geo16_ops};
 use super::rsqrt::{rsqrt_q30_mantissa, split_u64};
 use super::{round_shr, Geo16, Scalar};
-use crate::vector::Vec3;
+use crate::num::Vec3;
 
 /// The accurate fixed tier: a Q2.30 fixed-point value in an `i32`, range [−2, 2),
 /// resolution 2⁻³⁰.

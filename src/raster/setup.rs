@@ -10,12 +10,9 @@
 
 pub(crate) use crate::num::at3;
 
-use super::edge::Walker;
 use super::{Cull, SUBPIXEL_BITS};
 
-/// Fraction bits of the interpolated attribute values handed to kernels: a value
-/// `v` is `v · 2^ATTR_FRAC`.
-pub const ATTR_FRAC: u32 = 14;
+pub use crate::num::ATTR_FRAC;
 
 /// Number of significant bits of `|x|` (0 for 0): `32 − leading_zeros`, without
 /// a library call on cores lacking a count-leading-zeros instruction.
@@ -306,13 +303,6 @@ impl Setup {
             hi: hi << ATTR_FRAC,
             spread: d1.unsigned_abs() + d2.unsigned_abs(),
         }
-    }
-
-    /// The walker over this triangle's rows, positioned at `row` (clamped to
-    /// the triangle's first row).
-    #[inline]
-    pub(crate) fn walker(&self, row: i32) -> Walker {
-        Walker::new(self, row)
     }
 }
 

@@ -71,7 +71,7 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
     let rows = band.rows();
     let mut w = match resume {
         Some(cols) => Walker::resume(&s, rows.start, cols),
-        None => s.walker(rows.start),
+        None => Walker::new(&s, rows.start),
     };
     let skip = w.y - row0;
     let last = w.last.min(rows.end - 1);

@@ -4,7 +4,7 @@
 use super::phong::{lit_span, PhongTriangle};
 use super::{IncrementalPhongShading, Kernel, Linear, ModeState, Shader};
 use crate::color::{OutputColor, Rgb};
-use crate::light::DirectionalLight;
+use crate::lighting::DirectionalLight;
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
 use crate::num::Q14;

@@ -10,7 +10,7 @@
 //! | [`PhongShading`] | at every pixel | normal (and position when the lighting needs it) | yes |
 //! | [`IncrementalPhongShading`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `\|N\|²` by differences | yes |
 //! | [`TexturedGouraudShading`] | at the three vertices, primary and secondary colour apart | both colours and the texture coordinates (perspective-correct) | no (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
-//! | [`NormalMapShading`] | at every pixel, with the normal of a [`NormalMap`](crate::normal_map::NormalMap) in the tangent frame (general: every tier and light; fast: Q14, one directional light) | normal and tangent (general) or `L`, `H` in tangent space (fast), texture coordinates | yes, and surface detail |
+//! | [`NormalMapShading`] | at every pixel, with the normal of a [`NormalMap`](crate::texture::NormalMap) in the tangent frame (general: every tier and light; fast: Q14, one directional light) | normal and tangent (general) or `L`, `H` in tangent space (fast), texture coordinates | yes, and surface detail |
 //! | [`QuadraticPhongShading`] | at anchors 4–32 pixels apart, the colour quadratically in between, the specular power per pixel (Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong `R·V`; every encoder) | encoded colour by second differences, the specular table coordinate | yes |
 //!
 //! The mode names say *how the surface is interpolated*; the reflection models
@@ -47,7 +47,6 @@
 //! # Ok::<(), core::convert::Infallible>(())
 //! ```
 
-mod encode;
 mod flat;
 mod gouraud;
 mod incremental;
@@ -57,7 +56,7 @@ mod quadratic;
 mod segment;
 mod textured;
 
-pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
+pub use crate::color::{Dithered, Encoder, Gamma, Linear};
 pub use incremental::{DirectionalLighting, IncrementalModel};
 pub use normalmap::{
     FastNormalMapShader, NormalMapPayload, NormalMapShader, NormalMapTriangle, TangentLightPayload,
@@ -70,7 +69,7 @@ use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
 use crate::raster::interp::Varyings;
-use crate::vector::{Point3, Vec3};
+use crate::num::{Point3, Vec3};
 use core::marker::PhantomData;
 
 /// Flat shading: the triangle is lit once, at its centroid, with the normalised
@@ -116,7 +115,7 @@ pub struct IncrementalPhongShading;
 pub struct QuadraticPhongShading;
 
 /// Normal-mapped Phong shading: per-pixel lighting with the normal of a
-/// [`NormalMap`](crate::normal_map::NormalMap) in the surface's tangent frame.
+/// [`NormalMap`](crate::texture::NormalMap) in the surface's tangent frame.
 /// Two shaders implement it (both the mesh renderer's [`Kernel`] with
 /// [`Kernel::NEEDS_TEXCOORD`] and [`Kernel::NEEDS_TANGENT`], and a per-triangle
 /// `draw` taking [`NormalMapVertex`]es):

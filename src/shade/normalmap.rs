@@ -5,11 +5,11 @@ use super::phong::PhongTriangle;
 use super::{eye_point, unit_q14, Encoder, Kernel};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::{Illuminate, Specular};
-use crate::normal_map::{NormalMap, NormalTexel, Wrap};
+use crate::texture::{NormalMap, NormalTexel, Wrap};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
 use crate::num::Scalar;
 use crate::raster::ATTR_FRAC;
-use crate::vector::{Point3, Vec3};
+use crate::num::{Point3, Vec3};
 use core::marker::PhantomData;
 
 use super::incremental::{channel_units, DirectionalLighting, IncrementalModel, PowTable};
@@ -261,7 +261,7 @@ fn sample2(map: &NormalMap<'_>, u: i32, uf: u32, v: i32, vf: u32) -> NormalTexel
 ///
 /// ```
 /// use fixshade::prelude::*;
-/// use fixshade::normal_map::{NormalMap, Wrap, FLAT_NORMAL};
+/// use fixshade::texture::{NormalMap, Wrap, FLAT_NORMAL};
 /// use fixshade::shade::{FastNormalMapShader, NormalMapVertex};
 /// use fixshade::raster::SUBPIXEL_BITS;
 ///
@@ -518,7 +518,7 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
             let m = texels
                 .get(((y << wl) | x) as usize)
                 .copied()
-                .unwrap_or(crate::normal_map::FLAT_NORMAL)
+                .unwrap_or(crate::texture::FLAT_NORMAL)
                 .map(i32::from);
             let mut acc = self.base;
             // n·L/|L|: Q14 · (Q24 ≫ 8 = Q16) = Q30, ≫ 14 = Q16; |n·L| ≤ |L|, and

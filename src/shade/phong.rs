@@ -6,7 +6,7 @@ use crate::lighting::Illuminate;
 use crate::num::Scalar;
 use crate::raster::interp::VARYING_LIMIT;
 use crate::raster::ATTR_FRAC;
-use crate::vector::Vec3;
+use crate::num::Vec3;
 
 impl<I: Illuminate, C> ModeState<I, C> for PhongShading {
     type State = ();

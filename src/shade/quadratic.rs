@@ -8,13 +8,13 @@ use super::segment::{
 };
 use super::{Encoder, Kernel, ModeState, QuadraticPhongShading, Shader};
 use crate::color::{OutputColor, Rgb};
-use crate::light::DirectionalLight;
+use crate::lighting::DirectionalLight;
 use crate::lighting::{
     BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Phong, Specular,
 };
 use crate::num::{F32Fast, Scalar, Q14};
 use crate::raster::ATTR_FRAC;
-use crate::vector::Vec3;
+use crate::num::Vec3;
 
 /// The reflection models [`QuadraticPhongShading`] evaluates: [`Lambert`],
 /// [`BlinnPhong`] and [`Phong`] (`R·V`). Brilliance, the Fresnel factor and
@@ -163,8 +163,8 @@ const DEV_RV: u32 = 8848;
 /// v·fs` for the clamped linear channel `v`).
 fn encoder_map<E: Encoder<C>, C: OutputColor>(enc: &E) -> ([i32; 3], [i32; 3]) {
     if E::LINEAR {
-        let fs = C::CHANNEL_MAX.map(|m| (m << super::encode::vertex_shift(m)) as i32);
-        let off = C::CHANNEL_MAX.map(|m| ((1u32 << super::encode::vertex_shift(m)) >> 1) as i32);
+        let fs = C::CHANNEL_MAX.map(|m| (m << crate::color::encode::vertex_shift(m)) as i32);
+        let off = C::CHANNEL_MAX.map(|m| ((1u32 << crate::color::encode::vertex_shift(m)) >> 1) as i32);
         (fs, off)
     } else {
         let b = enc.vertex(Rgb::<Q14>::BLACK);
@@ -277,7 +277,7 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
             let ch = |c: usize| {
                 let v = lin.base[c].saturating_add(d * lin.kd[0][c]);
                 let m = C::CHANNEL_MAX[c];
-                let sh = super::encode::vertex_shift(m) + ATTR_FRAC;
+                let sh = crate::color::encode::vertex_shift(m) + ATTR_FRAC;
                 ((v.max(0) as u32) >> sh).min(m)
             };
             ((ch(0) << 11) | (ch(1) << 5) | ch(2)) as u16

@@ -109,8 +109,8 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, TexturedGouraudSha
     /// secondary (with it) colours of a vertex (each value below 2^15).
     pub fn vertex_parts(
         &self,
-        position: &crate::vector::Point3<I::Scalar>,
-        normal: crate::vector::Vec3<I::Scalar>,
+        position: &crate::num::Point3<I::Scalar>,
+        normal: crate::num::Vec3<I::Scalar>,
     ) -> ([i32; 3], [i32; 3]) {
         let parts = self.lighting.shade_parts(position, normal, None);
         let black = self.encoder.vertex(Rgb::<I::Scalar>::BLACK);

@@ -1,6 +1,10 @@
 //! Linear RGB in a tier's format and its conversion to embedded-graphics colours,
 //! with optional table-driven gamma and ordered dithering.
 
+pub(crate) mod encode;
+
+pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
+
 use crate::error::{finite, non_negative3, ParamError};
 use crate::num::Scalar;
 use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888};

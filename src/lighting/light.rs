@@ -7,9 +7,9 @@
 
 use crate::color::Rgb;
 use crate::error::{direction, finite, non_negative, non_negative3, ParamError};
-use crate::material::Material;
+use crate::lighting::Material;
 use crate::num::{Exponent, GeoScalar, Scalar};
-use crate::vector::{point_from_f32, point_sub, Point3, Vec3};
+use crate::num::{point_from_f32, point_sub, Point3, Vec3};
 use core::marker::PhantomData;
 
 /// The colours a light emits into each term (OpenGL's `GL_AMBIENT`, `GL_DIFFUSE`,
@@ -305,7 +305,7 @@ light_set_tuple!(A 0, B 1, C 2, D 3);
 /// (homogeneous `w = 0`).
 ///
 /// ```
-/// use fixshade::light::{DirectionalLight, LightColors};
+/// use fixshade::lighting::{DirectionalLight, LightColors};
 /// use fixshade::num::Q14;
 /// let sun = DirectionalLight::<Q14>::new([1.0, 1.0, 1.0], LightColors::white()).unwrap();
 /// ```
@@ -485,7 +485,7 @@ impl<G: GeoScalar> Attenuation<G> {
 /// A point light at a position, with distance attenuation.
 ///
 /// ```
-/// use fixshade::light::{Attenuation, LightColors, PointLight};
+/// use fixshade::lighting::{Attenuation, LightColors, PointLight};
 /// use fixshade::num::Q14;
 /// let att = Attenuation::new::<Q14>(1.0, 0.0, 0.05).unwrap();
 /// let bulb = PointLight::<Q14>::new([0.0, 4.0, 3.0], att, LightColors::white()).unwrap();

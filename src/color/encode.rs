@@ -4,7 +4,7 @@
 
 use crate::color::{GammaTable, OutputColor, Rgb};
 use crate::num::Scalar;
-use crate::raster::ATTR_FRAC;
+use crate::num::ATTR_FRAC;
 
 /// Vertex values are below `2^VERTEX_BITS` (the rasterizer's attribute range).
 pub const VERTEX_BITS: u32 = 15;

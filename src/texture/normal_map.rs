@@ -25,7 +25,7 @@
 //! buffer, once at load time.
 //!
 //! ```
-//! use fixshade::normal_map::{bump_to_normals, NormalMap, Wrap};
+//! use fixshade::texture::{bump_to_normals, NormalMap, Wrap};
 //! use fixshade::texture::TexCoord;
 //! // a 4 × 4 height ramp rising along u, converted into a normal map
 //! let heights: [u8; 16] = core::array::from_fn(|i| (i % 4) as u8 * 10);
@@ -35,13 +35,11 @@
 //! // ∂h/∂u = 10 per texel, scale 0.1: n = normalize(−1, 0, 1)
 //! let n = map.sample(TexCoord::from_f32(0.4, 0.6));
 //! assert_eq!(n, [-11585, 0, 11585]);
-//! # Ok::<(), fixshade::normal_map::NormalMapError>(())
+//! # Ok::<(), fixshade::error::TextureError>(())
 //! ```
 
-use crate::texture::TexCoord;
-use core::fmt;
-
-pub use crate::texture::Wrap;
+use super::{TexCoord, Wrap};
+use crate::error::TextureError;
 
 /// One texel of a [`NormalMap`]: a tangent-space unit normal, Q14 per component.
 pub type NormalTexel = [i16; 3];
@@ -49,59 +47,7 @@ pub type NormalTexel = [i16; 3];
 /// The flat normal `(0, 0, 1)`: a map of it shades like no map at all.
 pub const FLAT_NORMAL: NormalTexel = [0, 0, 1 << 14];
 
-/// The largest `log2` of a normal map's side (4096 texels: the texel position of
-/// a Q12 mesh texture coordinate is then an integer).
-pub const MAX_LOG2_SIZE: u8 = 12;
 
-/// Why a normal map or a bump conversion was rejected.
-///
-/// ```
-/// use fixshade::normal_map::{NormalMap, NormalMapError, Wrap};
-/// let texels = [[0i16, 0, 16384]; 3];
-/// let err = NormalMap::new(&texels, 1, 1, Wrap::Repeat).unwrap_err();
-/// assert_eq!(err, NormalMapError::BufferTooSmall { needed: 4, got: 3 });
-/// assert_eq!(err.to_string(), "texel buffer too small: 4 texels needed, 3 given");
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum NormalMapError {
-    /// A side's `log2` exceeds [`MAX_LOG2_SIZE`].
-    TooLarge {
-        /// The `log2` given.
-        log2: u8,
-    },
-    /// A texel (or height) slice holds fewer elements than the size needs.
-    BufferTooSmall {
-        /// Elements required.
-        needed: usize,
-        /// Elements provided.
-        got: usize,
-    },
-    /// The named parameter is NaN or infinite.
-    NotFinite(&'static str),
-    /// The named vector has zero length.
-    Degenerate(&'static str),
-}
-
-impl fmt::Display for NormalMapError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::TooLarge { log2 } => {
-                write!(f, "map side 2^{log2} exceeds 2^{MAX_LOG2_SIZE} texels")
-            }
-            Self::BufferTooSmall { needed, got } => {
-                write!(
-                    f,
-                    "texel buffer too small: {needed} texels needed, {got} given"
-                )
-            }
-            Self::NotFinite(p) => write!(f, "{p}: NaN or infinite"),
-            Self::Degenerate(p) => write!(f, "{p}: zero length"),
-        }
-    }
-}
-
-impl core::error::Error for NormalMapError {}
 
 /// A tangent-space normal map over borrowed texels (see the [module docs](self)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -113,22 +59,26 @@ pub struct NormalMap<'a> {
 }
 
 /// The number of texels of a `2^w_log2 × 2^h_log2` map, checked.
-fn texel_count(w_log2: u8, h_log2: u8) -> Result<usize, NormalMapError> {
+fn texel_count(w_log2: u8, h_log2: u8) -> Result<usize, TextureError> {
     for log2 in [w_log2, h_log2] {
-        if log2 > MAX_LOG2_SIZE {
-            return Err(NormalMapError::TooLarge { log2 });
+        if log2 > NormalMap::MAX_LOG2_SIZE {
+            return Err(TextureError::TooLarge { log2 });
         }
     }
     Ok(1usize << (u32::from(w_log2) + u32::from(h_log2)))
 }
 
 impl<'a> NormalMap<'a> {
+    /// The largest `log2` of a map side (4096 texels): the mesh's Q12
+    /// texture coordinates address a texel of a map up to that size.
+    pub const MAX_LOG2_SIZE: u8 = 12;
+
     /// A map of `2^w_log2 × 2^h_log2` texels, row by row from the top-left
-    /// (`v = 0`) texel. Errors: a side above [`MAX_LOG2_SIZE`], fewer texels
+    /// (`v = 0`) texel. Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], fewer texels
     /// than the size (extra texels are ignored).
     ///
     /// ```
-    /// use fixshade::normal_map::{NormalMap, Wrap, FLAT_NORMAL};
+    /// use fixshade::texture::{NormalMap, Wrap, FLAT_NORMAL};
     /// static FLAT: [[i16; 3]; 1] = [FLAT_NORMAL];
     /// let map = NormalMap::new(&FLAT, 0, 0, Wrap::Repeat).unwrap();
     /// assert_eq!((map.width(), map.height()), (1, 1));
@@ -138,10 +88,11 @@ impl<'a> NormalMap<'a> {
         w_log2: u8,
         h_log2: u8,
         wrap: Wrap,
-    ) -> Result<Self, NormalMapError> {
+    ) -> Result<Self, TextureError> {
         let needed = texel_count(w_log2, h_log2)?;
         if texels.len() < needed {
-            return Err(NormalMapError::BufferTooSmall {
+            return Err(TextureError::BufferTooSmall {
+                which: "texels",
                 needed,
                 got: texels.len(),
             });
@@ -198,7 +149,7 @@ impl<'a> NormalMap<'a> {
     }
 
     /// The texel containing the point `(u, v)` given with `frac` fraction bits
-    /// (`frac ≥` [`MAX_LOG2_SIZE`]; 12 for the mesh's Q12 texture coordinates).
+    /// (`frac ≥` [`NormalMap::MAX_LOG2_SIZE`]; 12 for the mesh's Q12 texture coordinates).
     #[inline(always)]
     pub fn sample_fixed(&self, u: i32, v: i32, frac: u32) -> NormalTexel {
         let su = frac.saturating_sub(u32::from(self.w_log2)).min(31);
@@ -211,18 +162,18 @@ impl<'a> NormalMap<'a> {
 /// rounded to nearest). Errors: a non-finite component, a zero vector.
 ///
 /// ```
-/// use fixshade::normal_map::normal_texel;
+/// use fixshade::texture::normal_texel;
 /// assert_eq!(normal_texel([0.0, 0.0, 2.0]), Ok([0, 0, 16384]));
 /// assert_eq!(normal_texel([1.0, 0.0, 1.0]), Ok([11585, 0, 11585]));
 /// ```
-pub fn normal_texel(n: [f32; 3]) -> Result<NormalTexel, NormalMapError> {
+pub fn normal_texel(n: [f32; 3]) -> Result<NormalTexel, TextureError> {
     if n.iter().any(|v| !v.is_finite()) {
-        return Err(NormalMapError::NotFinite("normal"));
+        return Err(TextureError::NotFinite("normal"));
     }
     let d = n.map(f64::from);
     let len = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if !(len > 0.0) || !len.is_finite() {
-        return Err(NormalMapError::Degenerate("normal"));
+        return Err(TextureError::Degenerate("normal"));
     }
     Ok(d.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16))
 }
@@ -238,16 +189,16 @@ pub fn normal_texel(n: [f32; 3]) -> Result<NormalTexel, NormalMapError> {
 /// gives its exact slope everywhere), a [`Wrap::Repeat`] map wraps around.
 /// A constant map gives the flat normal `[0, 0, 16384]` exactly.
 ///
-/// Errors: a side above [`MAX_LOG2_SIZE`], `heights` or `out` too short, a
+/// Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], `heights` or `out` too short, a
 /// non-finite `scale`. Nothing is written on error.
 ///
 /// ```
-/// use fixshade::normal_map::{bump_to_normals, Wrap, FLAT_NORMAL};
+/// use fixshade::texture::{bump_to_normals, Wrap, FLAT_NORMAL};
 /// let heights = [77u8; 64];
 /// let mut out = [[0i16; 3]; 64];
 /// bump_to_normals(&heights, 3, 3, Wrap::Repeat, 4.0, &mut out)?;
 /// assert!(out.iter().all(|&t| t == FLAT_NORMAL));
-/// # Ok::<(), fixshade::normal_map::NormalMapError>(())
+/// # Ok::<(), fixshade::error::TextureError>(())
 /// ```
 pub fn bump_to_normals(
     heights: &[u8],
@@ -256,15 +207,19 @@ pub fn bump_to_normals(
     wrap: Wrap,
     scale: f32,
     out: &mut [NormalTexel],
-) -> Result<(), NormalMapError> {
+) -> Result<(), TextureError> {
     let needed = texel_count(w_log2, h_log2)?;
     for got in [heights.len(), out.len()] {
         if got < needed {
-            return Err(NormalMapError::BufferTooSmall { needed, got });
+            return Err(TextureError::BufferTooSmall {
+                which: "heights or out",
+                needed,
+                got,
+            });
         }
     }
     if !scale.is_finite() {
-        return Err(NormalMapError::NotFinite("scale"));
+        return Err(TextureError::NotFinite("scale"));
     }
     let (w, h) = (1i32 << w_log2, 1i32 << h_log2);
     let height = |x: i32, y: i32| -> f64 {
@@ -307,11 +262,11 @@ mod tests {
         assert!(NormalMap::new(&t, 2, 2, Wrap::Repeat).is_ok());
         assert_eq!(
             NormalMap::new(&t, 13, 0, Wrap::Repeat),
-            Err(NormalMapError::TooLarge { log2: 13 })
+            Err(TextureError::TooLarge { log2: 13 })
         );
         assert_eq!(
             NormalMap::new(&t, 3, 2, Wrap::Repeat),
-            Err(NormalMapError::BufferTooSmall {
+            Err(TextureError::BufferTooSmall {
                 needed: 32,
                 got: 16
             })
@@ -319,19 +274,19 @@ mod tests {
         let mut out = [[0i16; 3]; 4];
         assert_eq!(
             bump_to_normals(&[0; 4], 1, 1, Wrap::Repeat, f32::NAN, &mut out),
-            Err(NormalMapError::NotFinite("scale"))
+            Err(TextureError::NotFinite("scale"))
         );
         assert_eq!(
             bump_to_normals(&[0; 3], 1, 1, Wrap::Repeat, 1.0, &mut out),
-            Err(NormalMapError::BufferTooSmall { needed: 4, got: 3 })
+            Err(TextureError::BufferTooSmall { needed: 4, got: 3 })
         );
         assert_eq!(
             normal_texel([0.0; 3]),
-            Err(NormalMapError::Degenerate("normal"))
+            Err(TextureError::Degenerate("normal"))
         );
         assert_eq!(
             normal_texel([f32::INFINITY, 0.0, 1.0]),
-            Err(NormalMapError::NotFinite("normal"))
+            Err(TextureError::NotFinite("normal"))
         );
     }
 

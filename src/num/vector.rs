@@ -7,7 +7,7 @@ use crate::num::Scalar;
 ///
 /// ```
 /// use fixshade::num::Scalar;
-/// use fixshade::vector::Vec3;
+/// use fixshade::num::Vec3;
 /// let n = Vec3::<f32>::from_f32([0.0, 0.0, 2.0]).normalize();
 /// assert_eq!(n, Vec3::new(0.0, 0.0, 1.0));
 /// assert_eq!(n.dot(Vec3::new(0.0, 0.6, 0.8)), 0.8);

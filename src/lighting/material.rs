@@ -9,7 +9,7 @@ use crate::num::{Exponent, Scalar};
 /// material (ambient 0.2, diffuse 0.8, no specular, no emission).
 ///
 /// ```
-/// use fixshade::material::{AmbientSource, MaterialDesc};
+/// use fixshade::lighting::{AmbientSource, MaterialDesc};
 /// // seed 001: a red object, ka = 0.4 of the object colour, kd = 0.5, ks = 0.5, n = 20
 /// let d = MaterialDesc::classic([1.0, 0.0, 0.0], AmbientSource::Object, 0.4, 0.5, 0.5, 20.0);
 /// assert_eq!(d.ambient, [0.4, 0.0, 0.0]);
@@ -102,7 +102,7 @@ impl MaterialDesc {
 /// colour of 3 under a light of 0.5 is exact in every tier.
 ///
 /// ```
-/// use fixshade::material::{Material, MaterialDesc};
+/// use fixshade::lighting::{Material, MaterialDesc};
 /// use fixshade::num::{Exponent, Q14};
 /// let m = Material::<Q14>::new(&MaterialDesc::default()).unwrap();
 /// assert_eq!(m.shininess, Exponent::ZERO);

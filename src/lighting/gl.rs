@@ -9,7 +9,7 @@
 //! anything), checked against the GL state:
 //!
 //! ```
-//! use fixshade::gl::{GlLight, GlLightModel, GlMaterial, GlScene};
+//! use fixshade::lighting::gl::{GlLight, GlLightModel, GlMaterial, GlScene};
 //! use fixshade::prelude::*;
 //! // glEnable(GL_LIGHT0) with every parameter at its default
 //! let lights = [GlLight::light0()];
@@ -27,7 +27,7 @@
 //! |---|---|
 //! | `glLightfv(GL_LIGHTi, …)`, position and spot direction through the modelview | [`GlLight`], [`GlLight::transformed`] |
 //! | `GL_POSITION` w = 0 / w ≠ 0, `GL_SPOT_CUTOFF` 180 / 0..=90 | [`DirectionalLight`] / [`PointLight`] / [`SpotLight`] ([`FromGlLight`]) |
-//! | `GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION` | [`Attenuation`](crate::light::Attenuation) (`1/a` folded into the colours) |
+//! | `GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION` | [`Attenuation`](crate::lighting::Attenuation) (`1/a` folded into the colours) |
 //! | `GL_SPOT_EXPONENT`, `GL_SHININESS` (real, 0..=128) | [`Exponent`](crate::num::Exponent) |
 //! | `glMaterialfv(GL_FRONT / GL_BACK, …)` | [`GlMaterial`] → [`Material::signed`] |
 //! | `GL_LIGHT_MODEL_AMBIENT` (any sign) | [`GlLightModel::ambient`] |
@@ -43,14 +43,14 @@
 
 use crate::color::Rgb;
 use crate::error::{finite, ParamError};
-use crate::light::{
+use crate::lighting::{
     AnyLight, DirectionalLight, LightColors, LightDesc, LightKind, LightSet, PointLight, SpotLight,
 };
 use crate::lighting::{
     BackFaces, BlinnPhong, ColorMaterial, InfiniteViewer, Lighting, LocalViewer, Model, NoFog,
     Viewer,
 };
-use crate::material::{Material, MaterialDesc};
+use crate::lighting::{Material, MaterialDesc};
 use crate::num::Mat4;
 use crate::num::Scalar;
 
@@ -117,7 +117,7 @@ impl GlLight {
     /// camera does.
     ///
     /// ```
-    /// use fixshade::gl::GlLight;
+    /// use fixshade::lighting::gl::GlLight;
     /// use fixshade::num::Mat4;
     /// let world = GlLight { position: [1.0, 2.0, 3.0, 1.0], ..GlLight::light0() };
     /// let eye = world.transformed(&Mat4::translate([0.0, 0.0, -5.0]));
@@ -199,8 +199,8 @@ impl GlLight {
     /// another kind (see [`FromGlLight`]).
     ///
     /// ```
-    /// use fixshade::gl::GlLight;
-    /// use fixshade::light::{AnyLight, DirectionalLight, PointLight};
+    /// use fixshade::lighting::gl::GlLight;
+    /// use fixshade::lighting::{AnyLight, DirectionalLight, PointLight};
     /// use fixshade::num::Q14;
     /// let sun = GlLight::light0();
     /// let d: DirectionalLight<Q14> = sun.to_light().unwrap();
@@ -549,7 +549,7 @@ impl<'a> GlScene<'a> {
     /// range ([`ParamError::TierRange`]).
     ///
     /// ```
-    /// use fixshade::gl::{GlLight, GlLightModel, GlLighting, GlMaterial, GlScene};
+    /// use fixshade::lighting::gl::{GlLight, GlLightModel, GlLighting, GlMaterial, GlScene};
     /// use fixshade::prelude::*;
     /// let lights = [
     ///     GlLight { diffuse: [2.5, 2.5, 2.5, 1.0], ..GlLight::light0() },
@@ -648,7 +648,7 @@ pub enum GlNormals {
 /// [`ShadeVertex::normal`](crate::shade::ShadeVertex::normal) as given.
 ///
 /// ```
-/// use fixshade::gl::{eye_normal, GlNormals};
+/// use fixshade::lighting::gl::{eye_normal, GlNormals};
 /// use fixshade::num::Mat4;
 /// let m = Mat4::scale([2.0, 2.0, 2.0]);
 /// let n = [0.0, 0.0, 1.0];

@@ -26,7 +26,11 @@
 //! assert_eq!(m, [128, 128, 128]);
 //! ```
 
-use core::fmt;
+mod normal_map;
+
+pub use normal_map::{bump_to_normals, normal_texel, NormalMap, NormalTexel, FLAT_NORMAL};
+
+use crate::error::TextureError;
 
 /// Fraction bits of a [`TexCoord`] component.
 pub const TEX_FRAC: u32 = 16;
@@ -132,35 +136,6 @@ impl TexCoord {
     }
 }
 
-/// Why a [`Texture`] cannot be made.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
-pub enum TextureError {
-    /// A side's `log2` exceeds [`MAX_LOG2_SIZE`].
-    TooLarge,
-    /// The data holds `len` texels where `width · height` = `needed` are required.
-    WrongLength {
-        /// Texels required.
-        needed: usize,
-        /// Texels given.
-        len: usize,
-    },
-    /// A palette of more than 256 colours.
-    PaletteTooLong,
-}
-
-impl fmt::Display for TextureError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::TooLarge => write!(f, "texture side larger than 2^{MAX_LOG2_SIZE}"),
-            Self::WrongLength { needed, len } => {
-                write!(f, "texture data holds {len} texels, {needed} needed")
-            }
-            Self::PaletteTooLong => write!(f, "palette longer than 256 colours"),
-        }
-    }
-}
-
 /// A texture of `2^log2_w × 2^log2_h` texels borrowed from caller-owned (usually
 /// flash) data.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -192,7 +167,9 @@ impl<'a> Texture<'a> {
         wrap: Wrap,
     ) -> Result<Self, TextureError> {
         if log2_w > MAX_LOG2_SIZE || log2_h > MAX_LOG2_SIZE {
-            return Err(TextureError::TooLarge);
+            return Err(TextureError::TooLarge {
+                log2: if log2_w > log2_h { log2_w } else { log2_h },
+            });
         }
         let needed = 1usize << (log2_w + log2_h);
         let len = match texels {
@@ -205,8 +182,12 @@ impl<'a> Texture<'a> {
                 indices.len()
             }
         };
-        if len != needed {
-            return Err(TextureError::WrongLength { needed, len });
+        if len < needed {
+            return Err(TextureError::BufferTooSmall {
+                which: "texels",
+                needed,
+                got: len,
+            });
         }
         Ok(Self {
             texels,

@@ -37,236 +37,25 @@
 //!   directly holds one) lights nothing; infinite or NaN positions give zero light
 //!   directions and distances: no channel is ever NaN or infinite.
 
+pub mod gl;
+mod light;
+mod material;
+mod model;
+mod viewer;
+
+pub use light::{
+    AnyLight, Attenuation, ColorTerms, DirectionalLight, Incident, IncidentVisitor, LightColors,
+    LightDesc, LightKind, LightSet, LightSource, PointLight, Prepared, SpotLight,
+};
+pub use material::{AmbientSource, Material, MaterialDesc};
+pub use model::{BlinnPhong, Full, Lambert, Model, Phong, Specular, Terms};
+pub use viewer::{FogModel, InfiniteViewer, LinearFog, LocalViewer, NoFog, Viewer};
+
 use crate::color::Rgb;
-use crate::error::{finite, ParamError};
-use crate::light::{Incident, IncidentVisitor, LightSet};
-use crate::material::Material;
+use crate::error::ParamError;
 use crate::num::Scalar;
-use crate::vector::{point_from_f32, point_sub, Point3, Vec3};
+use crate::num::{point_from_f32, Point3, Vec3};
 use core::marker::PhantomData;
-
-/// Which specular reflection model a [`Model`] evaluates.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Specular {
-    /// No specular term.
-    None,
-    /// Phong: `(R·V)^n`, `R = 2(N·L)N − L`.
-    Phong,
-    /// Blinn-Phong: `(N·H)^n`, `H = (L + V)/|L + V|` (constant for a directional
-    /// light and a viewer at infinity).
-    BlinnPhong,
-}
-
-/// The material terms a lighting configuration evaluates, as compile-time constants.
-pub trait Model: Copy + Default + core::fmt::Debug {
-    /// The specular model.
-    const SPECULAR: Specular;
-    /// Diffuse `(N·L)^b` with the material's brilliance `b` instead of `N·L`.
-    const BRILLIANCE: bool;
-    /// The angle factor `f(β)` (Schlick's Fresnel) on the specular term.
-    const FRESNEL: bool;
-    /// The transmission term `kst·(T·V)^n''`.
-    const TRANSMISSION: bool;
-}
-
-/// A model from four constants: `SPEC` is 0 (none), 1 (Phong) or 2 (Blinn-Phong).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Terms<
-    const SPEC: u8,
-    const BRILLIANCE: bool,
-    const FRESNEL: bool,
-    const TRANSMISSION: bool,
->;
-
-impl<const SPEC: u8, const BRILLIANCE: bool, const FRESNEL: bool, const TRANSMISSION: bool> Model
-    for Terms<SPEC, BRILLIANCE, FRESNEL, TRANSMISSION>
-{
-    const SPECULAR: Specular = match SPEC {
-        0 => Specular::None,
-        1 => Specular::Phong,
-        _ => Specular::BlinnPhong,
-    };
-    const BRILLIANCE: bool = BRILLIANCE;
-    const FRESNEL: bool = FRESNEL;
-    const TRANSMISSION: bool = TRANSMISSION;
-}
-
-/// Ambient + Lambert diffuse only.
-pub type Lambert = Terms<0, false, false, false>;
-/// Ambient + diffuse + Phong specular `(R·V)^n`.
-pub type Phong = Terms<1, false, false, false>;
-/// Ambient + diffuse + Blinn-Phong specular `(N·H)^n` (OpenGL's model).
-pub type BlinnPhong = Terms<2, false, false, false>;
-/// Every term: brilliance, Blinn-Phong with the Fresnel angle factor, transmission.
-pub type Full = Terms<2, true, true, true>;
-
-/// Where the eye is.
-pub trait Viewer<S: Scalar>: Copy + core::fmt::Debug {
-    /// Whether the view vector depends on the surface position.
-    const NEEDS_POSITION: bool;
-    /// The constant view direction, for a viewer at infinity.
-    fn constant_dir(&self) -> Option<Vec3<S>>;
-    /// The unit vector from `p` towards the eye and the viewing distance.
-    fn view(&self, p: &Point3<S>) -> (Vec3<S>, S::Geo);
-}
-
-/// A viewer at infinity: `V` is constant (cheaper; OpenGL's default). The viewing
-/// distance for fog is the depth `−(P·V)` measured from the plane through the origin.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct InfiniteViewer<S: Scalar> {
-    dir: Vec3<S>,
-    dir_geo: Point3<S>,
-}
-
-impl<S: Scalar> InfiniteViewer<S> {
-    /// A viewer in direction `towards_viewer` from the scene (normalised here).
-    pub fn new(towards_viewer: [f32; 3]) -> Result<Self, ParamError> {
-        let d = crate::error::direction("view direction", towards_viewer)?;
-        Ok(Self {
-            dir: Vec3::from_f32(d),
-            dir_geo: point_from_f32::<S>(d),
-        })
-    }
-}
-
-impl<S: Scalar> Default for InfiniteViewer<S> {
-    /// Looking down −z: `V = (0, 0, 1)`.
-    fn default() -> Self {
-        Self {
-            dir: Vec3::new(S::ZERO, S::ZERO, S::ONE),
-            dir_geo: point_from_f32::<S>([0.0, 0.0, 1.0]),
-        }
-    }
-}
-
-impl<S: Scalar> Viewer<S> for InfiniteViewer<S> {
-    const NEEDS_POSITION: bool = false;
-    #[inline(always)]
-    fn constant_dir(&self) -> Option<Vec3<S>> {
-        Some(self.dir)
-    }
-    #[inline(always)]
-    fn view(&self, p: &Point3<S>) -> (Vec3<S>, S::Geo) {
-        let d = &self.dir_geo;
-        let along = S::geo_add(
-            S::geo_add(S::geo_mul(p.x, d.x), S::geo_mul(p.y, d.y)),
-            S::geo_mul(p.z, d.z),
-        );
-        (self.dir, S::geo_sub(S::geo_from_f32(0.0), along))
-    }
-}
-
-/// A viewer at a point (OpenGL's `GL_LIGHT_MODEL_LOCAL_VIEWER`): `V` is computed per
-/// surface point.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LocalViewer<S: Scalar> {
-    eye: Point3<S>,
-}
-
-impl<S: Scalar> LocalViewer<S> {
-    /// The eye at `eye` (scene units). Errors: non-finite position.
-    pub fn new(eye: [f32; 3]) -> Result<Self, ParamError> {
-        for c in eye {
-            finite("eye", c)?;
-        }
-        Ok(Self {
-            eye: point_from_f32::<S>(eye),
-        })
-    }
-}
-
-impl<S: Scalar> Viewer<S> for LocalViewer<S> {
-    const NEEDS_POSITION: bool = true;
-    #[inline(always)]
-    fn constant_dir(&self) -> Option<Vec3<S>> {
-        None
-    }
-    #[inline(always)]
-    fn view(&self, p: &Point3<S>) -> (Vec3<S>, S::Geo) {
-        S::geo_direction(point_sub::<S>(self.eye, *p))
-    }
-}
-
-/// Depth cueing: how the light-dependent part fades with viewing distance.
-pub trait FogModel<S: Scalar>: Copy + core::fmt::Debug {
-    /// Whether the fog needs the viewing distance.
-    const NEEDS_DISTANCE: bool;
-    /// `f·direct + (1 − f)·fog_colour` at viewing distance `d`.
-    fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S>;
-    /// `f·c` alone (for a part of the light that is faded but carries no fog
-    /// colour: the secondary colour of [`Lighting::shade_parts`]). The default is
-    /// `apply(c) − apply(0)`.
-    #[inline(always)]
-    fn fade(&self, c: Rgb<S>, d: S::Geo) -> Rgb<S> {
-        self.apply(c, d).sub(self.apply(Rgb::BLACK, d))
-    }
-}
-
-/// No fog.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct NoFog;
-
-impl<S: Scalar> FogModel<S> for NoFog {
-    const NEEDS_DISTANCE: bool = false;
-    #[inline(always)]
-    fn apply(&self, direct: Rgb<S>, _d: S::Geo) -> Rgb<S> {
-        direct
-    }
-    #[inline(always)]
-    fn fade(&self, c: Rgb<S>, _d: S::Geo) -> Rgb<S> {
-        c
-    }
-}
-
-/// Linear depth cueing (seed 004's atmospheric attenuation): the diffuse and
-/// specular light fades towards `colour` between `start` and `end`:
-/// `f = clamp((end − d)/(end − start), 0, 1)`.
-///
-/// # Representation and extremes
-///
-/// The ramp is stored per tier ([`Scalar::ramp`]) so that any finite `start < end`
-/// works: ranges of `f32::MAX` and more (`start = −f32::MAX, end = f32::MAX` is
-/// half fog near 0), ends far beyond the geometry range (`0…200 000` fades over the
-/// whole range of the fixed tiers' distances), ranges down to one `f32` step (a step
-/// at `end`). The fixed tiers hold the slope `1/(end − start)` as a mantissa and an
-/// exponent rather than in Q16.16, and evaluate it from the point of the geometry
-/// range nearest to `end`; `f` is within 2⁻¹³ (`Q14`) or 10⁻⁶ (the others) of the
-/// exact ramp at the tier's distance `d`. What remains is the distance's own
-/// rounding (2⁻¹⁶ units for the fixed tiers, 2⁻²⁴ relative for `f32`), which the
-/// ramp scales by `1/(end − start)`. A NaN distance (only from non-finite positions
-/// given directly as `Vec3`) is full fog.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LinearFog<S: Scalar> {
-    ramp: S::Ramp,
-    color: Rgb<S>,
-}
-
-impl<S: Scalar> LinearFog<S> {
-    /// Fog from `start` to `end` (scene units). Errors: non-finite values,
-    /// `end ≤ start`, a negative colour.
-    pub fn new(start: f32, end: f32, color: [f32; 3]) -> Result<Self, ParamError> {
-        let (s, e) = (finite("fog start", start)?, finite("fog end", end)?);
-        if e <= s {
-            return Err(ParamError::FogRange);
-        }
-        Ok(Self {
-            ramp: S::ramp(s, e),
-            color: Rgb::try_from_f32("fog colour", color)?,
-        })
-    }
-}
-
-impl<S: Scalar> FogModel<S> for LinearFog<S> {
-    const NEEDS_DISTANCE: bool = true;
-    #[inline(always)]
-    fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S> {
-        self.color.lerp(direct, S::ramp_at(&self.ramp, d))
-    }
-    #[inline(always)]
-    fn fade(&self, c: Rgb<S>, d: S::Geo) -> Rgb<S> {
-        c.scale(S::ramp_at(&self.ramp, d))
-    }
-}
 
 /// `GL_COLOR_MATERIAL`: which material colour a per-vertex colour replaces
 /// (`glColorMaterial`'s mode), for [`Lighting::shade_parts`] with a colour.
