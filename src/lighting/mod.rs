@@ -53,7 +53,7 @@ pub use viewer::{FogModel, InfiniteViewer, LinearFog, LocalViewer, NoFog, Viewer
 
 use crate::color::Rgb;
 use crate::error::ParamError;
-use crate::num::Scalar;
+use crate::num::{Flag, Off, Scalar};
 use crate::num::{point_from_f32, Point3, Vec3};
 use core::marker::PhantomData;
 
@@ -602,6 +602,18 @@ pub trait Illuminate {
     type Scalar: Scalar;
     /// Whether [`Illuminate::shade`] reads the position (see [`Lighting::NEEDS_POSITION`]).
     const NEEDS_POSITION: bool;
+    /// [`On`](crate::num::On) for a lighting that the per-pixel fast path
+    /// serves: `Q14`, one directional light, a viewer at infinity, no fog
+    /// (the model is checked by [`Illuminate::directional`]).
+    #[doc(hidden)]
+    type Fast: Flag;
+    /// What the per-pixel fast path needs, for a lighting whose `Fast` is on
+    /// and whose model is Lambert or Blinn-Phong (no brilliance, Fresnel
+    /// factor or transmission); `None` otherwise.
+    #[doc(hidden)]
+    fn directional(&self) -> Option<DirectionalTerms<Self::Scalar>> {
+        None
+    }
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
     fn shade(&self, p: &Point3<Self::Scalar>, n: Vec3<Self::Scalar>) -> Rgb<Self::Scalar>;
     /// The colour in OpenGL's primary and secondary parts, with a vertex colour for
@@ -627,6 +639,29 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illumina
 {
     type Scalar = S;
     const NEEDS_POSITION: bool = Self::NEEDS_POSITION;
+    type Fast = <<<S::Fixed14 as Flag>::And<L::OneDirectional> as Flag>::And<V::AtInfinity> as Flag>::And<F::Clear>;
+    fn directional(&self) -> Option<DirectionalTerms<S>> {
+        let plain = matches!(M::SPECULAR, Specular::None | Specular::BlinnPhong)
+            && !M::BRILLIANCE
+            && !M::FRESNEL
+            && !M::TRANSMISSION;
+        if !(Self::Fast::ON && plain) {
+            return None;
+        }
+        let (dir, pre) = self.lights().directional()?;
+        Some(DirectionalTerms {
+            dir,
+            half: pre.half.unwrap_or(dir),
+            diffuse: pre.diffuse,
+            specular: if M::SPECULAR == Specular::BlinnPhong {
+                pre.specular
+            } else {
+                Rgb::BLACK
+            },
+            base: self.base(),
+            shininess: self.material().shininess.to_f32(),
+        })
+    }
     #[inline(always)]
     fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
         Lighting::shade(self, p, n)
@@ -635,6 +670,25 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illumina
     fn shade_parts(&self, p: &Point3<S>, n: Vec3<S>, color: Option<Rgb<S>>) -> LitColor<S> {
         Lighting::shade_parts(self, p, n, color)
     }
+}
+
+/// What the per-pixel fast path of the `Q14` tiers needs from a lighting of
+/// one directional light (see [`Illuminate::directional`]).
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct DirectionalTerms<S> {
+    /// Towards the light.
+    pub dir: Vec3<S>,
+    /// The halfway vector (the light's direction without a specular term).
+    pub half: Vec3<S>,
+    /// Light diffuse times material diffuse.
+    pub diffuse: Rgb<S>,
+    /// Light specular times material specular (black for Lambert).
+    pub specular: Rgb<S>,
+    /// Emission and ambient.
+    pub base: Rgb<S>,
+    /// The specular exponent.
+    pub shininess: f32,
 }
 
 /// Two-sided lighting (`GL_LIGHT_MODEL_TWO_SIDE`): lights back faces with the
@@ -660,6 +714,7 @@ pub struct BackFaces<I>(pub I);
 impl<I: Illuminate> Illuminate for BackFaces<I> {
     type Scalar = I::Scalar;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    type Fast = Off;
     #[inline(always)]
     fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
         self.0.shade(p, n.neg())
@@ -687,6 +742,7 @@ pub struct SeparateSpecular<I>(pub I);
 impl<I: Illuminate> Illuminate for SeparateSpecular<I> {
     type Scalar = I::Scalar;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    type Fast = Off;
     #[inline(always)]
     fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
         self.0.shade_parts(p, n, None).separate()

@@ -131,6 +131,7 @@ fn unit(x: f32) -> f32 {
 macro_rules! float_tier {
     ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $refine:expr) => {
         impl<$($gen)*> Scalar for $ty {
+            type Fixed14 = super::Off;
             type Geo = f32;
             type Ramp = RampF32;
             const ZERO: Self = $wrap(0.0);

@@ -133,6 +133,7 @@ pub struct RampQ14 {
 }
 
 impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
+    type Fixed14 = super::On;
     type Geo = Geo16;
     type Ramp = RampQ14;
     const ZERO: Self = Self(0);

@@ -59,6 +59,7 @@ pub struct RampQ30 {
 }
 
 impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
+    type Fixed14 = super::Off;
     type Geo = Geo16;
     type Ramp = RampQ30;
     const ZERO: Self = Self(0);

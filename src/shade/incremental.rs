@@ -4,10 +4,11 @@
 use super::phong::{lit_span, PhongTriangle};
 use super::{IncrementalPhongShading, Kernel, Linear, ModeState, Shader};
 use crate::color::{OutputColor, Rgb};
-use crate::lighting::DirectionalLight;
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
+use crate::lighting::{DirectionalLight, DirectionalTerms, Illuminate};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
-use crate::num::Q14;
+use crate::num::{Scalar, Vec3, Q14};
+use crate::raster::interp::Varyings;
 use crate::raster::ATTR_FRAC;
 
 /// The models [`IncrementalPhongShading`](super::IncrementalPhongShading) evaluates: [`Lambert`] and [`BlinnPhong`].
@@ -56,6 +57,8 @@ pub struct IncrementalState<const K: usize> {
     /// (negative for a negative global ambient: pixels clamp at 0).
     base: [i32; 3],
     pow: PowTable,
+    /// Whether any light has a specular colour (Blinn-Phong).
+    pub(super) spec: bool,
 }
 
 /// One light's constants in the units of the span loop.
@@ -118,11 +121,60 @@ impl PowTable {
     }
 }
 
-/// A colour's channels (`C::linear_channels`) in channel units · 2^8.
-pub(super) fn channel_units<C: OutputColor, const NW: u8>(c: Rgb<Q14<NW>>) -> [i32; 3] {
+/// A colour's channels (`C::linear_channels`) in channel units · 2^8 (from
+/// their Q14 values: exact for the `Q14` tiers).
+pub(super) fn channel_units<C: OutputColor, S: Scalar>(c: Rgb<S>) -> [i32; 3] {
     let l = C::linear_channels(c);
+    // the attribute scale is Q26: Q14 = (a + 2^11) >> 12
+    let q14 = |v: S| (v.to_attr() + (1 << 11)) >> 12;
     // value (Q14, < 2) · max · 2^8 ≤ 2·255·256 < 2^17
-    core::array::from_fn(|i| (l[i].raw() * C::CHANNEL_MAX[i] as i32 * 256 + 8192) >> 14)
+    core::array::from_fn(|i| (q14(l[i]) * C::CHANNEL_MAX[i] as i32 * 256 + 8192) >> 14)
+}
+
+/// A Q14 vector from a tier's unit vector.
+fn q14v<S: Scalar>(v: Vec3<S>) -> [i32; 3] {
+    let q = |c: S| (c.to_attr() + (1 << 11)) >> 12;
+    [q(v.x), q(v.y), q(v.z)]
+}
+
+impl<const K: usize> IncrementalState<K> {
+    /// The constants for the lights `terms` (see [`Illuminate::directional`]).
+    pub(super) fn new<C: OutputColor, S: Scalar>(terms: [DirectionalTerms<S>; K]) -> Self {
+        let first = terms.first();
+        let lights = terms.map(|t| LightTerms {
+                l: q14v(t.dir),
+                h: q14v(t.half),
+                kd: channel_units::<C, S>(t.diffuse),
+                ks: channel_units::<C, S>(t.specular),
+        });
+        IncrementalState {
+            lights,
+            base: first.map_or([128; 3], |t| channel_units::<C, S>(t.base).map(|v| v + 128)),
+            pow: PowTable::new(first.map_or(0.0, |t| t.shininess)),
+            spec: lights.iter().any(|l| l.ks != [0; 3]),
+        }
+    }
+
+    /// The values to interpolate at a vertex of unit normal `n` (Q14): the
+    /// normal, then `N·L` and `N·H` of every light.
+    #[inline(always)]
+    pub(super) fn varyings<V: Varyings>(&self, n: &[i16; 3]) -> V {
+        let n = n.map(i32::from);
+        let dot = |d: &[i32; 3]| (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) >> 14;
+        V::from_fn(|i| match i {
+            0..=2 => n[i],
+            _ => {
+                let j = (i - 3) / 2;
+                self.lights.get(j).map_or(0, |lt| {
+                    if (i - 3) % 2 == 0 {
+                        dot(&lt.l)
+                    } else {
+                        dot(&lt.h)
+                    }
+                })
+            }
+        })
+    }
 }
 
 impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
@@ -131,23 +183,19 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
     type State = IncrementalState<K>;
 
     fn state(lighting: &DirectionalLighting<NW, K, M>) -> IncrementalState<K> {
-        let lights = core::array::from_fn(|j| {
+        IncrementalState::new::<C, Q14<NW>>(core::array::from_fn(|j| {
             let light = &lighting.lights()[j];
             let pre = light.prepared();
             let d = light.direction();
-            let h = pre.half.unwrap_or(d);
-            LightTerms {
-                l: [d.x.raw(), d.y.raw(), d.z.raw()],
-                h: [h.x.raw(), h.y.raw(), h.z.raw()],
-                kd: channel_units::<C, NW>(pre.diffuse),
-                ks: channel_units::<C, NW>(pre.specular),
+            DirectionalTerms {
+                dir: d,
+                half: pre.half.unwrap_or(d),
+                diffuse: pre.diffuse,
+                specular: pre.specular,
+                base: lighting.base(),
+                shininess: lighting.material().shininess.to_f32(),
             }
-        });
-        IncrementalState {
-            lights,
-            base: channel_units::<C, NW>(lighting.base()).map(|v| v + 128),
-            pow: PowTable::new(lighting.material().shininess.to_f32()),
-        }
+        }))
     }
 }
 
@@ -155,15 +203,20 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
 type Inc<'l, const NW: u8, const K: usize, M, E, C> =
     Shader<'l, IncrementalPhongShading, DirectionalLighting<NW, K, M>, E, C>;
 
-impl<const NW: u8, const K: usize, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor>
-    Inc<'_, NW, K, M, E, C>
-where
-    IncrementalPhongShading:
-        ModeState<DirectionalLighting<NW, K, M>, C, State = IncrementalState<K>>,
-{
-    /// Shades one span; `a`/`d` are `[Nx, Ny, Nz, N·L₁, N·H₁, …]` (Q14 with
-    /// [`ATTR_FRAC`] bits).
-    fn shade_run(&self, x: i32, y: i32, a: &[i32], d: &[i32], out: &mut [C]) {
+/// Shades one span with the incremental constants `st`, the general path of
+/// `lighting` where the span leaves the fast path's range; `a`/`d` are `[Nx,
+/// Ny, Nz, N·L₁, N·H₁, …]` (Q14 with [`ATTR_FRAC`] bits); `SPEC`: the
+/// Blinn-Phong term.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPEC: bool>(
+    st_c: &IncrementalState<K>,
+    lighting: &I,
+    x: i32,
+    y: i32,
+    a: &[i32],
+    d: &[i32],
+    out: &mut [C],
+) {
         let n = out.len() as i64;
         // Q28 → Q26
         let q26 = |v: Option<&i32>| v.copied().unwrap_or(0) >> 2;
@@ -186,7 +239,7 @@ where
         let general = |out: &mut [C]| {
             let g = |v: &[i32]| [0, 1, 2].map(|i| v.get(i).copied().unwrap_or(0));
             lit_span(
-                self.lighting,
+                lighting,
                 &Linear,
                 &PhongTriangle::default(),
                 g(a),
@@ -223,7 +276,7 @@ where
         // 1/|N| in Q14 at the span start: s ∈ [2^26, 2^30) splits with k = 2 or 4
         let (t, k) = split_u32(s0 as u32);
         let y0 = rsqrt_q14_mantissa(t, 2) as i32;
-        let st = SpanState {
+        let span = SpanState {
             s: s0 as i32,
             ds: (2 * nd + dd) as i32,
             dds: (2 * dd) as i32,
@@ -241,11 +294,10 @@ where
         // error of 1.5·e², e the relative change of |N| per pixel: below 2^-8 that is
         // under the Q14 resolution; up to 2^-4 (the limit above) two steps are taken.
         if ds_max <= lo >> 8 {
-            self.run::<1>(st, dots, out);
+            run::<C, K, 1, SPEC>(st_c, span, dots, out);
         } else {
-            self.run::<2>(st, dots, out);
+            run::<C, K, 2, SPEC>(st_c, span, dots, out);
         }
-    }
 }
 
 /// The `Kernel` for `K` lights, with `N = 3 + 2K` values.
@@ -271,18 +323,7 @@ macro_rules! incremental_lights {
             fn triangle(&self, v: [&[i16; 3]; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; $n]; 3]) {
                 // the normal and N·L, N·H per light (Q14): affine over the
                 // triangle like the normal
-                let var = v.map(|n| {
-                    let n = n.map(i32::from);
-                    let mut a = [0i32; $n];
-                    a[..3].copy_from_slice(&n);
-                    for (j, lt) in self.state.lights.iter().enumerate() {
-                        let dot = |d: &[i32; 3]| (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) >> 14;
-                        a[3 + 2 * j] = dot(&lt.l);
-                        a[4 + 2 * j] = dot(&lt.h);
-                    }
-                    a
-                });
-                ((), var)
+                ((), v.map(|n| self.state.varyings(n)))
             }
 
             #[inline(always)]
@@ -295,7 +336,11 @@ macro_rules! incremental_lights {
 
             #[inline(always)]
             fn span(&self, _t: &(), a: &[i32; $n], d: &[i32; $n], x: i32, y: i32, out: &mut [C]) {
-                self.shade_run(x, y, a, d, out)
+                if M::SPECULAR == Specular::BlinnPhong {
+                    shade_run::<_, C, $k, true>(&self.state, self.lighting, x, y, a, d, out)
+                } else {
+                    shade_run::<_, C, $k, false>(&self.state, self.lighting, x, y, a, d, out)
+                }
             }
         }
     )*};
@@ -311,15 +356,15 @@ struct SpanState {
     r: i32,
 }
 
-impl<const NW: u8, const K: usize, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor>
-    Inc<'_, NW, K, M, E, C>
-where
-    IncrementalPhongShading:
-        ModeState<DirectionalLighting<NW, K, M>, C, State = IncrementalState<K>>,
-{
-    /// The per-pixel loop; `dots[j]` = `[N·L, step, N·H, step]` of light `j` (Q26).
-    #[inline(always)]
-    fn run<const NEWTON: u32>(&self, st: SpanState, mut dots: [[i32; 4]; K], out: &mut [C]) {
+/// The per-pixel loop; `dots[j]` = `[N·L, step, N·H, step]` of light `j`
+/// (Q26); `SPEC`: the Blinn-Phong term.
+#[inline(always)]
+fn run<C: OutputColor, const K: usize, const NEWTON: u32, const SPEC: bool>(
+    state: &IncrementalState<K>,
+    st: SpanState,
+    mut dots: [[i32; 4]; K],
+    out: &mut [C],
+) {
         let SpanState {
             mut s,
             mut ds,
@@ -329,8 +374,8 @@ where
         let max = C::CHANNEL_MAX.map(|m| m as i32);
         for p in out.iter_mut() {
             // every light term is ≥ 0; the base may be negative (negative ambient)
-            let mut acc = self.state.base;
-            for (lt, dot) in self.state.lights.iter().zip(dots.iter_mut()) {
+            let mut acc = state.base;
+            for (lt, dot) in state.lights.iter().zip(dots.iter_mut()) {
                 // diffuse: N·L/|N| (Q14)
                 let d = ((dot[0] >> 12) * r) >> 14;
                 if d > 0 {
@@ -338,9 +383,9 @@ where
                     acc[0] += (d * lt.kd[0]) >> 14;
                     acc[1] += (d * lt.kd[1]) >> 14;
                     acc[2] += (d * lt.kd[2]) >> 14;
-                    if M::SPECULAR == Specular::BlinnPhong {
+                    if SPEC {
                         // specular: (N·H/|N|)^n
-                        let sp = self.state.pow.get(((dot[2] >> 12) * r) >> 14);
+                        let sp = state.pow.get(((dot[2] >> 12) * r) >> 14);
                         acc[0] += (sp * lt.ks[0]) >> 14;
                         acc[1] += (sp * lt.ks[1]) >> 14;
                         acc[2] += (sp * lt.ks[2]) >> 14;
@@ -365,4 +410,3 @@ where
             }
         }
     }
-}

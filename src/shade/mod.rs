@@ -85,14 +85,26 @@ pub struct FlatShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GouraudShading;
 
-/// Phong shading: the vertex normals are interpolated across the triangle,
-/// renormalised per pixel with the tier's
-/// [`Scalar::normalize_interpolated`], and every pixel is lit with the full
-/// lighting model. When the lighting needs the surface position (point or spot
-/// lights, a local viewer, fog) the eye-space position is interpolated too.
-/// Catches the highlight in the middle of a large triangle.
+/// Phong shading, per-pixel lighting: the vertex normals are interpolated
+/// across the triangle and every pixel is lit. Catches the highlight in the
+/// middle of a large triangle.
+///
+/// The lighting decides how: a `Q14` lighting of one directional light, a
+/// viewer at infinity and no fog, with the Lambert or Blinn-Phong model, gets
+/// the incremental kernel of [`IncrementalPhongShading`] (the Cortex-M0 fast
+/// path, within the general path's error bound); every other lighting gets
+/// [`GeneralPhongShading`]'s. Name either of those to choose explicitly.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PhongShading;
+
+/// Phong shading with the general kernel: the vertex normals are
+/// interpolated, renormalised per pixel with the tier's
+/// [`Scalar::normalize_interpolated`], and every pixel is lit with the full
+/// lighting model, for every tier, light kind and model. When the lighting
+/// needs the surface position (point or spot lights, a local viewer, fog) the
+/// eye-space position is interpolated too.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GeneralPhongShading;
 
 /// Per-pixel Phong shading computed incrementally along each span: the Q14 fast
 /// path for directional lights and a viewer at infinity (see
@@ -153,6 +165,9 @@ impl Mode for GouraudShading {
 }
 impl Mode for PhongShading {
     const NAME: &'static str = "phong";
+}
+impl Mode for GeneralPhongShading {
+    const NAME: &'static str = "phong_general";
 }
 impl Mode for IncrementalPhongShading {
     const NAME: &'static str = "phong_inc";

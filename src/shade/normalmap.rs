@@ -7,7 +7,7 @@ use crate::color::{OutputColor, Rgb};
 use crate::lighting::{Illuminate, Specular};
 use crate::texture::{NormalMap, NormalTexel, Wrap};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
-use crate::num::Scalar;
+use crate::num::{Scalar, Q14};
 use crate::raster::ATTR_FRAC;
 use crate::num::{Point3, Vec3};
 use core::marker::PhantomData;
@@ -411,9 +411,9 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
             map,
             l: [d.x.raw(), d.y.raw(), d.z.raw()],
             h: [h.x.raw(), h.y.raw(), h.z.raw()],
-            kd: channel_units::<C, NW>(pre.diffuse),
-            ks: channel_units::<C, NW>(pre.specular),
-            base: channel_units::<C, NW>(lighting.base()).map(|v| v + 128),
+            kd: channel_units::<C, Q14<NW>>(pre.diffuse),
+            ks: channel_units::<C, Q14<NW>>(pre.specular),
+            base: channel_units::<C, Q14<NW>>(lighting.base()).map(|v| v + 128),
             pow: PowTable::new(lighting.material().shininess.to_f32()),
             color: PhantomData,
         }

@@ -27,7 +27,7 @@ use fixshade::render::{
     bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, MeshDraw,
     MeshMemory, Refine, RefineBuffers, RenderError,
 };
-use fixshade::shade::{DirectionalLighting, Kernel};
+use fixshade::shade::{DirectionalLighting, GeneralPhongShading, Kernel};
 use fixshade::standard;
 
 /// The sphere's mesh view, validated at compile time (`MeshData::mesh` called
@@ -339,8 +339,8 @@ configs! {
         = standard::lambert::<Q14>(), GouraudShading => draw_full, draw_bands;
     blinn_gouraud: [u16; 3], Lighting<Q14, Dir, BlinnPhong>, GouraudShading
         = standard::blinn::<Q14>(), GouraudShading => draw_full, draw_bands;
-    blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>, PhongShading
-        = standard::blinn::<Q14>(), PhongShading => draw_full, draw_bands;
+    blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>, GeneralPhongShading
+        = standard::blinn::<Q14>(), GeneralPhongShading => draw_full, draw_bands;
     blinn_phong_inc: [i16; 3], DirectionalLighting<2, 1, BlinnPhong>, IncrementalPhongShading
         = inc_lighting(), IncrementalPhongShading => draw_full, draw_bands;
     flat: [i16; 3], Lighting<Q14, Dir, Lambert>, FlatShading
