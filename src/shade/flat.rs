@@ -7,7 +7,7 @@ use crate::raster::ATTR_FRAC;
 
 impl<I: Illuminate, C> ModeState<I, C> for FlatShading {
     type State = ();
-    fn state(_: &I) {}
+    fn state(self, _: &I) {}
 }
 
 /// A flat triangle in the mesh renderer: its encoded colour.

@@ -7,7 +7,7 @@ use crate::raster::ATTR_FRAC;
 
 impl<I: Illuminate, C> ModeState<I, C> for GouraudShading {
     type State = ();
-    fn state(_: &I) {}
+    fn state(self, _: &I) {}
 }
 
 impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, GouraudShading, I, E, C> {

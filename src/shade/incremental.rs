@@ -182,7 +182,7 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
 {
     type State = IncrementalState<K>;
 
-    fn state(lighting: &DirectionalLighting<NW, K, M>) -> IncrementalState<K> {
+    fn state(self, lighting: &DirectionalLighting<NW, K, M>) -> IncrementalState<K> {
         IncrementalState::new::<C, Q14<NW>>(core::array::from_fn(|j| {
             let light = &lighting.lights()[j];
             let pre = light.prepared();

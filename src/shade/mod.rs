@@ -1,51 +1,36 @@
 //! Shading: which colour each covered pixel gets, from the lighting, the
-//! vertex data and the interpolated attributes.
+//! vertex data and the interpolated values — the span kernels of the
+//! pipeline, behind one trait, [`Kernel`].
 //!
-//! One [`Shader`] type, generic over the shading mode:
+//! One [`Shader`] type, generic over the mode. A mode names *what* is shaded;
+//! the lighting decides *how* (the fastest kernel that serves it):
 //!
 //! | mode | lit | interpolated per pixel | catches a highlight inside a triangle |
 //! |---|---|---|---|
 //! | [`FlatShading`] | once per triangle, at the centroid | nothing | no (one colour, Mach bands) |
 //! | [`GouraudShading`] | at the three vertices | encoded colour channels | no (misses or smears it) |
-//! | [`PhongShading`] | at every pixel | normal (and position when the lighting needs it) | yes |
-//! | [`IncrementalPhongShading`] | at every pixel, incrementally (Q14, directional lights, Lambert or Blinn-Phong) | `N·L`, `N·H`, `\|N\|²` by differences | yes |
-//! | [`TexturedGouraudShading`] | at the three vertices, primary and secondary colour apart | both colours and the texture coordinates (perspective-correct) | no (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
-//! | [`NormalMapShading`] | at every pixel, with the normal of a [`NormalMap`](crate::texture::NormalMap) in the tangent frame (general: every tier and light; fast: Q14, one directional light) | normal and tangent (general) or `L`, `H` in tangent space (fast), texture coordinates | yes, and surface detail |
-//! | [`QuadraticPhongShading`] | at anchors 4–32 pixels apart, the colour quadratically in between, the specular power per pixel (Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong `R·V`; every encoder) | encoded colour by second differences, the specular table coordinate | yes |
+//! | [`PhongShading`] | at every pixel: incrementally for a `Q14` lighting of one directional light (the kernel of [`IncrementalPhongShading`]), else with the full model ([`GeneralPhongShading`]) | normal (and position when the lighting needs it) | yes |
+//! | `GouraudShading.`[`textured`](GouraudShading::textured)`(…)` ([`Textured`]) | at the three vertices, primary and secondary colour apart | both colours and the texture coordinates | no (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
+//! | `PhongShading.`[`normal_mapped`](PhongShading::normal_mapped)`(…)` ([`NormalMapped`]) | at every pixel, with the normal of a [`NormalMap`](crate::texture::NormalMap) in the tangent frame (fast: Q14, one directional light) | normal and tangent (general) or `L`, `H` in tangent space (fast), texture coordinates | yes, and surface detail |
 //!
-//! The mode names say *how the surface is interpolated*; the reflection models
-//! ([`Lambert`](crate::lighting::Lambert), [`Phong`](crate::lighting::Phong),
-//! [`BlinnPhong`](crate::lighting::BlinnPhong)) say *what light a point
-//! reflects* and live in [`lighting`](crate::lighting). Every mode works with
-//! every number tier and every model, and writes through an [`Encoder`] (plain
-//! rounding, ordered dithering or a gamma table).
+//! Kernels named explicitly: [`GeneralPhongShading`] (every tier, light and
+//! model), [`IncrementalPhongShading`] (Q14, up to four directional lights,
+//! Lambert or Blinn-Phong), [`QuadraticPhongShading`] (anchors 4–32 pixels
+//! apart, the colour quadratically in between, the specular power per pixel;
+//! Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong
+//! `R·V`).
 //!
-//! A shader draws in two ways:
-//! - **mesh renderer** ([`crate::render`]): the vertex stage, binning and the
-//!   mode's depth-fused span kernel, once per frame;
-//! - **per triangle** ([`Shading::draw`]): three [`ShadeVertex`]es through
-//!   [`draw_triangle`](crate::raster::draw_triangle), for custom pipelines.
+//! The reflection models ([`Lambert`](crate::lighting::Lambert),
+//! [`Phong`](crate::lighting::Phong), [`BlinnPhong`](crate::lighting::BlinnPhong))
+//! say *what light a point reflects* and live in [`lighting`](crate::lighting).
+//! Every mode writes through an [`Encoder`] (plain rounding, ordered
+//! dithering or a gamma table).
 //!
-//! ```
-//! use fixshade::prelude::*;
-//! use fixshade::raster::SUBPIXEL_BITS;
-//! use embedded_graphics_core::pixelcolor::Rgb565;
-//!
-//! let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
-//! let mat = Material::new(&MaterialDesc::classic([1.0, 0.2, 0.2], AmbientSource::Object, 0.1, 0.7, 0.5, 32.0)).unwrap();
-//! let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, mat);
-//!
-//! let v = |x: i32, y: i32, n: [f32; 3]| ShadeVertex::<Q14>::new(
-//!     [x << SUBPIXEL_BITS, y << SUBPIXEL_BITS], 0, 1, [0.0; 3], n);
-//! let tri = [v(0, 0, [-0.5, -0.5, 0.7]), v(0, 32, [-0.5, 0.5, 0.7]), v(32, 16, [0.6, 0.0, 0.8])];
-//!
-//! let mut pixels = [Rgb565::BLACK; 32 * 32];
-//! let mut fb = SliceFramebuffer::new(&mut pixels, 32, 32).unwrap();
-//! let mut shader = Shader::new(PhongShading, &lighting, Linear);
-//! let stats = shader.draw(&mut fb, None, &tri, &RasterOptions::default())?;
-//! assert!(stats.pixels > 400);
-//! # Ok::<(), core::convert::Infallible>(())
-//! ```
+//! Every value a kernel interpolates is perspective-correct under a
+//! perspective projection ([`crate::raster::interp`]). A shader draws meshes
+//! ([`MeshDraw`](crate::render::MeshDraw)) and single triangles
+//! ([`draw_triangle`](crate::render::draw_triangle)) through the same
+//! pipeline.
 
 mod flat;
 mod gouraud;
@@ -58,12 +43,10 @@ mod textured;
 
 pub use crate::color::{Dithered, Encoder, Gamma, Linear};
 pub use incremental::{DirectionalLighting, IncrementalModel};
-pub use normalmap::{
-    FastNormalMapShader, NormalMapPayload, NormalMapShader, NormalMapTriangle, TangentLightPayload,
-};
+pub use normalmap::NormalMapped;
 pub use phong::PhongTriangle;
 pub use quadratic::{QuadraticLighting, QuadraticModel, QuadraticTier};
-pub use textured::{TexPayload, TextureBinding, TexturedGouraudShading, TexturedTriangle};
+pub use textured::{TexPayload, TextureBinding, Textured, TexturedTriangle};
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
@@ -126,33 +109,11 @@ pub struct IncrementalPhongShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadraticPhongShading;
 
-/// Normal-mapped Phong shading: per-pixel lighting with the normal of a
-/// [`NormalMap`](crate::texture::NormalMap) in the surface's tangent frame.
-/// Two shaders implement it (both the mesh renderer's [`Kernel`] with
-/// [`Kernel::NEEDS_TEXCOORD`] and [`Kernel::NEEDS_TANGENT`], and a per-triangle
-/// `draw` taking [`NormalMapVertex`]es):
-/// - [`NormalMapShader`], the general path: every tier, light kind and model,
-///   any [`Encoder`]. The normal and the tangent are interpolated (and the
-///   position when the lighting needs it); per pixel
-///   `N' = T·nx + B·ny + N·nz` (`B = w · N × T`) is renormalised with
-///   [`Scalar::normalize_interpolated`] and lit with the full model. A map
-///   of the flat normal gives exactly [`PhongShading`]'s pixels.
-/// - [`FastNormalMapShader`], the Q14 fast path for one directional light and a
-///   viewer at infinity, Lambert or Blinn-Phong: `L` and `H` are transformed
-///   into the tangent frame per vertex and interpolated, each pixel costs two
-///   3-term dot products with the texel, two Newton steps and a table lookup.
-///
-/// Texture coordinates are interpolated screen-affine per triangle in the mesh
-/// renderer (the per-triangle `draw_perspective` interpolates them
-/// perspective-correct). Error bounds and costs: `docs/tradeoff.md`
-/// ("Normal mapping").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct NormalMapShading;
-
 /// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`],
-/// [`IncrementalPhongShading`], [`QuadraticPhongShading`] or
-/// [`TexturedGouraudShading`].
-pub trait Mode: Copy + Default + core::fmt::Debug + 'static {
+/// [`GeneralPhongShading`], [`IncrementalPhongShading`],
+/// [`QuadraticPhongShading`], or one of them [`Textured`] or
+/// [`NormalMapped`].
+pub trait Mode: Copy + core::fmt::Debug {
     /// A short name for reports.
     const NAME: &'static str;
 }
@@ -172,9 +133,6 @@ impl Mode for GeneralPhongShading {
 impl Mode for IncrementalPhongShading {
     const NAME: &'static str = "phong_inc";
 }
-impl Mode for NormalMapShading {
-    const NAME: &'static str = "normal_map";
-}
 impl Mode for QuadraticPhongShading {
     const NAME: &'static str = "phong_quad";
 }
@@ -192,8 +150,9 @@ pub struct Shader<'l, M: ModeState<I, C>, I: Illuminate, E, C> {
 pub trait ModeState<I: Illuminate, C> {
     /// What is precomputed.
     type State: Copy + core::fmt::Debug;
-    /// Precomputes it for `lighting`.
-    fn state(lighting: &I) -> Self::State;
+    /// Precomputes it for `lighting` (the mode is a value: a texture or a
+    /// normal map it carries goes into the state).
+    fn state(self, lighting: &I) -> Self::State;
 }
 
 impl<M: Mode + ModeState<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
@@ -221,11 +180,10 @@ impl<'l, M: Mode + ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor
     /// A shader of mode `mode` lighting with `lighting`, writing pixels through
     /// `encoder`.
     pub fn new(mode: M, lighting: &'l I, encoder: E) -> Self {
-        let _ = mode;
         Shader {
             lighting,
             encoder,
-            state: M::state(lighting),
+            state: mode.state(lighting),
             color: PhantomData,
         }
     }

@@ -1,41 +1,81 @@
 //! Normal-mapped Phong shading: per-pixel lighting with the normal of a
 //! [`NormalMap`] in the tangent frame of the surface.
 
+use super::incremental::{channel_units, PowTable};
 use super::phong::PhongTriangle;
-use super::{eye_point, unit_q14, Encoder, Kernel};
+use super::{eye_point, unit_q14, Encoder, GeneralPhongShading, Kernel, Mode, ModeState};
+use super::{PhongShading, Shader, VertexIn};
 use crate::color::{OutputColor, Rgb};
-use crate::lighting::{Illuminate, Specular};
-use crate::texture::{NormalMap, NormalTexel, Wrap};
+use crate::lighting::{DirectionalTerms, Illuminate};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
-use crate::num::{Scalar, Q14};
+use crate::num::{Flag, Off, On, Point3, Scalar, Vec3};
+use crate::raster::interp::Varyings;
 use crate::raster::ATTR_FRAC;
-use crate::num::{Point3, Vec3};
-use core::marker::PhantomData;
+use crate::texture::{NormalMap, NormalTexel, Wrap};
 
-use super::incremental::{channel_units, DirectionalLighting, IncrementalModel, PowTable};
-
-/// The general normal-mapped shader: every tier, every light kind, every
-/// reflection model, any [`Encoder`] (see [`NormalMapShading`](super::NormalMapShading)).
-pub struct NormalMapShader<'l, 'm, I: Illuminate, E, C> {
-    lighting: &'l I,
-    encoder: E,
+/// A per-pixel mode with surface detail from a normal map (made by
+/// [`PhongShading::normal_mapped`] or [`GeneralPhongShading::normal_mapped`]):
+/// per-pixel lighting with the normal of a [`NormalMap`] in the surface's
+/// tangent frame. The mesh needs texture coordinates and tangents
+/// ([`Kernel::NEEDS_TEXCOORD`], [`Kernel::NEEDS_TANGENT`]).
+///
+/// Two kernels; [`PhongShading`] lets the lighting choose, as for plain
+/// per-pixel lighting ([`GeneralPhongShading`] always takes the general one):
+/// - **general**: every tier, light kind and model, any [`Encoder`]. The
+///   normal and the tangent are interpolated (and the position when the
+///   lighting needs it); per pixel `N' = T·nx + B·ny + N·nz`
+///   (`B = w · N × T`) is renormalised with
+///   [`Scalar::normalize_interpolated`] and lit with the full model. A map of
+///   the flat normal gives exactly the plain kernel's pixels.
+/// - **fast** (`Q14`, one directional light, a viewer at infinity, no fog,
+///   Lambert or Blinn-Phong): `L` and `H` are transformed into the tangent
+///   frame per vertex and interpolated; per pixel the texel (a Q14 unit
+///   normal, used as stored), `n·L` and `n·H` as three multiply-adds each,
+///   both divided by the length of the interpolated `L` and `H` (`1/|L|`,
+///   `1/|H|` by one Newton step each from the previous pixel's value, `|L|²`,
+///   `|H|²` by forward differences, exact at every span start),
+///   `(n·H)^shininess` from the power table of [`IncrementalPhongShading`],
+///   the colour accumulated in output channel units (rounded like
+///   [`Linear`](super::Linear)). Spans whose interpolated `L` or `H` is
+///   shorter than ½, or changes length by more than 2^-4 per pixel, take an
+///   exact inverse square root per pixel (same result within the bound,
+///   slower).
+///
+/// Texture coordinates are interpolated like every other value (screen-linear
+/// or perspective-correct: [`crate::raster::interp`]); the map is sampled at
+/// the nearest texel. Error bounds and costs: `docs/tradeoff.md` ("Normal
+/// mapping").
+#[derive(Clone, Copy, Debug)]
+pub struct NormalMapped<'m, M> {
+    mode: M,
     map: NormalMap<'m>,
-    color: PhantomData<C>,
 }
 
-impl<I: Illuminate, E: Copy, C> Clone for NormalMapShader<'_, '_, I, E, C> {
-    fn clone(&self) -> Self {
-        *self
+impl<M: Mode> Mode for NormalMapped<'_, M> {
+    const NAME: &'static str = "normal_mapped";
+}
+
+impl PhongShading {
+    /// Per-pixel lighting with the normals of `map` (see [`NormalMapped`]);
+    /// the lighting picks the kernel.
+    pub fn normal_mapped(self, map: NormalMap<'_>) -> NormalMapped<'_, Self> {
+        NormalMapped { mode: self, map }
     }
 }
-impl<I: Illuminate, E: Copy, C> Copy for NormalMapShader<'_, '_, I, E, C> {}
 
-impl<I: Illuminate, E: core::fmt::Debug, C> core::fmt::Debug for NormalMapShader<'_, '_, I, E, C> {
-    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        f.debug_struct("NormalMapShader")
-            .field("encoder", &self.encoder)
-            .field("map", &self.map)
-            .finish_non_exhaustive()
+impl GeneralPhongShading {
+    /// Per-pixel lighting with the normals of `map`, the general kernel (see
+    /// [`NormalMapped`]).
+    pub fn normal_mapped(self, map: NormalMap<'_>) -> NormalMapped<'_, Self> {
+        NormalMapped { mode: self, map }
+    }
+}
+
+impl<'m, I: Illuminate, C> ModeState<I, C> for NormalMapped<'m, GeneralPhongShading> {
+    type State = NormalMap<'m>;
+    fn state(self, _: &I) -> NormalMap<'m> {
+        let _ = self.mode;
+        self.map
     }
 }
 
@@ -50,49 +90,36 @@ fn majority(h: [i32; 3]) -> i32 {
     }
 }
 
-impl<'l, 'm, S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor>
-    NormalMapShader<'l, 'm, I, E, C>
-{
-    /// A shader lighting with `lighting`, the surface detail from `map`, writing
-    /// pixels through `encoder`.
-    pub fn new(lighting: &'l I, map: NormalMap<'m>, encoder: E) -> Self {
-        Self {
-            lighting,
-            encoder,
-            map,
-            color: PhantomData,
-        }
-    }
-
-    /// The normal map.
-    pub fn map(&self) -> NormalMap<'m> {
-        self.map
-    }
-
-    /// The colour of one pixel: interpolated normal `n` and tangent `t` (the
-    /// tier's attribute scale, not normalised), handedness `hand`, map texel
-    /// `m`, position `p`.
-    #[inline(always)]
-    fn pixel(&self, n: [i32; 3], t: [i32; 3], hand: i32, m: NormalTexel, p: &Point3<S>) -> Rgb<S> {
-        let v = |a: [i32; 3]| Vec3::new(S::from_attr(a[0]), S::from_attr(a[1]), S::from_attr(a[2]));
-        let (n, t) = (v(n), v(t));
-        // the texel (Q14) in the attribute scale (Q26); the bitangent's weight
-        // carries the handedness
-        let c = |x: i32| S::from_attr(x << 12);
-        let (mx, my, mz) = (
-            c(i32::from(m[0])),
-            c(i32::from(m[1]) * hand),
-            c(i32::from(m[2])),
-        );
-        // B = N × T
-        let b = Vec3::new(
-            S::sub(S::mul(n.y, t.z), S::mul(n.z, t.y)),
-            S::sub(S::mul(n.z, t.x), S::mul(n.x, t.z)),
-            S::sub(S::mul(n.x, t.y), S::mul(n.y, t.x)),
-        );
-        let np = t.scale(mx).add(b.scale(my)).add(n.scale(mz));
-        self.lighting.shade(p, S::normalize_interpolated(np))
-    }
+/// The colour of one pixel: interpolated normal `n` and tangent `t` (the
+/// tier's attribute scale, not normalised), handedness `hand`, map texel `m`,
+/// position `p`.
+#[inline(always)]
+fn general_pixel<S: Scalar, I: Illuminate<Scalar = S>>(
+    lighting: &I,
+    n: [i32; 3],
+    t: [i32; 3],
+    hand: i32,
+    m: NormalTexel,
+    p: &Point3<S>,
+) -> Rgb<S> {
+    let v = |a: [i32; 3]| Vec3::new(S::from_attr(a[0]), S::from_attr(a[1]), S::from_attr(a[2]));
+    let (n, t) = (v(n), v(t));
+    // the texel (Q14) in the attribute scale (Q26); the bitangent's weight
+    // carries the handedness
+    let c = |x: i32| S::from_attr(x << 12);
+    let (mx, my, mz) = (
+        c(i32::from(m[0])),
+        c(i32::from(m[1]) * hand),
+        c(i32::from(m[2])),
+    );
+    // B = N × T
+    let b = Vec3::new(
+        S::sub(S::mul(n.y, t.z), S::mul(n.z, t.y)),
+        S::sub(S::mul(n.z, t.x), S::mul(n.x, t.z)),
+        S::sub(S::mul(n.x, t.y), S::mul(n.y, t.x)),
+    );
+    let np = t.scale(mx).add(b.scale(my)).add(n.scale(mz));
+    lighting.shade(p, S::normalize_interpolated(np))
 }
 
 /// What the vertex cache holds per vertex for the general path: the Q14
@@ -120,8 +147,108 @@ pub struct NormalMapTriangle {
     hand: i32,
 }
 
-impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
-    for NormalMapShader<'_, '_, I, E, C>
+/// The general kernel's vertex payload.
+#[inline]
+fn general_vertex(v: &VertexIn) -> NormalMapPayload {
+    NormalMapPayload {
+        n: unit_q14(v.normal),
+        t: unit_q14([v.tangent[0], v.tangent[1], v.tangent[2]]),
+        hand: if v.tangent[3] < 0 { -1 } else { 1 },
+        uv: [sat16(v.uv[0]), sat16(v.uv[1])],
+    }
+}
+
+/// The general kernel's triangle: normal (3), tangent (3) (Q14), `u`, `v`
+/// (Q12), then the position (see [`PhongTriangle`]) when `position`.
+#[inline]
+fn general_triangle(
+    v: [&NormalMapPayload; 3],
+    eye: &[[i32; 3]; 3],
+    position: bool,
+) -> (NormalMapTriangle, [[i32; 11]; 3]) {
+    let (pos, p) = if position {
+        PhongTriangle::new(eye)
+    } else {
+        (PhongTriangle::default(), [[0; 3]; 3])
+    };
+    let var = core::array::from_fn(|k| {
+        let q = v[k];
+        let p = p[k];
+        [
+            i32::from(q.n[0]),
+            i32::from(q.n[1]),
+            i32::from(q.n[2]),
+            i32::from(q.t[0]),
+            i32::from(q.t[1]),
+            i32::from(q.t[2]),
+            i32::from(q.uv[0]),
+            i32::from(q.uv[1]),
+            p[0],
+            p[1],
+            p[2],
+        ]
+    });
+    let tri = NormalMapTriangle {
+        pos,
+        hand: majority(v.map(|q| i32::from(q.hand))),
+    };
+    (tri, var)
+}
+
+/// The general kernel's range of value `i`: the normal and tangent within
+/// [−1, 1] in Q14 (Q28 with ATTR_FRAC bits).
+#[inline(always)]
+fn general_safe(i: usize) -> (i32, i32) {
+    let one = 1 << (14 + ATTR_FRAC);
+    if i < 6 {
+        (-one, one)
+    } else {
+        (-(1 << 30), 1 << 30)
+    }
+}
+
+/// The general kernel's span.
+#[allow(clippy::too_many_arguments)]
+fn general_span<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor>(
+    lighting: &I,
+    encoder: &E,
+    map: &NormalMap<'_>,
+    t: &NormalMapTriangle,
+    a: &[i32; 11],
+    d: &[i32; 11],
+    x: i32,
+    y: i32,
+    color: &mut [C],
+) {
+    let (mut a, d) = (*a, *d);
+    let used = if I::NEEDS_POSITION { 11 } else { 8 };
+    for (x, c) in (x..).zip(color.iter_mut()) {
+        let pos = if I::NEEDS_POSITION {
+            eye_point::<S>(t.pos.position([a[8], a[9], a[10]]))
+        } else {
+            eye_point::<S>([0; 3])
+        };
+        // Q12 with ATTR_FRAC bits
+        let m = sample2(map, a[6], UV_FRAC, a[7], UV_FRAC);
+        // Q14 with ATTR_FRAC bits (Q28) → the tier's attribute (Q26)
+        let lit = general_pixel(
+            lighting,
+            [a[0] >> 2, a[1] >> 2, a[2] >> 2],
+            [a[3] >> 2, a[4] >> 2, a[5] >> 2],
+            t.hand,
+            m,
+            &pos,
+        );
+        *c = encoder.encode(lit, x, y);
+        for (a, d) in a.iter_mut().zip(d).take(used) {
+            // the values after the last pixel are not used: wrapping is harmless
+            *a = a.wrapping_add(d);
+        }
+    }
+}
+
+impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
+    for Shader<'_, NormalMapped<'_, GeneralPhongShading>, I, E, C>
 {
     type Color = C;
     type Vertex = NormalMapPayload;
@@ -135,13 +262,8 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
     const NEEDS_TANGENT: bool = true;
 
     #[inline]
-    fn vertex(&self, v: &super::VertexIn) -> NormalMapPayload {
-        NormalMapPayload {
-            n: unit_q14(v.normal),
-            t: unit_q14([v.tangent[0], v.tangent[1], v.tangent[2]]),
-            hand: if v.tangent[3] < 0 { -1 } else { 1 },
-            uv: [sat16(v.uv[0]), sat16(v.uv[1])],
-        }
+    fn vertex(&self, v: &VertexIn) -> NormalMapPayload {
+        general_vertex(v)
     }
 
     fn triangle(
@@ -149,44 +271,12 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
         v: [&NormalMapPayload; 3],
         eye: &[[i32; 3]; 3],
     ) -> (NormalMapTriangle, [[i32; 11]; 3]) {
-        let (pos, p) = if I::NEEDS_POSITION {
-            PhongTriangle::new(eye)
-        } else {
-            (PhongTriangle::default(), [[0; 3]; 3])
-        };
-        let var = core::array::from_fn(|k| {
-            let q = v[k];
-            let p = p[k];
-            [
-                i32::from(q.n[0]),
-                i32::from(q.n[1]),
-                i32::from(q.n[2]),
-                i32::from(q.t[0]),
-                i32::from(q.t[1]),
-                i32::from(q.t[2]),
-                i32::from(q.uv[0]),
-                i32::from(q.uv[1]),
-                p[0],
-                p[1],
-                p[2],
-            ]
-        });
-        let tri = NormalMapTriangle {
-            pos,
-            hand: majority(v.map(|q| i32::from(q.hand))),
-        };
-        (tri, var)
+        general_triangle(v, eye, I::NEEDS_POSITION)
     }
 
     #[inline(always)]
     fn safe(&self, i: usize) -> (i32, i32) {
-        // the normal and tangent within [−1, 1] in Q14 (Q28 with ATTR_FRAC bits)
-        let one = 1 << (14 + ATTR_FRAC);
-        if i < 6 {
-            (-one, one)
-        } else {
-            (-(1 << 30), 1 << 30)
-        }
+        general_safe(i)
     }
 
     fn span(
@@ -198,30 +288,7 @@ impl<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor> Kernel
         y: i32,
         color: &mut [C],
     ) {
-        let (mut a, d) = (*a, *d);
-        let used = <Self as Kernel>::USED;
-        for (x, c) in (x..).zip(color.iter_mut()) {
-            let pos = if I::NEEDS_POSITION {
-                eye_point::<S>(t.pos.position([a[8], a[9], a[10]]))
-            } else {
-                eye_point::<S>([0; 3])
-            };
-            // Q12 with ATTR_FRAC bits
-            let m = sample2(&self.map, a[6], UV_FRAC, a[7], UV_FRAC);
-            // Q14 with ATTR_FRAC bits (Q28) → the tier's attribute (Q26)
-            let lit = self.pixel(
-                [a[0] >> 2, a[1] >> 2, a[2] >> 2],
-                [a[3] >> 2, a[4] >> 2, a[5] >> 2],
-                t.hand,
-                m,
-                &pos,
-            );
-            *c = self.encoder.encode(lit, x, y);
-            for (a, d) in a.iter_mut().zip(d).take(used) {
-                // the values after the last pixel are not used: wrapping is harmless
-                *a = a.wrapping_add(d);
-            }
-        }
+        general_span(self.lighting, &self.encoder, &self.state, t, a, d, x, y, color)
     }
 }
 
@@ -240,60 +307,19 @@ fn sample2(map: &NormalMap<'_>, u: i32, uf: u32, v: i32, vf: u32) -> NormalTexel
 
 // ---- the fast Q14 path ------------------------------------------------------------
 
-/// The Q14 fast path of normal mapping for one directional light, a viewer at
-/// infinity and the [`Lambert`](crate::lighting::Lambert) or
-/// [`BlinnPhong`](crate::lighting::BlinnPhong) model (see
-/// [`NormalMapShading`](super::NormalMapShading)).
-///
-/// Per vertex, `L` and `H` are transformed into the vertex's tangent frame
-/// `(T, B = w·N × T, N)`; the rasterizer interpolates them (6 attributes,
-/// plus `u`, `v`). Per pixel: the texel (a Q14 unit normal, used as stored),
-/// `n·L` and `n·H` as three multiply-adds each, both divided by the length
-/// of the interpolated `L` and `H` (`1/|L|`, `1/|H|` by one Newton step each
-/// from the previous pixel's value, `|L|²`, `|H|²` by forward differences,
-/// exact at every span start), `(n·H)^shininess` from the 65-entry table of
-/// [`IncrementalPhongShading`](super::IncrementalPhongShading), the colour
-/// accumulated in output channel units (rounded like [`Linear`](super::Linear)). Spans whose
-/// interpolated `L` or `H` is shorter than ½, or changes length by more than
-/// 2^-4 per pixel, are shaded with an exact inverse square root per pixel
-/// (same result within the bound, slower). Texture coordinates are
-/// screen-affine per triangle.
-///
-/// ```
-/// use fixshade::prelude::*;
-/// use fixshade::texture::{NormalMap, Wrap, FLAT_NORMAL};
-/// use fixshade::shade::{FastNormalMapShader, NormalMapVertex};
-/// use fixshade::raster::SUBPIXEL_BITS;
-///
-/// static MAP: [[i16; 3]; 1] = [FLAT_NORMAL];
-/// let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
-/// let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
-/// let mat = Material::new(&MaterialDesc::classic([1.0, 0.2, 0.2], AmbientSource::Object, 0.1, 0.7, 0.5, 32.0)).unwrap();
-/// let lighting = Lighting::<Q14, _, BlinnPhong>::new([light], mat);
-/// let v = |x: i32, y: i32, n: [f32; 3]| NormalMapVertex::new(
-///     ShadeVertex::new([x << SUBPIXEL_BITS, y << SUBPIXEL_BITS], 0, 1, [0.0; 3], n),
-///     [0.0, 0.0], [1.0, 0.0, 0.0, 1.0]);
-/// let tri = [v(0, 0, [0.0, 0.0, 1.0]), v(0, 32, [0.0, 0.0, 1.0]), v(32, 16, [0.0, 0.0, 1.0])];
-/// let mut pixels = [Rgb565::BLACK; 32 * 32];
-/// let mut fb = SliceFramebuffer::new(&mut pixels, 32, 32).unwrap();
-/// let mut shader = FastNormalMapShader::<_, _, Rgb565>::new(&lighting, map);
-/// let stats = shader.draw(&mut fb, None, &tri, &RasterOptions::default())?;
-/// assert!(stats.pixels > 400);
-/// # Ok::<(), core::convert::Infallible>(())
-/// ```
+/// The fast kernel's constants (see [`NormalMapped`]): the map, the light's
+/// direction and halfway vector (Q14), `Ld∘Kd`, `Ls∘Ks` and the constant
+/// part (+ ½) per channel in channel units · 2^8, the power table.
 #[derive(Clone, Copy, Debug)]
-pub struct FastNormalMapShader<'l, 'm, const NW: u8, M: IncrementalModel, C> {
-    lighting: &'l DirectionalLighting<NW, 1, M>,
+pub struct FastNormal<'m> {
     map: NormalMap<'m>,
-    /// Direction to the light and halfway vector, Q14.
     l: [i32; 3],
     h: [i32; 3],
-    /// `Ld∘Kd`, `Ls∘Ks` and the constant part (+ ½) per channel, channel units · 2^8.
     kd: [i32; 3],
     ks: [i32; 3],
     base: [i32; 3],
     pow: PowTable,
-    color: PhantomData<C>,
+    spec: bool,
 }
 
 /// What the vertex cache holds per vertex for the fast path: `L` and `H` in
@@ -396,37 +422,25 @@ fn newton_steps(s0: i64, ds0: i64, dds: i64, n: i64) -> u32 {
     }
 }
 
-impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
-    FastNormalMapShader<'l, 'm, NW, M, C>
-{
-    /// The fast shader for `lighting` and `map` (the tables are built here,
-    /// in `f32`: once per material, not per frame).
-    pub fn new(lighting: &'l DirectionalLighting<NW, 1, M>, map: NormalMap<'m>) -> Self {
-        let light = &lighting.lights()[0];
-        let pre = light.prepared();
-        let d = light.direction();
-        let h = pre.half.unwrap_or(d);
-        Self {
-            lighting,
+impl<'m> FastNormal<'m> {
+    /// The constants for one directional light `t` and `map` (in `f32`: once
+    /// per shader).
+    fn new<C: OutputColor, S: Scalar>(t: &DirectionalTerms<S>, map: NormalMap<'m>) -> Self {
+        let q14 = |v: Vec3<S>| {
+            let q = |c: S| (c.to_attr() + (1 << 11)) >> 12;
+            [q(v.x), q(v.y), q(v.z)]
+        };
+        let ks = channel_units::<C, S>(t.specular);
+        FastNormal {
             map,
-            l: [d.x.raw(), d.y.raw(), d.z.raw()],
-            h: [h.x.raw(), h.y.raw(), h.z.raw()],
-            kd: channel_units::<C, Q14<NW>>(pre.diffuse),
-            ks: channel_units::<C, Q14<NW>>(pre.specular),
-            base: channel_units::<C, Q14<NW>>(lighting.base()).map(|v| v + 128),
-            pow: PowTable::new(lighting.material().shininess.to_f32()),
-            color: PhantomData,
+            l: q14(t.dir),
+            h: q14(t.half),
+            kd: channel_units::<C, S>(t.diffuse),
+            ks,
+            base: channel_units::<C, S>(t.base).map(|v| v + 128),
+            pow: PowTable::new(t.shininess),
+            spec: ks != [0; 3],
         }
-    }
-
-    /// The normal map.
-    pub fn map(&self) -> NormalMap<'m> {
-        self.map
-    }
-
-    /// The lighting.
-    pub fn lighting(&self) -> &'l DirectionalLighting<NW, 1, M> {
-        self.lighting
     }
 
     /// The payload of a vertex with Q14 normal `n`, tangent `t`, handedness
@@ -441,7 +455,7 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
     /// Shades one span: `lh`/`dlh` are `L` and `H` in Q24 with their steps,
     /// `uv`/`duv` the texture coordinates with `uvf` fraction bits.
     #[inline(always)]
-    fn shade_run(
+    fn shade_run<C: OutputColor>(
         &self,
         lh: [i32; 6],
         dlh: [i32; 6],
@@ -453,7 +467,7 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
         let n = out.len() as i64;
         let l = length_squared_diffs([lh[0], lh[1], lh[2]], [dlh[0], dlh[1], dlh[2]]);
         let h = length_squared_diffs([lh[3], lh[4], lh[5]], [dlh[3], dlh[4], dlh[5]]);
-        let spec = M::SPECULAR == Specular::BlinnPhong;
+        let spec = self.spec;
         let steps = newton_steps(l.0, l.1, l.2, n).max(if spec {
             newton_steps(h.0, h.1, h.2, n)
         } else {
@@ -474,13 +488,19 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
             ds: [l.1 as i32, h.1 as i32],
             dds: [l.2 as i32, h.2 as i32],
         };
-        match (steps, self.map.wrap()) {
-            (1, Wrap::Repeat) => self.run::<1, true>(st, out),
-            (1, Wrap::Clamp) => self.run::<1, false>(st, out),
-            (2, Wrap::Repeat) => self.run::<2, true>(st, out),
-            (2, Wrap::Clamp) => self.run::<2, false>(st, out),
-            (_, Wrap::Repeat) => self.run::<0, true>(st, out),
-            (_, Wrap::Clamp) => self.run::<0, false>(st, out),
+        match (steps, self.map.wrap(), spec) {
+            (1, Wrap::Repeat, true) => self.run::<C, 1, true, true>(st, out),
+            (1, Wrap::Clamp, true) => self.run::<C, 1, false, true>(st, out),
+            (2, Wrap::Repeat, true) => self.run::<C, 2, true, true>(st, out),
+            (2, Wrap::Clamp, true) => self.run::<C, 2, false, true>(st, out),
+            (_, Wrap::Repeat, true) => self.run::<C, 0, true, true>(st, out),
+            (_, Wrap::Clamp, true) => self.run::<C, 0, false, true>(st, out),
+            (1, Wrap::Repeat, false) => self.run::<C, 1, true, false>(st, out),
+            (1, Wrap::Clamp, false) => self.run::<C, 1, false, false>(st, out),
+            (2, Wrap::Repeat, false) => self.run::<C, 2, true, false>(st, out),
+            (2, Wrap::Clamp, false) => self.run::<C, 2, false, false>(st, out),
+            (_, Wrap::Repeat, false) => self.run::<C, 0, true, false>(st, out),
+            (_, Wrap::Clamp, false) => self.run::<C, 0, false, false>(st, out),
         }
     }
 
@@ -489,7 +509,11 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
     /// exact inverse square root per pixel), `REPEAT` wraps the texture
     /// coordinates (else clamps).
     #[inline(always)]
-    fn run<const NEWTON: u32, const REPEAT: bool>(&self, st: Span, out: &mut [C]) {
+    fn run<C: OutputColor, const NEWTON: u32, const REPEAT: bool, const SPEC: bool>(
+        &self,
+        st: Span,
+        out: &mut [C],
+    ) {
         let Span {
             mut lh,
             dlh,
@@ -504,7 +528,7 @@ impl<'l, 'm, const NW: u8, M: IncrementalModel, C: OutputColor>
             mut ds,
             dds,
         } = st;
-        let spec = M::SPECULAR == Specular::BlinnPhong;
+        let spec = SPEC;
         let max = C::CHANNEL_MAX.map(|m| m as i32);
         let texels = self.map.texels();
         // exact 1/|L|, 1/|H| at the span start (when FAST: refined per pixel)
@@ -588,54 +612,226 @@ struct Span {
     dds: [i32; 2],
 }
 
-impl<const NW: u8, M: IncrementalModel, C: OutputColor> Kernel
-    for FastNormalMapShader<'_, '_, NW, M, C>
+/// How a [`NormalMapped`] [`PhongShading`] shader lights the pixels of a
+/// lighting `I`: the general kernel ([`Off`]) or the fast one ([`On`]).
+#[doc(hidden)]
+#[diagnostic::on_unimplemented(
+    message = "`PhongShading::normal_mapped` cannot choose a kernel for the lighting `{I}`",
+    note = "every `Lighting` of this crate is served; a lighting of your own implements `Illuminate` with `type Fast = fixshade::num::Off`"
+)]
+pub trait NormalMapPath<'m, I: Illuminate, C: OutputColor>: Flag {
+    /// The vertex payload.
+    type Vertex: Copy + Default + core::fmt::Debug;
+    /// The values interpolated.
+    type Varyings: Varyings;
+    /// The triangle constants.
+    type Triangle: Copy + core::fmt::Debug;
+    /// What the shader precomputes.
+    type State: Copy + core::fmt::Debug;
+    /// How many values are used.
+    const USED: usize;
+    /// Precomputes it.
+    fn state(lighting: &I, map: NormalMap<'m>) -> Self::State;
+    /// The payload of a vertex.
+    fn vertex(state: &Self::State, v: &VertexIn) -> Self::Vertex;
+    /// The triangle.
+    fn triangle(v: [&Self::Vertex; 3], eye: &[[i32; 3]; 3]) -> (Self::Triangle, [Self::Varyings; 3]);
+    /// The range of value `i`.
+    fn safe(i: usize) -> (i32, i32);
+    /// Shades a span.
+    #[allow(clippy::too_many_arguments)]
+    fn span<E: Encoder<C>>(
+        state: &Self::State,
+        lighting: &I,
+        encoder: &E,
+        t: &Self::Triangle,
+        a: &Self::Varyings,
+        d: &Self::Varyings,
+        x: i32,
+        y: i32,
+        out: &mut [C],
+    );
+}
+
+impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for Off {
+    type Vertex = NormalMapPayload;
+    type Varyings = [i32; 11];
+    type Triangle = NormalMapTriangle;
+    type State = NormalMap<'m>;
+    const USED: usize = if I::NEEDS_POSITION { 11 } else { 8 };
+    fn state(_: &I, map: NormalMap<'m>) -> NormalMap<'m> {
+        map
+    }
+    #[inline]
+    fn vertex(_: &NormalMap<'m>, v: &VertexIn) -> NormalMapPayload {
+        general_vertex(v)
+    }
+    fn triangle(
+        v: [&NormalMapPayload; 3],
+        eye: &[[i32; 3]; 3],
+    ) -> (NormalMapTriangle, [[i32; 11]; 3]) {
+        general_triangle(v, eye, I::NEEDS_POSITION)
+    }
+    #[inline(always)]
+    fn safe(i: usize) -> (i32, i32) {
+        general_safe(i)
+    }
+    fn span<E: Encoder<C>>(
+        map: &NormalMap<'m>,
+        lighting: &I,
+        encoder: &E,
+        t: &NormalMapTriangle,
+        a: &[i32; 11],
+        d: &[i32; 11],
+        x: i32,
+        y: i32,
+        out: &mut [C],
+    ) {
+        general_span(lighting, encoder, map, t, a, d, x, y, out)
+    }
+}
+
+/// The fast kernel's constants, or the map alone for a lighting whose model
+/// the fast kernel does not evaluate (then the general pixel, from the
+/// interpolated normal, tangent and handedness carried in the payload).
+#[derive(Clone, Copy, Debug)]
+pub enum FastNormalState<'m> {
+    /// The fast kernel.
+    Fast(FastNormal<'m>),
+    /// The general kernel.
+    General(NormalMap<'m>),
+}
+
+impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for On {
+    type Vertex = NormalMapPayload;
+    /// `L`, `H` in the tangent frame (Q14), `u`, `v` (Q12) for the fast
+    /// kernel; the general kernel's first 8 values otherwise.
+    type Varyings = [i32; 8];
+    type Triangle = NormalMapTriangle;
+    type State = FastNormalState<'m>;
+    const USED: usize = 8;
+    fn state(lighting: &I, map: NormalMap<'m>) -> FastNormalState<'m> {
+        match lighting.directional() {
+            Some(t) => FastNormalState::Fast(FastNormal::new::<C, I::Scalar>(&t, map)),
+            None => FastNormalState::General(map),
+        }
+    }
+    #[inline]
+    fn vertex(state: &FastNormalState<'m>, v: &VertexIn) -> NormalMapPayload {
+        match state {
+            FastNormalState::Fast(f) => {
+                let p = f.payload(
+                    v.normal,
+                    [v.tangent[0], v.tangent[1], v.tangent[2]],
+                    v.tangent[3],
+                    v.uv,
+                );
+                // L and H in the normal's and tangent's places
+                NormalMapPayload {
+                    n: [p.lh[0], p.lh[1], p.lh[2]],
+                    t: [p.lh[3], p.lh[4], p.lh[5]],
+                    hand: 1,
+                    uv: p.uv,
+                }
+            }
+            FastNormalState::General(_) => general_vertex(v),
+        }
+    }
+    fn triangle(v: [&NormalMapPayload; 3], eye: &[[i32; 3]; 3]) -> (NormalMapTriangle, [[i32; 8]; 3]) {
+        let (t, var) = general_triangle(v, eye, false);
+        (t, var.map(|a| core::array::from_fn(|i| a[i])))
+    }
+    #[inline(always)]
+    fn safe(i: usize) -> (i32, i32) {
+        general_safe(i)
+    }
+    fn span<E: Encoder<C>>(
+        state: &FastNormalState<'m>,
+        lighting: &I,
+        encoder: &E,
+        t: &NormalMapTriangle,
+        a: &[i32; 8],
+        d: &[i32; 8],
+        x: i32,
+        y: i32,
+        out: &mut [C],
+    ) {
+        match state {
+            FastNormalState::Fast(f) => {
+                // Q28 → Q24
+                let lh = core::array::from_fn(|i| a[i] >> 4);
+                let dlh = core::array::from_fn(|i| d[i] >> 4);
+                f.shade_run(lh, dlh, [a[6], a[7]], [d[6], d[7]], [UV_FRAC; 2], out)
+            }
+            FastNormalState::General(map) => {
+                let wide = |v: &[i32; 8]| core::array::from_fn(|i| v.get(i).copied().unwrap_or(0));
+                general_span(lighting, encoder, map, t, &wide(a), &wide(d), x, y, out)
+            }
+        }
+    }
+}
+
+impl<'m, I: Illuminate, C: OutputColor> ModeState<I, C> for NormalMapped<'m, PhongShading>
+where
+    I::Fast: NormalMapPath<'m, I, C>,
+{
+    type State = <I::Fast as NormalMapPath<'m, I, C>>::State;
+    fn state(self, lighting: &I) -> Self::State {
+        <I::Fast as NormalMapPath<'m, I, C>>::state(lighting, self.map)
+    }
+}
+
+impl<'m, I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
+    for Shader<'_, NormalMapped<'m, PhongShading>, I, E, C>
+where
+    I::Fast: NormalMapPath<'m, I, C>,
 {
     type Color = C;
-    type Vertex = TangentLightPayload;
-    /// `L`, `H` in the tangent frame (Q14), `u`, `v` (Q12).
-    type Varyings = [i32; 8];
-    type Triangle = ();
-    const NEEDS_POSITION: bool = false;
+    type Vertex = <I::Fast as NormalMapPath<'m, I, C>>::Vertex;
+    type Varyings = <I::Fast as NormalMapPath<'m, I, C>>::Varyings;
+    type Triangle = <I::Fast as NormalMapPath<'m, I, C>>::Triangle;
+    const USED: usize = <I::Fast as NormalMapPath<'m, I, C>>::USED;
+    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
     const NEEDS_TEXCOORD: bool = true;
     const NEEDS_TANGENT: bool = true;
 
     #[inline]
-    fn vertex(&self, v: &super::VertexIn) -> TangentLightPayload {
-        self.payload(
-            v.normal,
-            [v.tangent[0], v.tangent[1], v.tangent[2]],
-            v.tangent[3],
-            v.uv,
-        )
+    fn vertex(&self, v: &VertexIn) -> Self::Vertex {
+        <I::Fast as NormalMapPath<'m, I, C>>::vertex(&self.state, v)
     }
 
-    #[inline(always)]
-    fn triangle(&self, v: [&TangentLightPayload; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; 8]; 3]) {
-        let var = v.map(|q| {
-            let mut a = [0i32; 8];
-            for (a, &c) in a.iter_mut().zip(q.lh.iter().chain(q.uv.iter())) {
-                *a = i32::from(c);
-            }
-            a
-        });
-        ((), var)
+    fn triangle(
+        &self,
+        v: [&Self::Vertex; 3],
+        eye: &[[i32; 3]; 3],
+    ) -> (Self::Triangle, [Self::Varyings; 3]) {
+        <I::Fast as NormalMapPath<'m, I, C>>::triangle(v, eye)
     }
 
     #[inline(always)]
     fn safe(&self, i: usize) -> (i32, i32) {
-        let one = 1 << (14 + ATTR_FRAC);
-        if i < 6 {
-            (-one, one)
-        } else {
-            (-(1 << 30), 1 << 30)
-        }
+        <I::Fast as NormalMapPath<'m, I, C>>::safe(i)
     }
 
-    fn span(&self, _t: &(), a: &[i32; 8], d: &[i32; 8], _x: i32, _y: i32, color: &mut [C]) {
-        // Q28 → Q24
-        let lh = core::array::from_fn(|i| a[i] >> 4);
-        let dlh = core::array::from_fn(|i| d[i] >> 4);
-        self.shade_run(lh, dlh, [a[6], a[7]], [d[6], d[7]], [UV_FRAC; 2], color)
+    fn span(
+        &self,
+        t: &Self::Triangle,
+        a: &Self::Varyings,
+        d: &Self::Varyings,
+        x: i32,
+        y: i32,
+        out: &mut [C],
+    ) {
+        <I::Fast as NormalMapPath<'m, I, C>>::span(
+            &self.state,
+            self.lighting,
+            &self.encoder,
+            t,
+            a,
+            d,
+            x,
+            y,
+            out,
+        )
     }
 }

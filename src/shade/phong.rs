@@ -13,7 +13,7 @@ use crate::num::Vec3;
 
 impl<I: Illuminate, C> ModeState<I, C> for GeneralPhongShading {
     type State = ();
-    fn state(_: &I) {}
+    fn state(self, _: &I) {}
 }
 
 /// A Phong triangle: where its interpolated eye-space positions are measured
@@ -324,7 +324,7 @@ where
     I::Fast: PhongPath<I, C>,
 {
     type State = <I::Fast as PhongPath<I, C>>::State;
-    fn state(lighting: &I) -> Self::State {
+    fn state(self, lighting: &I) -> Self::State {
         <I::Fast as PhongPath<I, C>>::state(lighting)
     }
 }

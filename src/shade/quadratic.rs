@@ -291,7 +291,7 @@ impl<S: QuadraticTier, const K: usize, M: QuadraticModel, C: OutputColor>
 {
     type State = QuadraticState<K>;
 
-    fn state(lighting: &QuadraticLighting<S, K, M>) -> QuadraticState<K> {
+    fn state(self, lighting: &QuadraticLighting<S, K, M>) -> QuadraticState<K> {
         let v = [0.0, 0.0, 1.0];
         let lights = lighting.lights();
         let desc = Desc {

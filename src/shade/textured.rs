@@ -1,14 +1,14 @@
-//! Textured Gouraud shading (see [`TexturedGouraudShading`]).
+//! Textured Gouraud shading (see [`Textured`]).
 
-use super::{eye_point, unit_normal, Encoder, Kernel, Mode, ModeState, Shader, VertexIn};
+use super::{eye_point, unit_normal, Encoder, GouraudShading, Kernel, Mode, ModeState, Shader};
+use super::VertexIn;
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::Illuminate;
 use crate::raster::{ClampTo, ATTR_FRAC};
 use crate::texture::{Filter, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
 
-/// Textured Gouraud shading: OpenGL's `GL_MODULATE` with
-/// `GL_SEPARATE_SPECULAR_COLOR`.
-/// `GL_SEPARATE_SPECULAR_COLOR`.
+/// A mode with a colour texture: OpenGL's `GL_MODULATE` with
+/// `GL_SEPARATE_SPECULAR_COLOR` (made by [`GouraudShading::textured`]).
 ///
 /// Each vertex is lit once ([`Illuminate::shade_parts`]): the **primary** colour
 /// (emission + ambient + diffuse) and the **secondary** colour (specular), each
@@ -43,35 +43,52 @@ use crate::texture::{Filter, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
 ///
 /// # Use
 ///
-/// A shader of this mode samples the white 1 × 1 texture until
-/// [`Shader::with_texture`] gives it one; the mesh needs texture coordinates
-/// ([`Kernel::NEEDS_TEXCOORD`]: the mesh's `texcoords`, Q12).
-///
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct TexturedGouraudShading;
-
-impl Mode for TexturedGouraudShading {
-    const NAME: &'static str = "tex_gouraud";
-}
-
-/// The texture and filter a [`TexturedGouraudShading`] shader samples.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct TextureBinding {
-    texture: Texture<'static>,
+/// `Shader::new(GouraudShading.textured(texture, filter), &lighting,
+/// encoder)`; the mesh needs texture coordinates ([`Kernel::NEEDS_TEXCOORD`]:
+/// the mesh's `texcoords`, Q12; [`MeshDraw`](crate::render::MeshDraw) says
+/// when it has none).
+#[derive(Clone, Copy, Debug)]
+pub struct Textured<'t, M> {
+    mode: M,
+    texture: Texture<'t>,
     filter: Filter,
 }
 
-impl<I: Illuminate, C> ModeState<I, C> for TexturedGouraudShading {
-    type State = TextureBinding;
-    fn state(_: &I) -> TextureBinding {
-        TextureBinding {
-            texture: Texture::WHITE,
-            filter: Filter::Nearest,
+impl<'t, M: Mode> Mode for Textured<'t, M> {
+    const NAME: &'static str = "textured";
+}
+
+impl GouraudShading {
+    /// Gouraud shading with the colour texture `texture`, sampled with
+    /// `filter` (see [`Textured`]).
+    pub fn textured(self, texture: Texture<'_>, filter: Filter) -> Textured<'_, Self> {
+        Textured {
+            mode: self,
+            texture,
+            filter,
         }
     }
 }
 
-/// What the vertex cache holds per vertex for [`TexturedGouraudShading`]: the
+/// The texture and filter a [`Textured`] shader samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureBinding<'t> {
+    texture: Texture<'t>,
+    filter: Filter,
+}
+
+impl<'t, I: Illuminate, C> ModeState<I, C> for Textured<'t, GouraudShading> {
+    type State = TextureBinding<'t>;
+    fn state(self, _: &I) -> TextureBinding<'t> {
+        let _ = self.mode;
+        TextureBinding {
+            texture: self.texture,
+            filter: self.filter,
+        }
+    }
+}
+
+/// What the vertex cache holds per vertex for a [`Textured`] Gouraud shader: the
 /// encoded primary colour (without the encoder's rounding offset), the encoded
 /// secondary colour and the texture coordinates (Q12): 16 bytes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -88,15 +105,11 @@ pub struct TexturedTriangle {
     has_spec: bool,
 }
 
-impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'_, TexturedGouraudShading, I, E, C> {
-    /// The shader sampling `texture` with `filter`.
-    pub fn with_texture(mut self, texture: Texture<'static>, filter: Filter) -> Self {
-        self.state = TextureBinding { texture, filter };
-        self
-    }
-
+impl<'t, I: Illuminate, E: Encoder<C>, C: OutputColor>
+    Shader<'_, Textured<'t, GouraudShading>, I, E, C>
+{
     /// The texture sampled.
-    pub fn texture(&self) -> Texture<'static> {
+    pub fn texture(&self) -> Texture<'t> {
         self.state.texture
     }
 
@@ -204,7 +217,7 @@ impl Pieces {
 }
 
 impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
-    for Shader<'_, TexturedGouraudShading, I, E, C>
+    for Shader<'_, Textured<'_, GouraudShading>, I, E, C>
 {
     type Color = C;
     type Vertex = TexPayload;
@@ -469,7 +482,7 @@ fn fast_run_any<C: OutputColor>(
     }
 }
 
-/// The fast path's loop (see the [`TexturedGouraudShading`] docs): `Rgb565` texels at the
+/// The fast path's loop (see the [`Textured`] docs): `Rgb565` texels at the
 /// packed coordinates `uv` (see [`pack`]; the wrapping addition is
 /// [`Wrap::Repeat`]), the Gouraud channels packed as in the Gouraud kernel
 /// (red and blue in `rb`, 16 bits each with 11 fraction bits; green in `g`

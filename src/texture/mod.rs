@@ -1,5 +1,5 @@
 //! Textures in flash and their sampling in fixed point (the sampler of
-//! [`TexturedGouraudShading`](crate::shade::TexturedGouraudShading)).
+//! [`Textured`](crate::shade::Textured)).
 //!
 //! A [`Texture`] borrows `'static` (or any) texel data — `Rgb565` words, 8-bit grey
 //! levels, or 8-bit indices into a palette of `Rgb565` colours — of a power-of-two

@@ -1,5 +1,5 @@
 //! Normal maps and bump maps: per-texel tangent-space normals for
-//! [`NormalMapShading`](crate::shade::NormalMapShading).
+//! [`NormalMapped`](crate::shade::NormalMapped).
 //!
 //! A [`NormalMap`] borrows `'static` (or any) texels of a power-of-two size,
 //! 1 … 4096 texels a side. Each texel is a tangent-space unit normal in Q14
@@ -11,7 +11,7 @@
 //! flash). [`normal_texel`] rounds each component of a unit vector to the
 //! nearest Q14 step: a component is within `2^-15` of exact, so the length is
 //! within `1 ± 2^-15·√3` (< 6·10⁻⁵) and the angle within 0.006°. That is why
-//! the fast path of [`NormalMapShading`](crate::shade::NormalMapShading) can use
+//! the fast path of [`NormalMapped`](crate::shade::NormalMapped) can use
 //! a texel as a unit normal without renormalising it (an 8-bit format would be
 //! off by up to 0.7 % in length, 25 % of a highlight of exponent 32).
 //!
