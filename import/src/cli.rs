@@ -100,7 +100,8 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
                 .ok_or_else(|| format!("{flag} needs a value"))
         };
         fn number<T: std::str::FromStr>(flag: &str, v: String) -> Result<T, String> {
-            v.parse().map_err(|_| format!("{flag}: not a number: {v:?}"))
+            v.parse()
+                .map_err(|_| format!("{flag}: not a number: {v:?}"))
         }
         match a.as_str() {
             "-h" | "--help" => return Ok(Command::Help),

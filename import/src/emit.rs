@@ -68,7 +68,10 @@ pub fn rust_source(model: &Model) -> String {
     );
     match (&m.texcoords, &m.tangents) {
         (None, _) => {
-            let _ = writeln!(s, "pub static {n}: ::fixshade::mesh::Mesh<'static> = {mesh};");
+            let _ = writeln!(
+                s,
+                "pub static {n}: ::fixshade::mesh::Mesh<'static> = {mesh};"
+            );
         }
         (Some(_), tangents) => {
             let _ = writeln!(s, "pub static {n}: ::fixshade::mesh::Mesh<'static> = {{");
@@ -82,7 +85,10 @@ pub fn rust_source(model: &Model) -> String {
                 let _ = writeln!(s, "    }};");
                 let _ = writeln!(s, "    match m.with_tangents(&{n}_TANGENTS) {{");
                 let _ = writeln!(s, "        Ok(m) => m,");
-                let _ = writeln!(s, "        Err(_) => panic!(\"tangents shorter than the positions\"),");
+                let _ = writeln!(
+                    s,
+                    "        Err(_) => panic!(\"tangents shorter than the positions\"),"
+                );
             } else {
                 let _ = writeln!(s, "    match {with_uv} {{");
                 let _ = writeln!(s, "        Ok(m) => m,");
@@ -92,10 +98,12 @@ pub fn rust_source(model: &Model) -> String {
             let _ = writeln!(s, "}};");
         }
     }
-    let _ = writeln!(s);
     array(
         &mut s,
-        &format!("`{n}`'s vertex positions (`raw · 2^-{}` model units).", m.frac),
+        &format!(
+            "`{n}`'s vertex positions (`raw · 2^-{}` model units).",
+            m.frac
+        ),
         &format!("{n}_POSITIONS"),
         "[i16; 3]",
         &m.positions,
@@ -159,7 +167,10 @@ fn texture(s: &mut String, model: &Model, tex: &crate::ModelTexture) {
     let (w, h) = (1u32 << c.log2_width, 1u32 << c.log2_height);
     let rep = &c.report;
     let resized = if rep.resized {
-        format!(" (resized from {} × {})", rep.source_size.0, rep.source_size.1)
+        format!(
+            " (resized from {} × {})",
+            rep.source_size.0, rep.source_size.1
+        )
     } else {
         String::new()
     };
@@ -193,7 +204,6 @@ fn texture(s: &mut String, model: &Model, tex: &crate::ModelTexture) {
          Err(_) => panic!(\"texture size and data disagree\"),\n    }};",
         c.log2_width, c.log2_height
     );
-    let _ = writeln!(s);
     match &c.texels {
         TexelData::Rgb565(d) => array(
             s,
@@ -216,7 +226,9 @@ fn texture(s: &mut String, model: &Model, tex: &crate::ModelTexture) {
         TexelData::Palette8 { indices, palette } => {
             array(
                 s,
-                &format!("`{n}`'s texels, indices into `{n}_PALETTE`, row by row from the top left."),
+                &format!(
+                    "`{n}`'s texels, indices into `{n}_PALETTE`, row by row from the top left."
+                ),
                 &format!("{n}_INDICES"),
                 "u8",
                 indices,

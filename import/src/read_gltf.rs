@@ -80,7 +80,9 @@ pub fn read(path: &Path) -> Result<SourceMesh, Error> {
     match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => {
             for node in scene.nodes() {
-                reader.node(&node, IDENTITY, 0).map_err(|m| parse(None, m))?;
+                reader
+                    .node(&node, IDENTITY, 0)
+                    .map_err(|m| parse(None, m))?;
             }
         }
         None => {
@@ -149,18 +151,26 @@ impl Reader<'_> {
             })
         };
         let normal = |n: [f32; 3]| -> [f64; 3] {
-            core::array::from_fn(|r| sign * (0..3).map(|c| cof(r, c) * f64::from(n[c])).sum::<f64>())
+            core::array::from_fn(|r| {
+                sign * (0..3).map(|c| cof(r, c) * f64::from(n[c])).sum::<f64>()
+            })
         };
         for (pi, prim) in mesh.primitives().enumerate() {
             let what = format!("mesh {} primitive {pi}", mesh.index());
             let mode = prim.mode();
-            if !matches!(mode, Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+            if !matches!(
+                mode,
+                Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+            ) {
                 self.out
                     .warnings
                     .push(format!("{what}: {mode:?} skipped (not triangles)"));
                 continue;
             }
-            let texture = prim.material().pbr_metallic_roughness().base_color_texture();
+            let texture = prim
+                .material()
+                .pbr_metallic_roughness()
+                .base_color_texture();
             let set = texture.as_ref().map_or(0, |t| t.tex_coord());
             if let Some(info) = texture {
                 let t = self.texture(&info.texture())?;
@@ -203,11 +213,18 @@ impl Reader<'_> {
             };
             let k = indices.len();
             let tris: Vec<[u32; 3]> = match mode {
-                Mode::Triangles => indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+                Mode::Triangles => indices
+                    .chunks_exact(3)
+                    .map(|t| [t[0], t[1], t[2]])
+                    .collect(),
                 // triangle i of a strip: (i, i+1, i+2) for even i, (i, i+2, i+1) for odd
                 Mode::TriangleStrip => (0..k.saturating_sub(2))
                     .map(|i| {
-                        let (b, c) = if i % 2 == 0 { (i + 1, i + 2) } else { (i + 2, i + 1) };
+                        let (b, c) = if i % 2 == 0 {
+                            (i + 1, i + 2)
+                        } else {
+                            (i + 2, i + 1)
+                        };
                         [indices[i], indices[b], indices[c]]
                     })
                     .collect(),
@@ -278,7 +295,11 @@ fn percent_decode(uri: &str) -> String {
     let mut i = 0;
     while i < b.len() {
         let hex = |c: u8| (c as char).to_digit(16);
-        match (b[i], b.get(i + 1).copied().and_then(hex), b.get(i + 2).copied().and_then(hex)) {
+        match (
+            b[i],
+            b.get(i + 1).copied().and_then(hex),
+            b.get(i + 2).copied().and_then(hex),
+        ) {
             (b'%', Some(h), Some(l)) => {
                 out.push((h * 16 + l) as u8);
                 i += 3;
@@ -317,7 +338,10 @@ mod tests {
         assert_eq!(percent_decode("a%20b.bin"), "a b.bin");
         assert_eq!(percent_decode("100%.bin"), "100%.bin");
         let (mime, bytes) = decode_data_uri("data:application/octet-stream;base64,AAEC").unwrap();
-        assert_eq!((mime, bytes.unwrap()), ("application/octet-stream", vec![0, 1, 2]));
+        assert_eq!(
+            (mime, bytes.unwrap()),
+            ("application/octet-stream", vec![0, 1, 2])
+        );
         assert!(decode_data_uri("mesh.bin").is_none());
     }
 

@@ -154,8 +154,9 @@ fn read_bytes(path: &Path, bytes: &[u8]) -> Result<SourceMesh, Error> {
             .push(format!("{polylines} polylines (`l` lines) skipped"));
     }
     if partial[0] {
-        out.warnings
-            .push("an object has normals on some faces only: its normals are computed instead".into());
+        out.warnings.push(
+            "an object has normals on some faces only: its normals are computed instead".into(),
+        );
     }
     if partial[1] {
         out.warnings.push(
@@ -459,8 +460,9 @@ mod tests {
 
     #[test]
     fn texcoords_flip_v_and_polylines_are_skipped() {
-        let m = parse("v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0.25\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\nl 1 2 3\n")
-            .unwrap();
+        let m =
+            parse("v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0.25\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\nl 1 2 3\n")
+                .unwrap();
         assert_eq!(m.triangles.len(), 1);
         assert_eq!(m.triangles[0].corners[0].texcoord, Some([0.0, 0.75]));
         assert_eq!(m.triangles[0].corners[2].texcoord, Some([1.0, 0.0]));

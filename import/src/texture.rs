@@ -154,7 +154,9 @@ pub fn decode_png(bytes: &[u8], path: &Path) -> Result<Image, Error> {
         .output_buffer_size()
         .ok_or_else(|| fail("image too large".into()))?;
     let mut buf = vec![0u8; size];
-    let info = reader.next_frame(&mut buf).map_err(|e| fail(e.to_string()))?;
+    let info = reader
+        .next_frame(&mut buf)
+        .map_err(|e| fail(e.to_string()))?;
     let channels = match info.color_type {
         png::ColorType::Grayscale => 1,
         png::ColorType::GrayscaleAlpha => 2,
@@ -319,7 +321,11 @@ fn nearest_code(v: u8, bits: u32) -> u8 {
 
 /// The `Rgb565` word nearest to `p` as the renderer expands it.
 pub fn rgb565(p: [u8; 3]) -> u16 {
-    let (r, g, b) = (nearest_code(p[0], 5), nearest_code(p[1], 6), nearest_code(p[2], 5));
+    let (r, g, b) = (
+        nearest_code(p[0], 5),
+        nearest_code(p[1], 6),
+        nearest_code(p[2], 5),
+    );
     (u16::from(r) << 11) | (u16::from(g) << 5) | u16::from(b)
 }
 
