@@ -201,6 +201,14 @@ fn fits(min: f64, max: f64, frac: u8) -> bool {
     ok(min) && ok(max)
 }
 
+/// What makes a vertex: quantised position, Q14 normal, Q12 texture
+/// coordinate (zero without).
+type VertexKey = ([i16; 3], [i16; 3], [i16; 2]);
+
+/// A triangle's use of an edge: (triangle, its corner at the edge's lower
+/// position id, its corner at the higher).
+type EdgeUse = (usize, usize, usize);
+
 fn mesh_error(step: &'static str) -> impl Fn(MeshError) -> Error {
     move |source| Error::Mesh { step, source }
 }
@@ -433,7 +441,7 @@ pub fn process(
     }
 
     // 5. weld
-    let mut vertex_id: HashMap<([i16; 3], [i16; 3], [i16; 2]), u32> = HashMap::new();
+    let mut vertex_id: HashMap<VertexKey, u32> = HashMap::new();
     let mut mesh = CompactMesh {
         frac,
         ..CompactMesh::default()
@@ -551,7 +559,7 @@ fn crease_groups(
     let cos = angle.to_radians().cos() - 1e-9;
     let mut parent: Vec<u32> = (0..3 * triangles as u32).collect();
     // edge (low, high position) → [(triangle, corner at low, corner at high)]
-    let mut edges: HashMap<(u32, u32), Vec<(usize, usize, usize)>> = HashMap::new();
+    let mut edges: HashMap<(u32, u32), Vec<EdgeUse>> = HashMap::new();
     for t in 0..triangles {
         for j in 0..3 {
             let (a, b) = (3 * t + j, 3 * t + (j + 1) % 3);

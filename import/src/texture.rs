@@ -360,12 +360,12 @@ fn palettise(pixels: &[[u8; 3]], distinct: &BTreeMap<[u8; 3], usize>) -> (Vec<u8
     let mut fits = true;
     for &p in pixels {
         let w = rgb565(p);
-        if !index.contains_key(&w) {
+        if let std::collections::hash_map::Entry::Vacant(e) = index.entry(w) {
             if exact.len() == 256 {
                 fits = false;
                 break;
             }
-            index.insert(w, exact.len() as u8);
+            e.insert(exact.len() as u8);
             exact.push(w);
         }
     }
@@ -414,8 +414,8 @@ fn palettise(pixels: &[[u8; 3]], distinct: &BTreeMap<[u8; 3], usize>) -> (Vec<u8
         let mut sums = vec![([0u64; 3], 0u64); palette.len()];
         for ((c, n), &k) in colours.iter().zip(&assign) {
             let s = &mut sums[usize::from(k)];
-            for ch in 0..3 {
-                s.0[ch] += u64::from(c[ch]) * *n as u64;
+            for (acc, &ch) in s.0.iter_mut().zip(c) {
+                *acc += u64::from(ch) * *n as u64;
             }
             s.1 += *n as u64;
         }

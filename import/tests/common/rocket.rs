@@ -322,7 +322,7 @@ pub fn texture_pixels() -> Vec<[u8; 3]> {
                 v if (0.40..0.44).contains(&v) => blue,
                 v if (0.78..0.86).contains(&v) => {
                     // the roll pattern: quarters of the circumference
-                    if ((u * 4.0) as usize + usize::from(v > 0.82)) % 2 == 0 {
+                    if ((u * 4.0) as usize + usize::from(v > 0.82)) & 1 == 0 {
                         black
                     } else {
                         white
