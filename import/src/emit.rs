@@ -33,8 +33,8 @@ pub fn rust_source(model: &Model) -> String {
     let _ = writeln!(
         s,
         "/// Fraction bits of `{n}_POSITIONS`: a position is `raw · 2^-{}` model units\n\
-         /// (quantisation step {step}; every coordinate within half a step of the file's).",
-        m.frac
+         /// (quantisation step 2^-{} = {step}; largest rounding error {:.3e}).",
+        m.frac, m.frac, r.max_position_error
     );
     let _ = writeln!(s, "pub const {n}_FRAC: u8 = {};", m.frac);
     let _ = writeln!(s);

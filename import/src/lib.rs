@@ -405,7 +405,7 @@ pub mod build {
     /// # Errors
     ///
     /// [`Error::NoOutDir`] outside a build script; the errors of
-    /// [`import`](crate::import) and of writing the file.
+    /// [`import`] and of writing the file.
     pub fn generate(
         input: impl AsRef<Path>,
         file_name: &str,

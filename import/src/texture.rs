@@ -501,7 +501,8 @@ fn weights(n_in: u32, n_out: u32) -> Vec<Vec<(usize, f64)>> {
         .collect()
 }
 
-/// `image` resampled to `w × h` (see [`weights`]).
+/// `image` resampled to `w × h`: per axis, area averaging when shrinking,
+/// linear interpolation between pixel centres when growing (edges clamped).
 pub fn resample(image: &Image, w: u32, h: u32) -> Image {
     let (wx, wy) = (weights(image.width, w), weights(image.height, h));
     let sw = image.width as usize;
