@@ -206,7 +206,8 @@ pub fn nearest_power_of_two(n: u32) -> u32 {
 /// # Errors
 ///
 /// [`Error::TextureSize`] for a side that is not a power of two up to 2^15
-/// when `resize` is false.
+/// when `resize` is false; [`Error::Texture`] when `image.pixels` does not
+/// hold `width · height` pixels.
 pub fn convert(
     image: &Image,
     path: &Path,
@@ -214,6 +215,17 @@ pub fn convert(
     wrap: Wrap,
     resize: bool,
 ) -> Result<ConvertedTexture, Error> {
+    if image.pixels.len() as u64 != u64::from(image.width) * u64::from(image.height) {
+        return Err(Error::Texture {
+            path: path.to_path_buf(),
+            message: format!(
+                "{} pixels for {} × {}",
+                image.pixels.len(),
+                image.width,
+                image.height
+            ),
+        });
+    }
     let (lw, lh) = (log2_exact(image.width), log2_exact(image.height));
     let mut warnings = Vec::new();
     if image.had_alpha {
@@ -512,7 +524,7 @@ pub fn resample(image: &Image, w: u32, h: u32) -> Image {
             let mut acc = [0.0f64; 3];
             for &(y, a) in ry {
                 for &(x, b) in rx {
-                    let p = image.pixels[y * sw + x];
+                    let p = image.pixels.get(y * sw + x).copied().unwrap_or([0; 3]);
                     for k in 0..3 {
                         acc[k] += a * b * f64::from(p[k]);
                     }
