@@ -597,9 +597,23 @@ STAGES = [
 STAGE_NAMES = [s for s, _ in STAGES] + ["other"]
 
 
+def _symbol_file(path: Path) -> Path:
+    """RISC-V images: a copy without relocations and `.L*` local symbols (the images keep
+    `.L0` labels for their relocations, and llvm-symbolizer would name the outermost
+    function after them)."""
+    with open(path, "rb") as f:
+        if ELFFile(f)["e_machine"] != "EM_RISCV":
+            return path
+    out = path.with_name(path.name + ".sym")
+    if not out.exists() or out.stat().st_mtime < path.stat().st_mtime:
+        subprocess.run(["llvm-objcopy", "-w", "-R", ".rela*", "-N", ".L*", str(path), str(out)], check=True)
+    return out
+
+
 def symbolize(path: Path, addrs: list[int]) -> dict[int, list[tuple[str, str]]]:
     """address -> inline stack [(function, file:line)], innermost first."""
     inp = "".join(f"{a:#x}\n" for a in addrs)
+    path = _symbol_file(path)
     out = subprocess.run(["llvm-symbolizer", "--obj", str(path), "--inlining", "--functions=linkage",
                           "--no-demangle"], input=inp, capture_output=True, text=True, check=True).stdout
     res = {}
