@@ -3,14 +3,17 @@
 configuration, runs each image in QEMU, checks its checksum against the host
 reference, and prints the resources table of the README.
 
+Cores: m0 (QEMU microbit), m4f (mps2-an386), rv32imc (virt, riscv32imc-unknown-none-elf).
+
     python3 firmware/run.py                 # build, run, print the table (about 2 min when built)
     python3 firmware/run.py --check         # CI: also fail on any mismatch; last line "N passed, N failed"
     python3 firmware/run.py --cores m0 --configs flat,blinn_phong
     python3 firmware/run.py --no-build      # the images as they are (firmware/target/images/)
     python3 firmware/run.py --profile release-z --cores m0   # the same at opt-level "z"
 
-Needs: qemu-system-arm (Debian: apt-get install qemu-system-arm), the rustup
-targets thumbv6m-none-eabi and thumbv7em-none-eabihf, pyelftools.
+Needs: qemu-system-arm and qemu-system-riscv32 (Debian: apt-get install
+qemu-system-arm qemu-system-misc), the rustup targets thumbv6m-none-eabi,
+thumbv7em-none-eabihf and riscv32imc-unknown-none-elf, pyelftools.
 
 Per image (one configuration, the standard scene, `fixshade-qemu` built at
 opt-level 3 with LTO):
@@ -23,15 +26,20 @@ opt-level 3 with LTO):
     (one instruction = 1 ns of virtual time), so the count is exact to one
     tick (62.5 instructions on the microbit, 40 on the mps2) and
     deterministic; the checker requires 62.5 / 40 instructions per tick;
+    rv32imc: the `minstret` CSR, exact under `-icount shift=0` (QEMU returns
+    its instruction counter): the checker requires that a loop of 4n
+    instructions reads exactly 2n more than one of 2n, and the image that the
+    CLINT's mtime (100 instructions per tick) agrees within one tick;
   * stack: the painted stack's low-water mark (cortex-m-rt `paint-stack`):
     the image's peak (bytes below the top after start-up, set-up and both
     frames) and the frame's own (below the SP at the call of the frame
     function: the stack is painted again before the frames);
   * flash and RAM: section and symbol sizes of the ELF (pyelftools).
 The stack sits below the statics (build.rs writes memory.x): an overflow
-faults and the image exits with status 1. `--check` proves it: it builds the
-M0 and M4F `lambert_gouraud` images with a 2 KiB stack and requires each to
-exit 1 with "stack overflow".
+faults and the image exits with status 1 (rv32imc: the stack has its own
+region, and a locked PMP entry makes the 256 bytes below it inaccessible).
+`--check` proves it: it builds the `lambert_gouraud` image of every core with
+a 2 KiB stack and requires each to exit 1 with "stack overflow".
 """
 
 import argparse
@@ -54,6 +62,8 @@ CORES = {
     #        clock for frames per second, what that clock is)
     "m0": ("thumbv6m-none-eabi", "microbit", 62.5, 16 * 1024, 133e6, "133 MHz"),
     "m4f": ("thumbv7em-none-eabihf", "mps2-an386", 40.0, 4 * 1024 * 1024, 168e6, "168 MHz"),
+    # instructions from minstret (1 per count); RAM: what memory.x gives the image
+    "rv32imc": ("riscv32imc-unknown-none-elf", "virt", 1.0, 1024 * 1024, 160e6, "160 MHz"),
 }
 QEMU_TIMEOUT = 120
 # function names (mangled) counted as "fixshade + scene code": fixshade, this
@@ -81,8 +91,13 @@ def build(core, config, profile="release", env=None, name=None):
 
 def qemu(core, elf):
     machine = CORES[core][1]
-    cmd = ["timeout", str(QEMU_TIMEOUT), "qemu-system-arm", "-M", machine, "-nographic",
-           "-semihosting-config", "enable=on,target=native", "-icount", "shift=0", "-kernel", str(elf)]
+    if core.startswith("rv"):
+        # no firmware (the reset vector jumps to the ELF at 0x8000_0000); UART on stdout
+        cmd = ["timeout", str(QEMU_TIMEOUT), "qemu-system-riscv32", "-M", machine, "-bios", "none",
+               "-nographic", "-icount", "shift=0", "-kernel", str(elf)]
+    else:
+        cmd = ["timeout", str(QEMU_TIMEOUT), "qemu-system-arm", "-M", machine, "-nographic",
+               "-semihosting-config", "enable=on,target=native", "-icount", "shift=0", "-kernel", str(elf)]
     t = time.time()
     r = subprocess.run(cmd, capture_output=True, text=True, stdin=subprocess.DEVNULL)
     return r.returncode, r.stdout + r.stderr, time.time() - t
@@ -99,6 +114,7 @@ def elf_sizes(path):
     with open(path, "rb") as fh:
         f = ELFFile(fh)
         sec = {s.name: s for s in f.iter_sections()}
+        riscv = f["e_machine"] == "EM_RISCV"
         size = lambda n: sec[n]["sh_size"] if n in sec else 0
         text_lo, text_hi = sec[".text"]["sh_addr"], sec[".text"]["sh_addr"] + size(".text")
         code = {"fixshade": 0, "builtins": 0, "runtime": 0}
@@ -110,7 +126,7 @@ def elf_sizes(path):
             if s["st_info"]["type"] == "STT_FUNC" and text_lo <= a < text_hi:
                 if any(k in n for k in OURS):
                     code["fixshade"] += z
-                elif "compiler_builtins" in n or n.startswith("__aeabi"):
+                elif "compiler_builtins" in n or n.startswith("__aeabi") or (riscv and n.startswith("__")):
                     code["builtins"] += z
                 else:
                     code["runtime"] += z
@@ -119,13 +135,14 @@ def elf_sizes(path):
         # what no function symbol covers (padding, literal pools outside functions)
         code["runtime"] += size(".text") - sum(code.values())
         mesh = sum(z for n, z in objects.items() if "8standard6SPHERE" in n)
-        flash = size(".vector_table") + size(".text") + size(".rodata") + size(".data")
+        # RISC-V: riscv-rt's start-up code is in .init.rust
+        flash = size(".vector_table") + size(".text") + size(".init.rust") + size(".rodata") + size(".data")
         buffers = {n: objects.get(n, 0) for n in ["STRIP", "DEPTH", "CACHE", "BINS", "CARRY_RECORDS"]}
         return {
             "flash": flash,
             "code_fixshade": code["fixshade"],
             "code_builtins": code["builtins"],
-            "code_runtime": code["runtime"] + size(".vector_table"),
+            "code_runtime": code["runtime"] + size(".vector_table") + size(".init.rust"),
             "mesh": mesh,
             "rodata_other": size(".rodata") - mesh + size(".data"),
             "ram_static": size(".data") + size(".bss") + size(".uninit"),
@@ -137,7 +154,7 @@ def elf_sizes(path):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--check", action="store_true", help="exit 1 on any failure (CI)")
-    ap.add_argument("--cores", default="m0,m4f")
+    ap.add_argument("--cores", default="m0,m4f,rv32imc")
     ap.add_argument("--configs", default=",".join(CONFIGS))
     ap.add_argument("--no-build", action="store_true")
     ap.add_argument("--profile", default="release", help="cargo profile: release (opt-level 3) or release-z")
@@ -173,9 +190,14 @@ def main():
             r = json.loads(line[len("RESULT "):])
             want = host[config]["checksum"]
             check(r["checksum"] == want, f"{what}: checksum {r['checksum']}, host {want}")
-            tick = r["calib_instructions"] / r["calib_ticks"]
-            check(abs(tick - per_tick) < 0.01 * per_tick,
-                  f"{what}: {tick:.3f} instructions per tick, not {per_tick}: is -icount shift=0 in effect?")
+            if core.startswith("rv"):
+                n, c1, c2 = r["calib_n"], r["calib_instructions"], r["calib_instructions_2n"]
+                check(c2 - c1 == 2 * n and 0 <= c1 - 2 * n < 16,
+                      f"{what}: minstret read {c1} and {c2} for loops of {2 * n} and {4 * n} instructions")
+            else:
+                tick = r["calib_instructions"] / r["calib_ticks"]
+                check(abs(tick - per_tick) < 0.01 * per_tick,
+                      f"{what}: {tick:.3f} instructions per tick, not {per_tick}: is -icount shift=0 in effect?")
             check(0 < r["stack_frame"] < r["stack_peak"] < r["stack_size"],
                   f"{what}: stack: frame {r['stack_frame']}, peak {r['stack_peak']} of {r['stack_size']}")
             r.update(elf_sizes(elf))

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Count Cortex-M instructions of compiled fixshade kernels in Unicorn.
+"""Count Cortex-M and RV32IMC instructions of compiled fixshade kernels in Unicorn.
 
 Library use::
 
@@ -18,6 +18,11 @@ Instructions are counted with a block hook: every translated block is decoded
 once with capstone and its instruction count cached per (address, size).
 Unicorn's per-instruction code hook does not fire for Thumb IT instructions,
 so it undercounts on the M4 (``--selftest`` shows by how much).
+
+Core `rv32imc` (`riscv32imc-unknown-none-elf`: ESP32-C3 class, no FPU): Unicorn's
+32-bit RISC-V mode with the SiFive E31 model (RV32IMAC: no F/D, so a float
+instruction faults), capstone's RISC-V decoder with the C extension (2-byte and
+4-byte instructions); ILP32 calls (a0-a7, then the stack; ra = RETURN).
 """
 from __future__ import annotations
 
@@ -35,13 +40,21 @@ import capstone
 import unicorn
 from elftools.elf.elffile import ELFFile
 from unicorn import arm_const as A
+from unicorn import riscv_const as RV
 
 HERE = Path(__file__).resolve().parent
 KERNELS_DIR = HERE / "kernels"
 CORES = {  # core -> (Unicorn CPU model, Rust target)
     "m0": (A.UC_CPU_ARM_CORTEX_M0, "thumbv6m-none-eabi"),
     "m4f": (A.UC_CPU_ARM_CORTEX_M4, "thumbv7em-none-eabihf"),
+    # RV32IMC (ESP32-C3 class). The E31 model is RV32IMAC: no F/D (a float
+    # instruction would fault), and rv32imc_violations() checks the image for A.
+    "rv32imc": (RV.UC_CPU_RISCV32_SIFIVE_E31, "riscv32imc-unknown-none-elf"),
 }
+
+
+def is_riscv(core: str) -> bool:
+    return core.startswith("rv")
 FLASH, FLASH_SIZE = 0x0000_0000, 4 << 20  # as measure/kernels/memory.x
 RAM, RAM_SIZE = 0x2000_0000, 256 << 10
 RETURN = 0x1000_0000  # LR target (mapped, outside the image); PC == RETURN ends a call
@@ -87,20 +100,34 @@ class Result:
 
 
 class Emulator:
+    gp = 0  # RISC-V: riscv-rt's __global_pointer$ (no linker relaxation uses it; set anyway)
+
     def __init__(self, elf: str | Path, core: str = "m0", ram_size: int = RAM_SIZE):
         """`ram_size`: bytes mapped at RAM (the image's memory.x: 256 KiB for
         the kernels, 1 MiB for measure/frame); the stack starts at its top."""
         self.core, self.elf = core, Path(elf)
         model, _ = CORES[core]
-        # Not UC_MODE_MCLASS: with it Unicorn 2 silently forces a Cortex-M33 model.
-        # The M0/M4 model itself is M-profile and must be set before first use.
-        self.uc = uc = unicorn.Uc(unicorn.UC_ARCH_ARM, unicorn.UC_MODE_THUMB)
+        self.riscv = is_riscv(core)
+        if self.riscv:
+            self.uc = uc = unicorn.Uc(unicorn.UC_ARCH_RISCV, unicorn.UC_MODE_RISCV32)
+            # registers: return values, stack pointer, link register, program counter
+            self.R_RET, self.R_SP, self.R_LR, self.R_PC = (RV.UC_RISCV_REG_A0, RV.UC_RISCV_REG_A1), \
+                RV.UC_RISCV_REG_SP, RV.UC_RISCV_REG_RA, RV.UC_RISCV_REG_PC
+            self.thumb = 0
+        else:
+            # Not UC_MODE_MCLASS: with it Unicorn 2 silently forces a Cortex-M33 model.
+            # The M0/M4 model itself is M-profile and must be set before first use.
+            self.uc = uc = unicorn.Uc(unicorn.UC_ARCH_ARM, unicorn.UC_MODE_THUMB)
+            self.R_RET, self.R_SP, self.R_LR, self.R_PC = (A.UC_ARM_REG_R0, A.UC_ARM_REG_R1), \
+                A.UC_ARM_REG_SP, A.UC_ARM_REG_LR, A.UC_ARM_REG_PC
+            self.thumb = 1
         uc.ctl_set_cpu_model(model)
         assert uc.ctl_get_cpu_model() == model
         uc.mem_map(FLASH, FLASH_SIZE)
         uc.mem_map(RAM, ram_size)
         uc.mem_map(RETURN, 0x1000)
-        uc.mem_write(RETURN, b"\xfe\xe7" * 0x800)  # `b .`, never reached
+        # `j .` / `b .`, never reached
+        uc.mem_write(RETURN, b"\x6f\x00\x00\x00" * 0x400 if self.riscv else b"\xfe\xe7" * 0x800)
         self.funcs: dict[str, tuple[int, int]] = {}  # name -> (address, st_size)
         ram_end = RAM
         with open(self.elf, "rb") as f:
@@ -109,32 +136,68 @@ class Emulator:
                 # Load at the VMA: .data is then initialised without running Reset.
                 v = seg["p_vaddr"]
                 uc.mem_write(v, seg.data() + bytes(seg["p_memsz"] - seg["p_filesz"]))
-                if RAM <= v < RAM + ram_size:
-                    ram_end = max(ram_end, v + seg["p_memsz"])
+            for sec in e.iter_sections():  # statics (not riscv-rt's .stack/.heap reservations)
+                v = sec["sh_addr"]
+                if sec["sh_flags"] & 2 and RAM <= v < RAM + ram_size and sec.name not in (".stack", ".heap"):
+                    ram_end = max(ram_end, v + sec["sh_size"])
             self._text = e.get_section_by_name(".text")["sh_size"]
-            self._code = []  # Thumb ranges between $t/$d mapping symbols
+            self._code = []  # code ranges between $t/$d (Arm) or $x/$d (RISC-V) mapping symbols
             maps = []
+            text_ndx = next(i for i, sec in enumerate(e.iter_sections()) if sec.name == ".text")
             for s in e.get_section_by_name(".symtab").iter_symbols():
                 if s["st_info"]["type"] == "STT_FUNC" and s["st_size"]:
                     self.funcs.setdefault(s.name, (s["st_value"] & ~1, s["st_size"]))
-                if s.name[:2] in ("$t", "$d", "$a"):
-                    maps.append((s["st_value"], s.name[1]))
+                if s.name[:2] in ("$t", "$d", "$a", "$x") and (not self.riscv or s["st_shndx"] == text_ndx):
+                    maps.append((s["st_value"], s.name[1]))  # RISC-V: .text's own ($d of .rodata too)
+                if s.name == "__global_pointer$":
+                    self.gp = s["st_value"]
             maps.sort()
             text = e.get_section_by_name(".text")
             lo, end = text["sh_addr"], text["sh_addr"] + text["sh_size"]
             for (a, kind), (b, _) in zip(maps, maps[1:] + [(end, "")]):
-                if kind == "t" and lo <= a < end:
+                if kind in ("t", "x") and lo <= a < end:
                     self._code.append((a, min(b, end)))
+        if self.riscv:
+            self._riscv_relocs()
         self._starts = sorted((a, n) for n, (a, _) in self.funcs.items())
         self._sizes = {n: s for n, (_, s) in self.funcs.items()}
         self.arena = (ram_end + 7) & ~7  # inputs go here, the stack at the top of RAM
         self.stack_top = RAM + ram_size
-        self.cs = capstone.Cs(capstone.CS_ARCH_ARM, capstone.CS_MODE_THUMB | capstone.CS_MODE_MCLASS)
+        if self.riscv:
+            self.cs = capstone.Cs(capstone.CS_ARCH_RISCV, capstone.CS_MODE_RISCV32 | capstone.CS_MODE_RISCVC)
+        else:
+            self.cs = capstone.Cs(capstone.CS_ARCH_ARM, capstone.CS_MODE_THUMB | capstone.CS_MODE_MCLASS)
         self._blocks: dict[tuple[int, int], tuple[int, str]] = {}
         self._insns, self._by_func, self.limit = 0, Counter(), 0
         self.block_hook = uc.hook_add(unicorn.UC_HOOK_BLOCK, self._on_block)  # handle, for hook_del
         # FPU: Unicorn's Cortex-M4 model executes VFP with no CPACR set-up (and
         # 0xE000ED88 is not mapped); --selftest checks that vmla/vmul.f32 run.
+
+    # RISC-V relocation types (the images are linked with --emit-relocs)
+    RV_CALLS = {16: "branch", 17: "jal", 18: "call", 19: "call", 44: "branch", 45: "jal"}
+    RV_ADDRS = {23: "pcrel_hi20", 26: "hi20"}  # the upper half names the whole address (S + A)
+
+    def _riscv_relocs(self) -> None:
+        """`self.rv_text`: [(offset, kind, target)] of `.rela.text` (kind: call, jal,
+        branch, pcrel_hi20, hi20); `self.rv_call_at`: offsets of `auipc`+`jalr`
+        call pairs (R_RISCV_CALL*). No relaxation: the objects carry no R_RISCV_RELAX."""
+        self.rv_text, self.rv_call_at = [], set()
+        with open(self.elf, "rb") as f:
+            e = ELFFile(f)
+            rel = e.get_section_by_name(".rela.text")
+            if rel is None:
+                raise SystemExit(f"{self.elf}: no .rela.text: link the RISC-V image with --emit-relocs")
+            symtab = e.get_section_by_name(".symtab")
+            value = [s["st_value"] for s in symtab.iter_symbols()]
+            for r in rel.iter_relocations():
+                t = r["r_info_type"]
+                assert t != 51, f"{self.elf}: R_RISCV_RELAX: linker relaxation is not handled"
+                kind = self.RV_CALLS.get(t) or self.RV_ADDRS.get(t)
+                if kind:
+                    self.rv_text.append((r["r_offset"], kind, (value[r["r_info_sym"]] + r["r_addend"]) & 0xFFFF_FFFF))
+                if t in (18, 19):
+                    self.rv_call_at.add(r["r_offset"])
+        self.rv_text.sort()
 
     # -- counting --------------------------------------------------------------
     def _on_block(self, uc, addr, size, _):
@@ -169,23 +232,39 @@ class Emulator:
                 at = (at + len(a) + 7) & ~7
             else:
                 words.append(a & 0xFFFF_FFFF)
-        sp = self.stack_top - 4 * max(0, len(words) - 4)
-        sp &= ~7
+        nreg = 8 if self.riscv else 4  # argument registers: a0-a7 / r0-r3
+        sp = self.stack_top - 4 * max(0, len(words) - nreg)
+        sp &= ~15 if self.riscv else ~7
         assert at < sp - 0x1000, "inputs overflow into the stack"
-        if len(words) > 4:
-            uc.mem_write(sp, u32s(words[4:]))
+        if len(words) > nreg:
+            uc.mem_write(sp, u32s(words[nreg:]))
+        self.set_registers(sp, words)
+        self._insns, self._by_func, self.limit = 0, Counter(), limit
+        start = self.funcs[sym][0]
+        uc.emu_start(start | self.thumb, RETURN)
+        pc = uc.reg_read(self.R_PC)
+        if pc != RETURN:
+            raise RuntimeError(f"{sym}: stopped at {pc:#x} ({self.symbol_at(pc)}) after {self._insns} insns")
+        return Result(uc.reg_read(self.R_RET[0]), self._insns, self._by_func)
+
+    def set_registers(self, sp: int, words=()) -> None:
+        """Every integer register cleared, the first arguments in r0-r3 / a0-a7,
+        SP, the return address RETURN (and Thumb state, gp)."""
+        uc = self.uc
+        if self.riscv:
+            for r in range(RV.UC_RISCV_REG_X1, RV.UC_RISCV_REG_X31 + 1):
+                uc.reg_write(r, 0)
+            for i, w in enumerate(words[:8]):
+                uc.reg_write(RV.UC_RISCV_REG_A0 + i, w)
+            uc.reg_write(RV.UC_RISCV_REG_GP, self.gp)
+            uc.reg_write(RV.UC_RISCV_REG_SP, sp)
+            uc.reg_write(RV.UC_RISCV_REG_RA, RETURN)
+            return
         for r in range(13):
             uc.reg_write(A.UC_ARM_REG_R0 + r, words[r] if r < min(4, len(words)) else 0)
         uc.reg_write(A.UC_ARM_REG_SP, sp)
         uc.reg_write(A.UC_ARM_REG_LR, RETURN | 1)
         uc.reg_write(A.UC_ARM_REG_XPSR, 1 << 24)  # Thumb state, flags clear
-        self._insns, self._by_func, self.limit = 0, Counter(), limit
-        start = self.funcs[sym][0]
-        uc.emu_start(start | 1, RETURN)
-        pc = uc.reg_read(A.UC_ARM_REG_PC)
-        if pc != RETURN:
-            raise RuntimeError(f"{sym}: stopped at {pc:#x} ({self.symbol_at(pc)}) after {self._insns} insns")
-        return Result(uc.reg_read(A.UC_ARM_REG_R0), self._insns, self._by_func)
 
     def count(self, sym: str, args=()) -> int:
         return self.call(sym, args).insns
@@ -208,6 +287,21 @@ class Emulator:
         return self._text
 
     # -- checks ----------------------------------------------------------------
+    def rv32imc_violations(self) -> list[str]:
+        """Instructions in the image's code that RV32IMC lacks (F/D, A), or bytes
+        capstone cannot decode as RV32IMC."""
+        bad = []
+        for a, b in self._code:
+            n = a
+            for i in self.cs.disasm(bytes(self.uc.mem_read(a, b - a)), a):
+                n = i.address + i.size
+                m = i.mnemonic.removeprefix("c.")
+                if (m.startswith("f") and not m.startswith("fence")) or m.startswith(("amo", "lr.", "sc.")):
+                    bad.append(f"{i.address:#x} {self.symbol_at(i.address)}: {i.mnemonic} {i.op_str}")
+            if n != b:
+                bad.append(f"{n:#x} {self.symbol_at(n)}: not decodable as RV32IMC")
+        return bad
+
     def v6m_violations(self) -> list[str]:
         """Instructions in the image's Thumb code that ARMv6-M (M0) lacks."""
         ok32 = {"bl", "dmb", "dsb", "isb", "mrs", "msr"}
@@ -311,7 +405,40 @@ def selftest(profile: str) -> int:
         block = emu.count("clamp_sum", KERNELS["clamp_sum"](64))
         check(block == naive + sum(missed.values()),
               f"{core} clamp_sum(64): block hook {block}, code hook {naive}, missed {dict(missed)}")
-        if core == "m0":
+        if core == "rv32imc":
+            check(naive == block and not missed, f"rv32imc: code hook == block hook ({naive}, nothing predicated)")
+            bad = emu.rv32imc_violations()
+            check(not bad and emu._code, f"rv32imc: only RV32IMC instructions in {len(emu._code)} code ranges {bad[:3]}")
+            # compressed instructions: both sizes execute and each counts once; dot_i32 by hand
+            # (llvm-objdump of the release image): loop c.lw, c.lw, c.addi, mul, c.add, c.addi, bne
+            ran = Counter()
+            h = emu.uc.hook_add(unicorn.UC_HOOK_CODE, lambda uc, addr, size, _: ran.update((size,)))
+            emu.uc.ctl_flush_tb()
+            try:
+                c0, c64 = (emu.count("dot_i32", KERNELS["dot_i32"](n)) for n in (0, 64))
+            finally:
+                emu.uc.hook_del(h)
+                emu.uc.ctl_flush_tb()
+            check(ran[2] > 0 and ran[4] > 0 and ran[2] + ran[4] == c0 + c64,
+                  f"rv32imc: dot_i32 ran {ran[2]} 2-byte (C) and {ran[4]} 4-byte instructions = block count {c0 + c64}")
+            body = [i.mnemonic for i in emu.cs.disasm(bytes(emu.uc.mem_read(*emu.funcs["dot_i32"])),
+                                                        emu.funcs["dot_i32"][0])]
+            loop = body[body.index("c.lw"):body.index("bne") + 1] if "bne" in body and "c.lw" in body else []
+            check(len(loop) == 7 and (c64 - c0) % 64 in (0, 6, 7, 8) and (c64 - c0) // 64 == 7,
+                  f"rv32imc: dot_i32 loop {loop}: count(64) - count(0) = {c64 - c0} = 64 x 7 + {(c64 - c0) - 448}")
+            sf = emu.call("scale_f32", KERNELS["scale_f32"](8)).by_func
+            check(any("mulsf3" in k for k in sf) and any("addsf3" in k for k in sf),
+                  f"rv32imc: scale_f32 calls soft float {sorted(short(k) for k in sf if k != 'scale_f32')}")
+            # the E31 model has no FPU: fadd.s must fault
+            at = emu.arena + 0x100
+            emu.uc.mem_write(at, (0x00107053).to_bytes(4, "little") + b"\x82\x80")  # fadd.s f0,f0,f1; ret
+            try:
+                emu.set_registers(emu.stack_top)
+                emu.uc.emu_start(at, RETURN, count=2)
+                check(False, "rv32imc: the E31 model faults on fadd.s (no F extension)")
+            except unicorn.UcError as err:
+                check(True, f"rv32imc: the E31 model faults on fadd.s ({err})")
+        elif core == "m0":
             check(naive == block, "m0: code hook == block hook (no IT on v6-M)")
             bad = emu.v6m_violations()
             check(not bad and emu._code, f"m0: no ARMv7-M instructions in {len(emu._code)} Thumb ranges {bad[:3]}")

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Cortex-M instruction counts and code sizes of every shading configuration.
+"""Cortex-M and RV32IMC instruction counts and code sizes of every shading configuration.
 
-Builds measure/kernels for thumbv6m-none-eabi (M0) and thumbv7em-none-eabihf
-(M4F), counts the span and triangle kernels of measure/kernels/src/shading.rs in
-Unicorn (cortex.py), writes measure/out/counts.json and prints a table.
+Builds measure/kernels for thumbv6m-none-eabi (M0), thumbv7em-none-eabihf
+(M4F) and riscv32imc-unknown-none-elf (rv32imc: ESP32-C3 class, no FPU), counts
+the span and triangle kernels of measure/kernels/src/shading.rs in Unicorn
+(cortex.py), writes measure/out/counts.json and prints a table.
 
     python3 measure/counts.py              # build, count all 75 configurations, write JSON
     python3 measure/counts.py --check      # count only what measure/bounds.json bounds;
@@ -20,7 +21,8 @@ Per configuration (tier, shading, light set) and core:
 * tri_32: (c(tri with legs of 32 pixels) − c(no draw call)) / pixels: whole-triangle
   instructions per pixel (528 pixels);
 * span_bytes, tri_bytes: flash bytes of the kernel and every function it reaches
-  by direct calls/branches in the image (static call graph), i.e. what a program
+  by direct calls/branches in the image (static call graph; RISC-V: from the
+  relocations the image keeps, --emit-relocs), i.e. what a program
   using only this configuration links, without the runtime; *_lib excludes
   compiler-builtins and libm (soft float, 64-bit multiply, division), which any
   program on that core shares;
@@ -91,11 +93,33 @@ def insns(emu: Emulator, name: str):
             yield from emu.cs.disasm(bytes(emu.uc.mem_read(lo, hi - lo)), lo)
 
 
+def rv_relocs_in(emu: Emulator, name: str, kinds) -> list[tuple[int, str, int]]:
+    """RISC-V: the `.rela.text` entries (offset, kind, target) inside function `name`."""
+    start, size = emu.funcs[name]
+    if not hasattr(emu, "_rv_offs"):
+        emu._rv_offs = [o for o, _, _ in emu.rv_text]
+    i = bisect.bisect_left(emu._rv_offs, start)
+    out = []
+    while i < len(emu.rv_text) and emu.rv_text[i][0] < start + size:
+        if emu.rv_text[i][1] in kinds:
+            out.append(emu.rv_text[i])
+        i += 1
+    return out
+
+
 def callees(emu: Emulator, name: str) -> set[str]:
     """Functions that `name` branches to directly (bl/b/b<cc>). Literal pools are
     not scanned for addresses: their constants collide with code addresses, and
-    this code makes no indirect calls (`blx reg`), which `indirect_calls` checks."""
+    this code makes no indirect calls (`blx reg`), which `indirect_calls` checks.
+    RISC-V: the targets of its call, jal and branch relocations (`auipc`+`jalr`
+    pairs, `jal`, `b<cc>` to another function; the image keeps them: --emit-relocs)."""
     start, size = emu.funcs[name]
+    if emu.riscv:
+        out = {emu.symbol_at(t) for _, _, t in rv_relocs_in(emu, name, ("call", "jal", "branch"))
+               if not start <= t < start + size}
+        out |= {emu.symbol_at(t) for _, t in rv_links(emu, name) if t is not None and not start <= t < start + size}
+        out.discard(name)
+        return {f for f in out if not f.startswith("?")}
     out = set()
     for i in insns(emu, name):
         if i.mnemonic.split(".")[0].startswith("b") and i.op_str.startswith("#"):
@@ -106,9 +130,40 @@ def callees(emu: Emulator, name: str) -> set[str]:
     return {f for f in out if not f.startswith("?")}
 
 
+def rv_indirect(emu: Emulator, name: str) -> list:
+    """RISC-V: the indirect calls in `name`: `jalr`/`c.jalr` that link (rd = ra) and are
+    not the `jalr` of an `auipc`+`jalr` call pair (R_RISCV_CALL*). Jumps without link
+    through a register other than ra (`c.jr a5`) are switch jump tables inside the
+    function (their targets are `.rela.rodata` entries into its own body)."""
+    return [i for i, target in rv_links(emu, name) if target is None]
+
+
+def rv_links(emu: Emulator, name: str) -> list:
+    """RISC-V: every linking register jump (`jalr ra, …`, `c.jalr`) in `name` with its
+    target: through an R_RISCV_CALL* pair, or an `auipc rX` + `jalr ra, off(rX)` pair
+    the assembler resolved itself (a call inside the same section: recursion), else None."""
+    out, prev = [], None
+    for i in insns(emu, name):
+        m = i.mnemonic
+        if m == "c.jalr" or (m == "jalr" and i.op_str.startswith("ra")):
+            target = None
+            if m == "jalr" and prev is not None and prev.mnemonic == "auipc":
+                reg, hi = prev.op_str.split(", ")
+                ops = i.op_str.split(", ")  # "ra" | "ra, rs, off" (capstone omits rs = ra, off = 0)
+                rs, off = (ops[1], int(ops[2], 0)) if len(ops) == 3 else ("ra", 0)
+                if rs == reg:
+                    target = (prev.address + (int(hi, 0) << 12) + off) & 0xFFFF_FFFF
+            out.append((i, target))
+        prev = i
+    return out
+
+
 def indirect_calls(emu: Emulator, fs: set[str]) -> list[str]:
-    """`blx`/`bx` through a register other than lr in the functions `fs`."""
+    """`blx`/`bx` through a register other than lr in the functions `fs`
+    (RISC-V: `rv_indirect`)."""
     bad = []
+    if emu.riscv:
+        return [f"{f}: {i.mnemonic} {i.op_str}" for f in fs for i in rv_indirect(emu, f)]
     for f in fs:
         for i in insns(emu, f):
             if i.mnemonic in ("blx", "bx") and i.op_str != "lr":
@@ -190,6 +245,9 @@ def run(configs: list[tuple[str, str, str]], profile: str, sizes: bool = True) -
         if core == "m0":
             bad = emu.v6m_violations()
             assert not bad, f"ARMv7-M instructions in the M0 image: {bad[:3]}"
+        if core == "rv32imc":
+            bad = emu.rv32imc_violations()
+            assert not bad, f"instructions beyond RV32IMC in the rv32imc image: {bad[:3]}"
         ref = {}
         for tier, shading, lights in sorted(configs, key=lambda c: c[0] != "f32"):
             d, px = measure(emu, tier, shading, lights, sizes)

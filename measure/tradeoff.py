@@ -3,7 +3,7 @@
 
 Merges measure/out/host.json (error of a 240×240 lit sphere against the f64
 reference, host ns per pixel; written by `cargo bench --bench tradeoff`) with
-measure/out/counts.json (Cortex-M0 / M4F instruction counts and code sizes in
+measure/out/counts.json (Cortex-M0 / M4F / RV32IMC instruction counts and code sizes in
 Unicorn; written by `python3 measure/counts.py`) and writes docs/tradeoff.md
 (tables, Phong vs Gouraud, the cost of the light set, the targets) and
 docs/img/tradeoff.svg (error against M0 / M4F instructions per pixel, Pareto fronts).
@@ -37,7 +37,10 @@ TIERS = ["q14_1", "q14_2", "q30", "f32", "f32fast"]
 SHADINGS = ["flat", "gouraud", "phong", "phong_inc"]
 LIGHTS = ["dir_diffuse", "dir_blinn", "dir_phong", "point4_blinn", "spot_blinn"]
 CORES = ["m0", "m4f"]
-CORE_NAME = {"m0": "Cortex-M0", "m4f": "Cortex-M4F"}
+CORE_NAME = {"m0": "Cortex-M0", "m4f": "Cortex-M4F", "rv32imc": "RV32IMC"}
+# RV32IMC (riscv32imc-unknown-none-elf, no FPU: ESP32-C3 class): a column of the tables and
+# the section "Fixed point without an FPU"; not in the plot, the Phong-Gouraud ratios or the M0 targets
+RV = "rv32imc"
 
 TIER_DESC = {
     "q14_1": "`Q14<1>`: Q2.14, one Newton step of the inverse square root",
@@ -290,8 +293,9 @@ def markdown(d: Data, command: str, ran: bool) -> str:
         + ".\n")
 
     header = ["shading", "tier", "max LSB", "mean LSB", "PSNR dB", "565 identical %",
-              "M0 span", "M4F span", "M0 triangle", "M4F triangle",
-              "M0 setup", "M4F setup", "M0 code B", "M4F code B", "host ns/px", "host ratio"]
+              "M0 span", "M4F span", "RV32IMC span", "M0 triangle", "M4F triangle", "RV32IMC triangle",
+              "M0 setup", "M4F setup", "RV32IMC setup", "M0 code B", "M4F code B", "RV32IMC code B",
+              "host ns/px", "host ratio"]
     align = ["l", "l"] + ["r"] * (len(header) - 2)
     add("## Per light set\n")
     add("Instruction columns are per pixel except *setup* (per triangle).\n")
@@ -310,12 +314,16 @@ def markdown(d: Data, command: str, ran: bool) -> str:
                 DASH if ident is None else f"{100 * ident:.2f}",
                 f_instr(d.c(*key, "m0", "span_64")),
                 f_instr(d.c(*key, "m4f", "span_64")),
+                f_instr(d.c(*key, RV, "span_64")),
                 f_instr(d.c(*key, "m0", "tri_32")),
                 f_instr(d.c(*key, "m4f", "tri_32")),
+                f_instr(d.c(*key, RV, "tri_32")),
                 f_int(d.c(*key, "m0", "setup")),
                 f_int(d.c(*key, "m4f", "setup")),
+                f_int(d.c(*key, RV, "setup")),
                 f_int(d.c(*key, "m0", "tri_bytes")),
                 f_int(d.c(*key, "m4f", "tri_bytes")),
+                f_int(d.c(*key, RV, "tri_bytes")),
                 f_fix(d.h(*key, "host_ns_per_pixel"), 1),
                 f_fix(d.h(*key, "host_ratio_to_f32_phong_dir_blinn"), 2),
             ])
@@ -389,6 +397,30 @@ def markdown(d: Data, command: str, ran: bool) -> str:
                              f_instr(ta), f_instr(tb), f_ratio(tb, ta),
                              f_int(d.c(*a, core, "setup")), f_int(d.c(*b, core, "setup"))])
     add(table(header, rows, ["l", "l", "l"] + ["r"] * 8) + "\n")
+
+    # Fixed point without an FPU: RV32IMC, Q14 against the f32 tier
+    add("## Fixed point without an FPU (RV32IMC)\n")
+    add("What the `Q14` tier buys where `f32` is soft float: the same kernels counted on "
+        "`riscv32imc-unknown-none-elf` (ESP32-C3 class; Unicorn's RV32 mode, `measure/counts.py`), "
+        "`f32` instructions per pixel ÷ `Q14` (`q14_2`), per shading and light set, span and whole "
+        "528-pixel triangle. `phong_inc` (`IncrementalPhongShading`, Q14 only) is set against the "
+        "`f32` tier's general `phong`. Whole frames of the standard scene: the RV32IMC table under "
+        "*Whole frames* above.\n")
+    header = ["shading", "light set", "Q14 span", "f32 span", "f32 ÷ Q14 span", "Q14 triangle",
+              "f32 triangle", "f32 ÷ Q14 triangle", "Q14 code B", "f32 code B"]
+    rows = []
+    for s in [x for x in d.shadings if x in ("flat", "gouraud", "phong", "phong_inc", "phong_quad")]:
+        for lights in d.lights:
+            q, f = ("q14_2", s, lights), ("f32", "phong" if s == "phong_inc" else s, lights)
+            if q not in d.keys or f not in d.keys or d.c(*q, RV, "span_64") is None:
+                continue
+            rows.append([s if s != "phong_inc" else "phong_inc (f32: phong)", f"`{lights}`",
+                         f_instr(d.c(*q, RV, "span_64")), f_instr(d.c(*f, RV, "span_64")),
+                         f_ratio(d.c(*f, RV, "span_64"), d.c(*q, RV, "span_64")),
+                         f_instr(d.c(*q, RV, "tri_32")), f_instr(d.c(*f, RV, "tri_32")),
+                         f_ratio(d.c(*f, RV, "tri_32"), d.c(*q, RV, "tri_32")),
+                         f_int(d.c(*q, RV, "tri_bytes")), f_int(d.c(*f, RV, "tri_bytes"))])
+    add(table(header, rows, ["l", "l"] + ["r"] * 8) + "\n")
 
     # Targets
     add("## Targets\n")

@@ -10,12 +10,18 @@
 //!   `RESULT {json}` line through semihosting and exits with status 0, or
 //!   prints `FAIL ...` and exits with 1: on a failed frame, a panic, and
 //!   any fault (a stack overflow faults: the stack is below the statics).
+//! * `riscv32imc-unknown-none-elf` (QEMU `virt`, RV32IMC): the same frames,
+//!   counted with `minstret` (exact under `-icount`), output through the UART,
+//!   exit through the test device (`src/firmware_riscv.rs`).
 //! * the host: `cargo run -p fixshade-qemu --profile host` prints, as JSON,
 //!   every configuration's checksum, from the same library functions, in
 //!   bands of 4 and 8 rows and as one 240-row band (all must agree).
 #![cfg_attr(target_os = "none", no_std, no_main)]
 
-#[cfg(target_os = "none")]
+#[cfg(all(target_os = "none", target_arch = "arm"))]
+mod firmware;
+#[cfg(all(target_os = "none", target_arch = "riscv32"))]
+#[path = "firmware_riscv.rs"]
 mod firmware;
 
 #[cfg(not(target_os = "none"))]

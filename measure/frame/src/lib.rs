@@ -4,7 +4,10 @@
 //!
 //! One module per configuration (`lambert_gouraud`, `blinn_gouraud`,
 //! `blinn_phong`, `blinn_phong_inc`, `flat`, and `lambert_gouraud_refine`:
-//! `lambert_gouraud` with silhouette refinement), each with
+//! `lambert_gouraud` with silhouette refinement; and the `f32` tier's
+//! `lambert_gouraud_f32`, `blinn_gouraud_f32`, `blinn_phong_f32`, `flat_f32`:
+//! the same scenes lit in `f32`, soft float on a core without an FPU; the
+//! firmware image exports them on RISC-V only), each with
 //!
 //! * `full(t, buffers, display)`: a 240 × 240 [`FullFrame`] (colour + depth
 //!   buffer) rendered and flushed to `display`;
@@ -254,11 +257,12 @@ pub fn inc_lighting() -> Result<DirectionalLighting<2, 1, BlinnPhong>, ParamErro
 }
 
 macro_rules! configs {
-    ($($name:ident: $v:ty, $l:ty, $m:ty = $lighting:expr, $mode:expr => $full:ident, $bands:ident;)*) => {
+    ($($(#[$attr:meta])* $name:ident: $v:ty, $l:ty, $m:ty = $lighting:expr, $mode:expr => $full:ident, $bands:ident;)*) => {
         /// Configuration names, in order.
-        pub const CONFIGS: &[&str] = &[$(stringify!($name)),*];
+        pub const CONFIGS: &[&str] = &[$($(#[$attr])* stringify!($name)),*];
         $(
             #[doc = concat!("The `", stringify!($name), "` configuration.")]
+            $(#[$attr])*
             pub mod $name {
                 use super::*;
                 /// The vertex cache payload of this shader.
@@ -312,6 +316,7 @@ macro_rules! configs {
             display: &mut D,
         ) -> Option<Result<(), Fail>> {
             $(
+                $(#[$attr])*
                 if name == stringify!($name) {
                     let mut c = [CachedVertex::<$v>::default(); NV];
                     let mut r = RefineStore::<$v>::new();
@@ -333,6 +338,8 @@ macro_rules! configs {
 }
 
 type Dir = DirectionalLight<Q14>;
+#[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
+type DirF = DirectionalLight<f32>;
 
 configs! {
     lambert_gouraud: [u16; 3], Lighting<Q14, Dir, Lambert>, GouraudShading
@@ -347,4 +354,17 @@ configs! {
         = standard::lambert::<Q14>(), FlatShading => draw_full, draw_bands;
     lambert_gouraud_refine: [u16; 3], Lighting<Q14, Dir, Lambert>, GouraudShading
         = standard::lambert::<Q14>(), GouraudShading => draw_full_refine, draw_bands_refine;
+    // the f32 tier: the RISC-V image and the host reference only (the Arm images stay as they were)
+    #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
+    lambert_gouraud_f32: [u16; 3], Lighting<f32, DirF, Lambert>, GouraudShading
+        = standard::lambert::<f32>(), GouraudShading => draw_full, draw_bands;
+    #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
+    blinn_gouraud_f32: [u16; 3], Lighting<f32, DirF, BlinnPhong>, GouraudShading
+        = standard::blinn::<f32>(), GouraudShading => draw_full, draw_bands;
+    #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
+    blinn_phong_f32: [i16; 3], Lighting<f32, DirF, BlinnPhong>, PhongShading
+        = standard::blinn::<f32>(), PhongShading => draw_full, draw_bands;
+    #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
+    flat_f32: [i16; 3], Lighting<f32, DirF, Lambert>, FlatShading
+        = standard::lambert::<f32>(), FlatShading => draw_full, draw_bands;
 }

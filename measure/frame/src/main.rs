@@ -1,8 +1,9 @@
 //! The frame image counted by `measure/frame.py`, and its host reference.
 //!
-//! * `thumbv6m-none-eabi`, `thumbv7em-none-eabihf` (`target_os = "none"`): a
-//!   firmware image with one `extern "C"` entry per configuration and frame
-//!   kind, `frame_<config>` (whole frame) and `frame_<config>_band8`, each
+//! * `thumbv6m-none-eabi`, `thumbv7em-none-eabihf`, `riscv32imc-unknown-none-elf`
+//!   (`target_os = "none"`): a firmware image with one `extern "C"` entry per
+//!   configuration (the `f32` ones on RISC-V only) and frame kind,
+//!   `frame_<config>` (whole frame) and `frame_<config>_band8`, each
 //!   rendering one complete frame of the standard scene into a
 //!   `fixshade::framebuffer::Checksum<Rgb565>` and returning
 //!   `status << 32 | checksum` (status 0: drawn, all 57 600 pixels sent).
@@ -26,6 +27,7 @@ mod firmware {
     use core::mem::{zeroed, MaybeUninit};
     use core::ptr::{addr_of, addr_of_mut};
 
+    #[cfg(target_arch = "arm")]
     use cortex_m_rt::entry;
     use embedded_graphics_core::geometry::Size;
     use embedded_graphics_core::pixelcolor::Rgb565;
@@ -35,6 +37,8 @@ mod firmware {
     use fixshade_frame::{
         Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, W,
     };
+    #[cfg(target_arch = "riscv32")]
+    use riscv_rt::entry;
 
     // All-zero is a valid value of every buffer element (integers, Rgb565 =
     // u16, CachedVertex and Carry = integers and integer arrays): `.bss`.
@@ -183,6 +187,7 @@ mod firmware {
         };
     }
 
+    #[cfg(not(target_arch = "riscv32"))]
     entries!(
         lambert_gouraud,
         blinn_gouraud,
@@ -190,6 +195,20 @@ mod firmware {
         blinn_phong_inc,
         flat,
         lambert_gouraud_refine
+    );
+    // RISC-V (no FPU): also the `f32` tier's frames, to measure what fixed point buys
+    #[cfg(target_arch = "riscv32")]
+    entries!(
+        lambert_gouraud,
+        blinn_gouraud,
+        blinn_phong,
+        blinn_phong_inc,
+        flat,
+        lambert_gouraud_refine,
+        lambert_gouraud_f32,
+        blinn_gouraud_f32,
+        blinn_phong_f32,
+        flat_f32
     );
 
     #[entry]

@@ -15,7 +15,10 @@
 use core::hint::black_box;
 use core::slice;
 
+#[cfg(target_arch = "arm")]
 use cortex_m_rt::entry;
+#[cfg(target_arch = "riscv32")]
+use riscv_rt::entry;
 
 mod shading;
 

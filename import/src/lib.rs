@@ -1,0 +1,442 @@
+//! `fixshade-import`: a model file to fixshade's compact `static` mesh (and
+//! texture) as Rust source, for flash.
+//!
+//! Reads Wavefront OBJ (with its MTL) and glTF 2.0 (`.gltf`, `.glb`);
+//! quantises positions to `i16` with the most fraction bits that fit, normals
+//! to Q14, texture coordinates to Q12; welds duplicate vertices; computes
+//! vertex normals by face averaging where the file has none (by smoothing
+//! group or crease angle) and tangents on request; converts a PNG texture to
+//! `Rgb565`, `Gray8` or `Palette8`; and writes the `static`s a `no_std`
+//! firmware `include!`s.
+//!
+//! One module per stage: [`read_obj`] and [`read_gltf`] read a file into a
+//! [`SourceMesh`]; [`process`] makes the [`CompactMesh`]; [`texture`]
+//! converts the image; [`emit`] writes the source; [`cli`] is the
+//! command-line tool. [`import`] runs them all.
+//!
+//! From a build script (`build.rs`), with `fixshade-import` as a
+//! build-dependency:
+//!
+//! ```no_run
+//! use fixshade_import::{build, Options};
+//! let mut options = Options::new("TEAPOT");
+//! options.process.tangents = true;
+//! // writes $OUT_DIR/teapot.rs and prints the cargo:rerun-if-changed lines
+//! build::generate("models/teapot.obj", "teapot.rs", &options).unwrap();
+//! ```
+//!
+//! and in the firmware: `include!(concat!(env!("OUT_DIR"), "/teapot.rs"));`
+//! defines `TEAPOT: fixshade::mesh::Mesh<'static>`, `TEAPOT_FRAC` and the
+//! arrays.
+
+#![forbid(unsafe_code)]
+#![warn(missing_docs, missing_debug_implementations)]
+
+pub mod cli;
+pub mod emit;
+mod error;
+pub mod process;
+pub mod read_gltf;
+pub mod read_obj;
+mod source;
+pub mod texture;
+
+use std::path::{Path, PathBuf};
+
+pub use error::{Error, FileKind};
+pub use fixshade::mesh::Weighting;
+pub use fixshade::texture::Wrap;
+pub use process::{CompactMesh, MeshReport, NormalSource, ProcessOptions};
+pub use source::{Corner, Smoothing, SourceMesh, SourceTriangle, TextureSource};
+pub use texture::{ConvertedTexture, TextureFormat};
+
+use error::read_file;
+
+/// Which texture to convert.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub enum TextureChoice {
+    /// The diffuse texture of the model's materials (`map_Kd`, glTF base
+    /// colour), if there is one.
+    #[default]
+    FromModel,
+    /// This PNG instead.
+    File(PathBuf),
+    /// None.
+    None,
+}
+
+/// Everything an import can be asked to do.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Options {
+    /// Prefix of the generated items: `NAME`, `NAME_POSITIONS`, …
+    /// (`[A-Z_][A-Z0-9_]*`).
+    pub name: String,
+    /// Transform, quantisation, normals, tangents.
+    pub process: ProcessOptions,
+    /// Which texture.
+    pub texture: TextureChoice,
+    /// Its texel format.
+    pub texture_format: TextureFormat,
+    /// Its wrap mode.
+    pub wrap: Wrap,
+    /// Resample a texture whose sides are not powers of two (instead of an
+    /// error).
+    pub resize: bool,
+}
+
+impl Options {
+    /// The defaults, with items named `name`: the model's texture as
+    /// `Rgb565`, repeating, no resizing; see [`ProcessOptions::default`].
+    pub fn new(name: &str) -> Self {
+        Options {
+            name: name.to_string(),
+            process: ProcessOptions::default(),
+            texture: TextureChoice::FromModel,
+            texture_format: TextureFormat::Rgb565,
+            wrap: Wrap::Repeat,
+            resize: false,
+        }
+    }
+
+    /// The options as command-line flags (for the generated header).
+    fn flags(&self) -> String {
+        let p = &self.process;
+        let mut f = vec![format!("--name {}", self.name)];
+        if p.center {
+            f.push("--center".into());
+        }
+        if p.scale != 1.0 {
+            f.push(format!("--scale {}", p.scale));
+        }
+        if let Some(frac) = p.frac {
+            f.push(format!("--frac {frac}"));
+        }
+        if let Some(a) = p.crease_angle {
+            f.push(format!("--crease-angle {a}"));
+        }
+        if p.recompute_normals {
+            f.push("--recompute-normals".into());
+        }
+        if p.weighting == Weighting::Area {
+            f.push("--weighting area".into());
+        }
+        if !p.texcoords {
+            f.push("--no-texcoords".into());
+        }
+        if p.tangents {
+            f.push("--tangents".into());
+        }
+        match &self.texture {
+            TextureChoice::FromModel => {}
+            TextureChoice::File(path) => f.push(format!(
+                "--texture {}",
+                path.file_name().unwrap_or_default().to_string_lossy()
+            )),
+            TextureChoice::None => f.push("--no-texture".into()),
+        }
+        if self.texture_format != TextureFormat::Rgb565 {
+            f.push(format!("--texture-format {}", self.texture_format.name()));
+        }
+        if self.wrap == Wrap::Clamp {
+            f.push("--clamp".into());
+        }
+        if self.resize {
+            f.push("--resize".into());
+        }
+        f.join(" ")
+    }
+}
+
+/// A converted texture and the name it came from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelTexture {
+    /// The file name (or the glTF image's name).
+    pub name: String,
+    /// The texels.
+    pub converted: ConvertedTexture,
+}
+
+/// An imported model: the compact mesh, its texture, and what was done.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    /// The prefix of the generated items.
+    pub name: String,
+    /// The model's file name (for the generated comment).
+    pub source_name: String,
+    /// The mesh.
+    pub mesh: CompactMesh,
+    /// What processing found.
+    pub report: MeshReport,
+    /// The texture, if any.
+    pub texture: Option<ModelTexture>,
+    /// Polygons split into triangles.
+    pub polygons_split: usize,
+    /// Every file read (for `cargo:rerun-if-changed`).
+    pub files: Vec<PathBuf>,
+    /// Everything skipped or assumed.
+    pub warnings: Vec<String>,
+    /// The options as flags, for the generated header.
+    pub options_line: String,
+}
+
+impl Model {
+    /// The Rust source ([`emit::rust_source`]).
+    pub fn to_rust(&self) -> String {
+        emit::rust_source(self)
+    }
+
+    /// Writes the Rust source to `path`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Io`] when the file cannot be written.
+    pub fn write_rust(&self, path: &Path) -> Result<(), Error> {
+        std::fs::write(path, self.to_rust()).map_err(|e| Error::Io {
+            kind: FileKind::Output,
+            path: path.to_path_buf(),
+            source: e,
+        })
+    }
+
+    /// What the import did, one fact a line (the tool prints it).
+    pub fn summary(&self) -> String {
+        let r = &self.report;
+        let mut s = vec![
+            format!(
+                "{}: {} triangles read ({} polygons split, {} degenerate dropped) -> {} vertices, {} triangles",
+                self.source_name,
+                r.source_triangles,
+                self.polygons_split,
+                r.degenerate_dropped,
+                r.vertices,
+                r.triangles
+            ),
+            format!(
+                "positions: frac = {}, step 2^-{} = {} model units, largest error {:.3e}; bounds [{:.4}, {:.4}, {:.4}] to [{:.4}, {:.4}, {:.4}]",
+                r.frac, r.frac, r.step, r.max_position_error,
+                r.bounds[0][0], r.bounds[0][1], r.bounds[0][2],
+                r.bounds[1][0], r.bounds[1][1], r.bounds[1][2]
+            ),
+            format!(
+                "normals: {}",
+                match r.normals {
+                    NormalSource::File => "the file's".to_string(),
+                    NormalSource::SmoothingGroups => format!(
+                        "smoothing groups ({} smoothing vertices at {} positions)",
+                        r.smoothing_vertices, r.positions
+                    ),
+                    NormalSource::CreaseAngle(a) => format!(
+                        "crease angle {a}° ({} smoothing vertices at {} positions)",
+                        r.smoothing_vertices, r.positions
+                    ),
+                }
+            ),
+        ];
+        if let Some(e) = r.max_texcoord_error {
+            s.push(format!("texture coordinates: Q12, largest error {e:.3e}"));
+        }
+        if let Some(t) = &self.texture {
+            let c = &t.converted;
+            let q = &c.report;
+            s.push(format!(
+                "texture {}: {} x {}{} as {} ({} bytes), {} colours{}, error max {} rms {:.2} (8-bit LSBs)",
+                t.name,
+                1u32 << c.log2_width,
+                1u32 << c.log2_height,
+                if q.resized {
+                    format!(" (resized from {} x {})", q.source_size.0, q.source_size.1)
+                } else {
+                    String::new()
+                },
+                q.format.name(),
+                q.bytes,
+                q.source_colours,
+                if q.quantised { " quantised to 256" } else { "" },
+                q.max_error,
+                q.rms_error
+            ));
+        }
+        let bytes = 12 * self.mesh.positions.len()
+            + 6 * self.mesh.triangles.len()
+            + self.mesh.texcoords.as_ref().map_or(0, |t| 4 * t.len())
+            + self.mesh.tangents.as_ref().map_or(0, |t| 8 * t.len());
+        s.push(format!("mesh arrays: {bytes} bytes of flash"));
+        for w in &self.warnings {
+            s.push(format!("warning: {w}"));
+        }
+        s.join("\n")
+    }
+}
+
+/// Reads a model by its extension (`.obj`, `.gltf`, `.glb`, any case).
+///
+/// # Errors
+///
+/// [`Error::Unsupported`] for another extension; the readers' errors.
+pub fn read_source(path: &Path) -> Result<SourceMesh, Error> {
+    let ext = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "obj" => read_obj::read(path),
+        "gltf" | "glb" => read_gltf::read(path),
+        _ => Err(Error::Unsupported {
+            path: path.to_path_buf(),
+            what: format!("extension {ext:?} (expected .obj, .gltf or .glb)"),
+        }),
+    }
+}
+
+/// Whether `name` is an upper-case identifier the generated items can use.
+fn valid_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    matches!(chars.next(), Some('A'..='Z' | '_'))
+        && chars.all(|c| matches!(c, 'A'..='Z' | '0'..='9' | '_'))
+        && name != "_"
+}
+
+/// Imports the model at `path`: reads it, processes the mesh, converts the
+/// texture.
+///
+/// # Errors
+///
+/// Every [`Error`] variant but [`Error::NoOutDir`].
+pub fn import(path: &Path, options: &Options) -> Result<Model, Error> {
+    if !valid_name(&options.name) {
+        return Err(Error::InvalidName(options.name.clone()));
+    }
+    let source = read_source(path)?;
+    let (mesh, report) = process::process(&source, &options.process, || Error::Empty {
+        path: path.to_path_buf(),
+    })?;
+    let mut files = source.files.clone();
+    let mut warnings = source.warnings.clone();
+    warnings.extend(report.warnings.iter().cloned());
+    let chosen = match &options.texture {
+        TextureChoice::None => None,
+        TextureChoice::File(p) => Some(TextureSource::File(p.clone())),
+        TextureChoice::FromModel => match source.textures.as_slice() {
+            [] => None,
+            [one] => Some(one.clone()),
+            [a, b, ..] => {
+                let name = |t: &TextureSource| match t {
+                    TextureSource::File(p) => p.clone(),
+                    TextureSource::Embedded { name, .. } => PathBuf::from(name),
+                };
+                return Err(Error::SeveralTextures {
+                    first: name(a),
+                    second: name(b),
+                });
+            }
+        },
+    };
+    let texture = match chosen {
+        None => None,
+        Some(src) => {
+            if mesh.texcoords.is_none() {
+                return Err(Error::NoTexcoords);
+            }
+            let (name, path, bytes) = match src {
+                TextureSource::File(p) => {
+                    let bytes = read_file(FileKind::Texture, &p)?;
+                    files.push(p.clone());
+                    let name = p
+                        .file_name()
+                        .unwrap_or_default()
+                        .to_string_lossy()
+                        .into_owned();
+                    (name, p, bytes)
+                }
+                TextureSource::Embedded { name, bytes, .. } => {
+                    (name.clone(), PathBuf::from(name), bytes)
+                }
+            };
+            if !bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+                return Err(Error::Unsupported {
+                    path,
+                    what: "texture format: only PNG textures are read".into(),
+                });
+            }
+            let image = texture::decode_png(&bytes, &path)?;
+            let converted = texture::convert(
+                &image,
+                &path,
+                options.texture_format,
+                options.wrap,
+                options.resize,
+            )?;
+            warnings.extend(converted.report.warnings.iter().cloned());
+            Some(ModelTexture { name, converted })
+        }
+    };
+    Ok(Model {
+        name: options.name.clone(),
+        source_name: path
+            .file_name()
+            .unwrap_or_default()
+            .to_string_lossy()
+            .into_owned(),
+        mesh,
+        report,
+        texture,
+        polygons_split: source.polygons_split,
+        files,
+        warnings,
+        options_line: format!(
+            "fixshade-import {} {}",
+            path.file_name().unwrap_or_default().to_string_lossy(),
+            options.flags()
+        ),
+    })
+}
+
+/// The build-script route: import a model into `$OUT_DIR`.
+pub mod build {
+    use std::path::{Path, PathBuf};
+
+    use crate::{import, Error, Options};
+
+    /// Imports `input` (relative to the package being built) with `options`,
+    /// writes the source to `$OUT_DIR/file_name`, prints
+    /// `cargo:rerun-if-changed` for every file read, and returns the path
+    /// written. Warnings are printed as `cargo:warning` lines.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoOutDir`] outside a build script; the errors of
+    /// [`import`] and of writing the file.
+    pub fn generate(
+        input: impl AsRef<Path>,
+        file_name: &str,
+        options: &Options,
+    ) -> Result<PathBuf, Error> {
+        let out_dir = std::env::var_os("OUT_DIR").ok_or(Error::NoOutDir)?;
+        let out = Path::new(&out_dir).join(file_name);
+        let result = import(input.as_ref(), options);
+        // rerun when the model changes, even after an error
+        println!("cargo:rerun-if-changed={}", input.as_ref().display());
+        let model = result?;
+        for f in &model.files {
+            println!("cargo:rerun-if-changed={}", f.display());
+        }
+        for w in &model.warnings {
+            println!("cargo:warning={}: {w}", model.source_name);
+        }
+        model.write_rust(&out)?;
+        Ok(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn names() {
+        for ok in ["TEAPOT", "_X", "A1_B"] {
+            assert!(super::valid_name(ok), "{ok}");
+        }
+        for bad in ["", "_", "teapot", "1A", "A-B", "Ä"] {
+            assert!(!super::valid_name(bad), "{bad}");
+        }
+    }
+}
