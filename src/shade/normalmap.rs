@@ -220,27 +220,81 @@ fn general_span<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputCo
     y: i32,
     color: &mut [C],
 ) {
-    let (mut a, d) = (*a, *d);
-    let used = if I::NEEDS_POSITION { 11 } else { 8 };
+    // the values the lighting reads, in an array of their own length; the
+    // map's wrap mode as a constant
+    let eight = |v: &[i32; 11]| core::array::from_fn(|i| v[i]);
+    match (I::NEEDS_POSITION, map.wrap()) {
+        (true, Wrap::Repeat) => {
+            general_run::<_, _, _, _, 11, true>(lighting, encoder, map, t, *a, *d, x, y, color)
+        }
+        (true, Wrap::Clamp) => {
+            general_run::<_, _, _, _, 11, false>(lighting, encoder, map, t, *a, *d, x, y, color)
+        }
+        (false, Wrap::Repeat) => general_run::<_, _, _, _, 8, true>(
+            lighting, encoder, map, t, eight(a), eight(d), x, y, color,
+        ),
+        (false, Wrap::Clamp) => general_run::<_, _, _, _, 8, false>(
+            lighting, encoder, map, t, eight(a), eight(d), x, y, color,
+        ),
+    }
+}
+
+/// [`general_span`] over the first `N` values (8: no position); `REPEAT`
+/// wraps the texture coordinates (else clamps).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn general_run<
+    S: Scalar,
+    I: Illuminate<Scalar = S>,
+    E: Encoder<C>,
+    C: OutputColor,
+    const N: usize,
+    const REPEAT: bool,
+>(
+    lighting: &I,
+    encoder: &E,
+    map: &NormalMap<'_>,
+    t: &NormalMapTriangle,
+    mut a: [i32; N],
+    d: [i32; N],
+    x: i32,
+    y: i32,
+    color: &mut [C],
+) {
+    let at = |a: &[i32; N], i: usize| a.get(i).copied().unwrap_or(0);
+    // texture coordinates (Q12 with ATTR_FRAC bits) to texels: shifts per span
+    let (wl, hl) = map.size_log2();
+    let su = UV_FRAC.saturating_sub(u32::from(wl)).min(31);
+    let sv = UV_FRAC.saturating_sub(u32::from(hl)).min(31);
+    let (wm, hm, wl) = ((1i32 << wl) - 1, (1i32 << hl) - 1, u32::from(wl));
+    let texels = map.texels();
     for (x, c) in (x..).zip(color.iter_mut()) {
-        let pos = if I::NEEDS_POSITION {
-            eye_point::<S>(t.pos.position([a[8], a[9], a[10]]))
+        let pos = if N > 8 {
+            eye_point::<S>(t.pos.position([at(&a, 8), at(&a, 9), at(&a, 10)]))
         } else {
             eye_point::<S>([0; 3])
         };
-        // Q12 with ATTR_FRAC bits
-        let m = sample2(map, a[6], UV_FRAC, a[7], UV_FRAC);
+        let (u, v) = (at(&a, 6) >> su, at(&a, 7) >> sv);
+        let (u, v) = if REPEAT {
+            (u & wm, v & hm)
+        } else {
+            (u.clamp(0, wm), v.clamp(0, hm))
+        };
+        let m = texels
+            .get(((v << wl) | u) as usize)
+            .copied()
+            .unwrap_or(crate::texture::FLAT_NORMAL);
         // Q14 with ATTR_FRAC bits (Q28) → the tier's attribute (Q26)
         let lit = general_pixel(
             lighting,
-            [a[0] >> 2, a[1] >> 2, a[2] >> 2],
-            [a[3] >> 2, a[4] >> 2, a[5] >> 2],
+            [at(&a, 0) >> 2, at(&a, 1) >> 2, at(&a, 2) >> 2],
+            [at(&a, 3) >> 2, at(&a, 4) >> 2, at(&a, 5) >> 2],
             t.hand,
             m,
             &pos,
         );
         *c = encoder.encode(lit, x, y);
-        for (a, d) in a.iter_mut().zip(d).take(used) {
+        for (a, d) in a.iter_mut().zip(d) {
             // the values after the last pixel are not used: wrapping is harmless
             *a = a.wrapping_add(d);
         }
@@ -295,15 +349,6 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
 /// Fraction bits of interpolated texture coordinates: Q12 with
 /// [`ATTR_FRAC`] bits.
 const UV_FRAC: u32 = 12 + ATTR_FRAC;
-
-/// The texel at `(u, v)` with `uf`, `vf` fraction bits.
-#[inline(always)]
-fn sample2(map: &NormalMap<'_>, u: i32, uf: u32, v: i32, vf: u32) -> NormalTexel {
-    let (wl, hl) = map.size_log2();
-    let su = uf.saturating_sub(u32::from(wl)).min(31);
-    let sv = vf.saturating_sub(u32::from(hl)).min(31);
-    map.texel(u >> su, v >> sv)
-}
 
 // ---- the fast Q14 path ------------------------------------------------------------
 

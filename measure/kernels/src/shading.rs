@@ -23,20 +23,17 @@ use core::hint::black_box;
 use core::slice;
 
 use embedded_graphics_core::pixelcolor::Rgb565;
-use fixshade::camera::{Camera, MeshTransform, Orthographic};
-use fixshade::light::LightSet;
-use fixshade::lighting::Model;
-use fixshade::mesh::{Mat4, Mesh, Viewport};
+use fixshade::camera::{Camera, Mat4, MeshTransform, Orthographic, Viewport};
+use fixshade::lighting::{LightSet, Model};
 use fixshade::prelude::*;
-use fixshade::raster::Cull;
-use fixshade::raster::{SpanShader, ATTR_FRAC, SUBPIXEL_BITS};
+use fixshade::raster::interp::Varyings;
+use fixshade::raster::{Cull, ATTR_FRAC, SUBPIXEL_BITS};
 use fixshade::render::{
     bins_len, CachedVertex, DrawOptions, FullFrame, Layout, MeshDraw, MeshMemory,
 };
-use fixshade::shade::Kernel;
 use fixshade::shade::{
-    FlatShading, GouraudShading, IncrementalModel, IncrementalPhongShading, Linear, PhongShading,
-    QuadraticModel, QuadraticPhongShading, ShadeVertex, Shader,
+    FlatShading, GeneralPhongShading, GouraudShading, IncrementalModel, IncrementalPhongShading,
+    Kernel, Linear, QuadraticModel, QuadraticPhongShading, Shader, VertexIn,
 };
 
 // `out` is handed to the library as `&mut [Rgb565]`: Rgb565 is a newtype of a
@@ -103,47 +100,51 @@ fn lighting<S: Scalar, L: LightSet<S>, M: Model>(lights: L) -> Lighting<S, L, M>
     black_box(Lighting::<S, L, M>::new(lights, material::<S>()))
 }
 
-/// A vertex on the sphere with (unnormalised) normal `n`, at screen `xy` (pixels·16).
-fn vertex<S: Scalar>(xy: [i32; 2], n: [f32; 3]) -> ShadeVertex<S> {
+/// A unit normal in Q14.
+fn q14(n: [f32; 3]) -> [i32; 3] {
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    n.map(|c| round(c / l * 16384.0))
+}
+
+/// `x` rounded to the nearest integer (halves away from zero).
+fn round(x: f32) -> i32 {
+    (x + if x < 0.0 { -0.5 } else { 0.5 }) as i32
+}
+
+/// What the vertex stage hands a kernel for the sphere's point of normal `n`:
+/// the Q14 normal and the Q16.16 eye position `centre + n`.
+fn vertex_in(n: [f32; 3]) -> VertexIn {
     let p = [CENTRE[0] + n[0], CENTRE[1] + n[1], CENTRE[2] + n[2]];
-    ShadeVertex::new(xy, 0, 1, p, n)
+    VertexIn::new(q14(n), p.map(|c| round(c * 65536.0)))
 }
 
 /// The two ends of the reference span.
-fn span_ends<S: Scalar>() -> [ShadeVertex<S>; 2] {
-    [
-        vertex([0, 0], [-0.6, 0.1, 0.79]),
-        vertex([0, 0], [0.6, 0.1, 0.79]),
-    ]
+fn span_ends() -> [VertexIn; 2] {
+    [vertex_in([-0.6, 0.1, 0.79]), vertex_in([0.6, 0.1, 0.79])]
 }
 
-/// `(start, step)` going from `a` to `b` over `max(n, SPAN)` pixels.
+/// Shades the reference span with `k`: the kernel's values at the two ends
+/// (its vertex stage and triangle set-up of the corners `a, a, b`), ramped
+/// over `max(n, SPAN)` pixels, handed to `Kernel::span` for `n` pixels (what
+/// the pipeline hands it for one run of an orthographic triangle).
 #[inline(always)]
-fn ramp<const N: usize>(a: [i32; N], b: [i32; N], n: u32) -> ([i32; N], [i32; N]) {
+unsafe fn span_of<K: Kernel<Color = Rgb565>>(k: &K, a: &VertexIn, b: &VertexIn, n: u32, out: *mut u16) -> u32 {
+    let (pa, pb) = (k.vertex(a), k.vertex(b));
+    let (t, v) = k.triangle([&pa, &pa, &pb], &[a.eye, a.eye, b.eye]);
     let len = black_box(if n > SPAN { n } else { SPAN }) as i32;
-    let step = core::array::from_fn(|i| (b[i] - a[i]) / len);
-    (black_box(a), black_box(step))
-}
-
-fn normal_attrs<S: Scalar>(v: &ShadeVertex<S>) -> [i32; 3] {
-    [
-        v.normal.x.to_attr(),
-        v.normal.y.to_attr(),
-        v.normal.z.to_attr(),
-    ]
-}
-
-fn normal_pos_attrs<S: Scalar>(v: &ShadeVertex<S>) -> [i32; 6] {
-    let [a, b, c] = normal_attrs(v);
-    let p = v.position;
-    [
-        a,
-        b,
-        c,
-        S::geo_to_attr(p.x),
-        S::geo_to_attr(p.y),
-        S::geo_to_attr(p.z),
-    ]
+    let get = |v: &K::Varyings, i: usize| v.values().get(i).copied().unwrap_or(0);
+    let start = K::Varyings::from_fn(|i| get(&v[0], i) << ATTR_FRAC);
+    let step = K::Varyings::from_fn(|i| ((get(&v[2], i) - get(&v[0], i)) << ATTR_FRAC) / len);
+    let n = black_box(n);
+    k.span(
+        &t,
+        &black_box(start),
+        &black_box(step),
+        black_box(0),
+        black_box(0),
+        pixels(out, n as usize),
+    );
+    n
 }
 
 // ---- span kernels ----------------------------------------------------------------
@@ -151,20 +152,9 @@ fn normal_pos_attrs<S: Scalar>(v: &ShadeVertex<S>) -> [i32; 6] {
 #[inline(always)]
 unsafe fn span_flat<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let mut sh = Shader::<_, _, _, Rgb565>::new(FlatShading, &lit, Linear);
-    // the colour lit at the span's middle (what `draw` does at the centroid)
-    let mid = vertex::<S>([0, 0], [0.0, 0.1, 0.79]);
-    sh.set_color(lit.shade(&mid.position, mid.normal));
-    let n = black_box(n);
-    SpanShader::<0>::shade_span(
-        &mut sh,
-        black_box(0),
-        black_box(0),
-        &[],
-        &[],
-        pixels(out, n as usize),
-    );
-    n
+    let sh = Shader::<_, _, _, Rgb565>::new(FlatShading, &lit, Linear);
+    let [a, b] = span_ends();
+    span_of(&sh, &a, &b, n, out)
 }
 
 #[inline(always)]
@@ -174,83 +164,27 @@ unsafe fn span_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
     out: *mut u16,
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let mut sh = Shader::<_, _, _, Rgb565>::new(GouraudShading, &lit, Linear);
-    let [v0, v1] = span_ends::<S>();
-    let n = black_box(n);
-    // the attributes `Shading::draw` gives the rasterizer: encoder values with ATTR_FRAC bits
-    let a = |v: &ShadeVertex<S>| {
-        sh.vertex_values(&v.position, v.normal)
-            .map(|c| c << ATTR_FRAC)
-    };
-    let (start, step) = ramp(a(&v0), a(&v1), n);
-    SpanShader::<3>::shade_span(
-        &mut sh,
-        black_box(0),
-        black_box(0),
-        &start,
-        &step,
-        pixels(out, n as usize),
-    );
-    n
+    let sh = Shader::<_, _, _, Rgb565>::new(GouraudShading, &lit, Linear);
+    let [a, b] = span_ends();
+    span_of(&sh, &a, &b, n, out)
 }
 
+/// The general per-pixel kernel (`GeneralPhongShading`).
 #[inline(always)]
 unsafe fn span_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let mut sh = Shader::<_, _, _, Rgb565>::new(PhongShading, &lit, Linear);
-    let [v0, v1] = span_ends::<S>();
-    let n = black_box(n);
-    let (x, y, px) = (black_box(0), black_box(0), pixels(out, n as usize));
-    // as `Shading::draw`: the position (relative to the triangle's first
-    // vertex, here the origin) is interpolated only when the lighting reads it
-    if Lighting::<S, L, M>::NEEDS_POSITION {
-        let (start, step) = ramp(normal_pos_attrs(&v0), normal_pos_attrs(&v1), n);
-        SpanShader::<6>::shade_span(&mut sh, x, y, &start, &step, px);
-    } else {
-        let (start, step) = ramp(normal_attrs(&v0), normal_attrs(&v1), n);
-        SpanShader::<3>::shade_span(&mut sh, x, y, &start, &step, px);
-    }
-    n
+    let sh = Shader::<_, _, _, Rgb565>::new(GeneralPhongShading, &lit, Linear);
+    let [a, b] = span_ends();
+    span_of(&sh, &a, &b, n, out)
 }
 
 /// `IncrementalPhong` over the same span (Q14, one directional light).
 #[inline(always)]
 unsafe fn span_phong_inc<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
-    let mut sh = Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading, &lit, Linear);
-    let [v0, v1] = span_ends::<Q14<NW>>();
-    let n = black_box(n);
-    // the attributes `Shading::draw` gives the rasterizer: N, N·L, N·H
-    let attrs = |v: &ShadeVertex<Q14<NW>>| {
-        let a = normal_attrs(v);
-        let (l, h) = (
-            lit.lights()[0].direction(),
-            lit.lights()[0].prepared().half.unwrap_or(l_dir(&lit)),
-        );
-        let dot = |d: fixshade::vector::Vec3<Q14<NW>>| {
-            ((a[0] as i64 * d.x.raw() as i64
-                + a[1] as i64 * d.y.raw() as i64
-                + a[2] as i64 * d.z.raw() as i64)
-                >> 14) as i32
-        };
-        [a[0], a[1], a[2], dot(l), dot(h)]
-    };
-    let (start, step) = ramp(attrs(&v0), attrs(&v1), n);
-    SpanShader::<5>::shade_span(
-        &mut sh,
-        black_box(0),
-        black_box(0),
-        &start,
-        &step,
-        pixels(out, n as usize),
-    );
-    n
-}
-
-fn l_dir<const NW: u8, M: Model>(
-    lit: &Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; 1], M>,
-) -> fixshade::vector::Vec3<Q14<NW>> {
-    lit.lights()[0].direction()
+    let sh = Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading, &lit, Linear);
+    let [a, b] = span_ends();
+    span_of(&sh, &a, &b, n, out)
 }
 
 // ---- triangle kernels ------------------------------------------------------------
@@ -278,10 +212,7 @@ fn tri_transform() -> MeshTransform<Orthographic> {
 /// frame and returns) through the mesh renderer: vertex stage, binning, set-up
 /// and the mode's depth-fused kernel, into a 64×64 frame with a depth buffer.
 #[inline(always)]
-unsafe fn draw<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -> u32
-where
-    K::Vertex: fixshade::render::Lerp,
-{
+unsafe fn draw<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -> u32 {
     let t = black_box(tri_transform());
     let s = black_box(scale);
     // SAFETY: the kernels run one at a time (single-threaded emulator); nothing
@@ -295,7 +226,7 @@ where
     };
     if s == 0 {
         // the baseline clears and counts too: the counts are the triangle's alone
-        frame.render(Rgb565::BLACK, &mut []);
+        let _ = frame.render(Rgb565::BLACK, &mut []);
         drop(frame);
         return covered();
     }
@@ -327,7 +258,7 @@ where
     let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
         return 0;
     };
-    frame.render(Rgb565::BLACK, &mut [&mut tri]);
+    let _ = frame.render(Rgb565::BLACK, &mut [&mut tri]);
     drop(frame);
     covered()
 }
@@ -370,7 +301,7 @@ unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(
     out: *mut u16,
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    draw(Shader::new(PhongShading, &lit, Linear), scale, out)
+    draw(Shader::new(GeneralPhongShading, &lit, Linear), scale, out)
 }
 
 #[inline(always)]
@@ -502,48 +433,20 @@ kernels! {
 unsafe fn span_phong_quad<S: Scalar, M: QuadraticModel>(n: u32, out: *mut u16) -> u32
 where
     for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>:
-        SpanShader<5, Color = Rgb565>,
+        Kernel<Color = Rgb565>,
     QuadraticPhongShading:
         fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
 {
     let lit = lighting::<S, _, M>([dir::<S>()]);
-    let mut sh = Shader::<_, _, _, Rgb565>::new(QuadraticPhongShading, &lit, Linear);
-    let [v0, v1] = span_ends::<S>();
-    let n = black_box(n);
-    // the attributes `Shading::draw` gives the rasterizer: N, N·L, N·H (Phong: N·V)
-    let l = lit.lights()[0].direction().to_f32();
-    let h = if M::SPECULAR == fixshade::lighting::Specular::Phong {
-        [0.0, 0.0, 1.0]
-    } else {
-        lit.lights()[0]
-            .prepared()
-            .half
-            .map(|h| h.to_f32())
-            .unwrap_or(l)
-    };
-    let attrs = |v: &ShadeVertex<S>| {
-        let a = normal_attrs(v);
-        let dot =
-            |d: [f32; 3]| (a[0] as f32 * d[0] + a[1] as f32 * d[1] + a[2] as f32 * d[2]) as i32;
-        [a[0], a[1], a[2], dot(l), dot(h)]
-    };
-    let (start, step) = ramp(attrs(&v0), attrs(&v1), n);
-    SpanShader::<5>::shade_span(
-        &mut sh,
-        black_box(0),
-        black_box(0),
-        &start,
-        &step,
-        pixels(out, n as usize),
-    );
-    n
+    let sh = Shader::<_, _, _, Rgb565>::new(QuadraticPhongShading, &lit, Linear);
+    let [a, b] = span_ends();
+    span_of(&sh, &a, &b, n, out)
 }
 
 #[inline(always)]
 unsafe fn tri_phong_quad<S: Scalar, M: QuadraticModel>(scale: u32, out: *mut u16) -> u32
 where
     for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>: Kernel<Color = Rgb565>,
-    for<'a> <Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565> as Kernel>::Vertex: fixshade::render::Lerp,
     QuadraticPhongShading: fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
 {
     let lit = lighting::<S, _, M>([dir::<S>()]);
@@ -588,19 +491,18 @@ quadratic! {
 
 // ---- TexturedGouraudShading ------------------------------------------------------
 //
-// `span_q14_1_tex_<filter>_<persp|affine>_<set>(n, out)`: the mesh kernel
-// (`Kernel::shade` through `Shader::shade_ramp`, a triangle set up for the span)
-// on the reference span's normals, texture coordinates from (0.1, 0.2) to
-// (2.3, 0.9) across `max(n, 64)` pixels of a 64 × 64 Rgb565 texture (repeat);
-// `persp`: clip w from 1 to 3 along the span (a division per 8 pixels);
-// `affine`: equal w (no division). `dir_diffuse` takes the 5-6-5 fast path
+// `span_q14_1_tex_<filter>_<persp|affine>_<set>(n, out)`: the kernel
+// (`Kernel::span`) on the reference span's normals, texture coordinates from
+// (0.1, 0.2) to (2.3, 0.9) across `max(n, 64)` pixels of a 64 × 64 Rgb565
+// texture (repeat). The perspective-correct interpolation is the pipeline's,
+// not the kernel's: `persp` and `affine` span rows measure the same kernel
+// (the `tri_…_persp` rows measure the whole perspective path). `dir_diffuse` takes the 5-6-5 fast path
 // (nearest, no specular light); `dir_blinn` the general path (the secondary
 // colour). `tri_…`: a triangle with legs of `scale` pixels through the mesh
 // renderer (orthographic: the affine path; `persp` rows: a perspective camera,
 // the corner at (0, 2) in uv pushed back to about 3× the depth of the others).
 
 use fixshade::camera::Perspective;
-use fixshade::shade::{TexturedGouraudShading, VertexIn};
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
 
 /// A procedural 64 × 64 Rgb565 texture: a checker of two colour ramps.
@@ -624,26 +526,17 @@ fn tex64() -> Texture<'static> {
     black_box(Texture::new(Texels::Rgb565(&TEX64), 6, 6, Wrap::Repeat).unwrap())
 }
 
-fn q14(n: [f32; 3]) -> [i32; 3] {
-    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    n.map(|c| (c / l * 16384.0) as i32)
-}
-
 #[inline(always)]
 unsafe fn span_tex<M: Model>(filter: Filter, persp: bool, n: u32, out: *mut u16) -> u32 {
+    let _ = persp;
     let lit = lighting::<Q14<1>, _, M>([dir::<Q14<1>>()]);
-    let sh = Shader::<_, _, _, Rgb565>::new(TexturedGouraudShading, &lit, Linear)
-        .with_texture(tex64(), filter);
-    let n = black_box(n);
-    let mut a = VertexIn::new(q14([-0.6, 0.1, 0.79]), [0; 3]);
-    let mut b = VertexIn::new(q14([0.6, 0.1, 0.79]), [0; 3]);
+    let tex = tex64();
+    let sh = Shader::<_, _, _, Rgb565>::new(GouraudShading.textured(tex, filter), &lit, Linear);
+    let [mut a, mut b] = span_ends();
     a.uv = [410, 819];
     b.uv = [9421, 3686];
-    a.w = 1 << 16;
-    b.w = if persp { 3 << 16 } else { 1 << 16 };
     let (a, b) = (black_box(a), black_box(b));
-    sh.shade_ramp(&a, &b, SPAN, pixels(out, n as usize));
-    n
+    span_of(&sh, &a, &b, n, out)
 }
 
 /// [`draw`] with texture coordinates: the same triangle, uv (0, 0), (2, 0),
@@ -651,8 +544,8 @@ unsafe fn span_tex<M: Model>(filter: Filter, persp: bool, n: u32, out: *mut u16)
 #[inline(always)]
 unsafe fn tri_tex<M: Model>(filter: Filter, persp: bool, scale: u32, out: *mut u16) -> u32 {
     let lit = lighting::<Q14<1>, _, M>([dir::<Q14<1>>()]);
-    let sh = Shader::<_, _, _, Rgb565>::new(TexturedGouraudShading, &lit, Linear)
-        .with_texture(tex64(), filter);
+    let tex = tex64();
+    let sh = Shader::<_, _, _, Rgb565>::new(GouraudShading.textured(tex, filter), &lit, Linear);
     if !persp {
         return draw_tex(sh, tri_transform(), scale, out, 0);
     }
@@ -677,10 +570,7 @@ unsafe fn draw_tex<K: Kernel<Color = Rgb565>, P: fixshade::camera::Projection>(
     scale: u32,
     out: *mut u16,
     far: i32,
-) -> u32
-where
-    K::Vertex: fixshade::render::Lerp,
-{
+) -> u32 {
     let t = black_box(t);
     let s = black_box(scale);
     let depth = slice::from_raw_parts_mut(
@@ -691,7 +581,7 @@ where
         return 0;
     };
     if s == 0 {
-        frame.render(Rgb565::BLACK, &mut []);
+        let _ = frame.render(Rgb565::BLACK, &mut []);
         drop(frame);
         return covered();
     }
@@ -727,7 +617,7 @@ where
     let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
         return 0;
     };
-    frame.render(Rgb565::BLACK, &mut [&mut tri]);
+    let _ = frame.render(Rgb565::BLACK, &mut [&mut tri]);
     drop(frame);
     covered()
 }
@@ -782,110 +672,53 @@ static NMAP: [[i16; 3]; 256] = {
     t
 };
 
-fn nmap() -> fixshade::normal_map::NormalMap<'static> {
-    fixshade::normal_map::NormalMap::new(black_box(&NMAP), 4, 4, fixshade::normal_map::Wrap::Repeat)
-        .unwrap()
+fn nmap() -> fixshade::texture::NormalMap<'static> {
+    fixshade::texture::NormalMap::new(black_box(&NMAP), 4, 4, Wrap::Repeat).unwrap()
 }
 
-/// The tangent along the parallel of unit normal `n`: `(nz, 0, −nx)/|…|`.
-fn parallel(n: [f32; 3]) -> [f32; 3] {
-    fixshade::vector::Vec3::<f32>::from_f32([n[2], 0.0, -n[0]])
-        .normalize()
-        .to_f32()
+/// The tangent along the parallel of unit normal `n`: `(nz, 0, −nx)`, Q14.
+fn parallel(n: [f32; 3]) -> [i32; 3] {
+    q14([n[2], 0.0, -n[0]])
 }
 
 /// The span ends of the normal-mapping kernels: the sphere span of the other
 /// kernels, tangents along the parallels, `u` from 0 to 2 (two map widths),
 /// `v` = 0.3.
-fn nm_ends<S: Scalar>() -> [(ShadeVertex<S>, [f32; 3], [f32; 2]); 2] {
-    let [a, b] = span_ends::<S>();
-    [
-        (a, parallel(a.normal.to_f32()), [0.0, 0.3]),
-        (b, parallel(b.normal.to_f32()), [2.0, 0.3]),
-    ]
+fn nm_ends() -> [VertexIn; 2] {
+    let ends = [([-0.6, 0.1, 0.79], 0), ([0.6, 0.1, 0.79], 8192)];
+    ends.map(|(n, u)| {
+        let mut v = vertex_in(n);
+        let t = parallel(n);
+        v.tangent = [t[0], t[1], t[2], 16384];
+        v.uv = [u, 1229];
+        v
+    })
 }
 
-/// `span_q14_1_nmap_<set>`: the Q14 fast path (`FastNormalMapShader`), one
-/// directional light. Attributes as `FastNormalMapShader::draw` gives them: `L`,
-/// `H` in each end's tangent frame (Q26), `u`, `v` (Q24).
+/// `span_q14_1_nmap_<set>`: the Q14 fast path (`PhongShading.normal_mapped`
+/// with one directional light), over the reference span.
 #[inline(always)]
 unsafe fn span_nmap_fast<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u16) -> u32 {
-    let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
-    let mut sh = fixshade::shade::FastNormalMapShader::<_, _, Rgb565>::new(&lit, nmap());
-    let l = lit.lights()[0].direction().to_f32();
-    let h = lit.lights()[0].prepared().half.map(|h| h.to_f32()).unwrap_or(l);
-    let attrs = |(v, t, uv): &(ShadeVertex<Q14<NW>>, [f32; 3], [f32; 2])| {
-        let nn = v.normal.to_f32();
-        let b = [
-            nn[1] * t[2] - nn[2] * t[1],
-            nn[2] * t[0] - nn[0] * t[2],
-            nn[0] * t[1] - nn[1] * t[0],
-        ];
-        let d = |a: &[f32; 3], c: &[f32; 3]| ((a[0] * c[0] + a[1] * c[1] + a[2] * c[2]) * 67108864.0) as i32;
-        [
-            d(t, &l),
-            d(&b, &l),
-            d(&nn, &l),
-            d(t, &h),
-            d(&b, &h),
-            d(&nn, &h),
-            (uv[0] * 16777216.0) as i32,
-            (uv[1] * 16777216.0) as i32,
-        ]
-    };
-    let [e0, e1] = nm_ends::<Q14<NW>>();
-    let n = black_box(n);
-    let (start, step) = ramp(attrs(&e0), attrs(&e1), n);
-    SpanShader::<8>::shade_span(&mut sh, black_box(0), black_box(0), &start, &step, pixels(out, n as usize));
-    n
+    let lit = lighting::<Q14<NW>, _, M>(dir::<Q14<NW>>());
+    let sh = Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(nmap()), &lit, Linear);
+    let [a, b] = nm_ends();
+    span_of(&sh, &a, &b, n, out)
 }
 
-/// `span_<tier>_nmap_general_<set>`: the general path (`NormalMapShader`).
-/// Attributes as `NormalMapShader::draw` gives them: normal, tangent (the
-/// tier's attribute scale), `u`, `v` (Q24), and the position when the
-/// lighting needs it.
+/// `span_<tier>_nmap_general_<set>`: the general path
+/// (`GeneralPhongShading.normal_mapped`).
 #[inline(always)]
 unsafe fn span_nmap_general<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let mut sh = fixshade::shade::NormalMapShader::<_, _, Rgb565>::new(&lit, nmap(), Linear);
-    let attrs = |(v, t, uv): &(ShadeVertex<S>, [f32; 3], [f32; 2])| {
-        let a = normal_pos_attrs(v);
-        let t = t.map(|c| S::from_f32(c).to_attr());
-        [
-            a[0],
-            a[1],
-            a[2],
-            t[0],
-            t[1],
-            t[2],
-            (uv[0] * 16777216.0) as i32,
-            (uv[1] * 16777216.0) as i32,
-            a[3],
-            a[4],
-            a[5],
-        ]
-    };
-    let [e0, e1] = nm_ends::<S>();
-    let n = black_box(n);
-    let (x, y, px) = (black_box(0), black_box(0), pixels(out, n as usize));
-    let (start, step) = ramp(attrs(&e0), attrs(&e1), n);
-    if Lighting::<S, L, M>::NEEDS_POSITION {
-        SpanShader::<11>::shade_span(&mut sh, x, y, &start, &step, px);
-    } else {
-        let s8: [i32; 8] = core::array::from_fn(|i| start[i]);
-        let d8: [i32; 8] = core::array::from_fn(|i| step[i]);
-        SpanShader::<8>::shade_span(&mut sh, x, y, &s8, &d8, px);
-    }
-    n
+    let sh = Shader::<_, _, _, Rgb565>::new(GeneralPhongShading.normal_mapped(nmap()), &lit, Linear);
+    let [a, b] = nm_ends();
+    span_of(&sh, &a, &b, n, out)
 }
 
 /// The triangle of the other triangle kernels through the mesh renderer, with
 /// texture coordinates (0 to 2 along each leg) and tangents along the
 /// parallels of its normals.
-unsafe fn draw_nm<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -> u32
-where
-    K::Vertex: fixshade::render::Lerp,
-{
+unsafe fn draw_nm<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -> u32 {
     let t = black_box(tri_transform());
     let s = black_box(scale);
     // SAFETY: the kernels run one at a time (single-threaded emulator); nothing
@@ -895,7 +728,7 @@ where
         return 0;
     };
     if s == 0 {
-        frame.render(Rgb565::BLACK, &mut []);
+        let _ = frame.render(Rgb565::BLACK, &mut []);
         drop(frame);
         return covered();
     }
@@ -924,7 +757,7 @@ where
     let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
         return 0;
     };
-    frame.render(Rgb565::BLACK, &mut [&mut tri]);
+    let _ = frame.render(Rgb565::BLACK, &mut [&mut tri]);
     drop(frame);
     covered()
 }
@@ -938,8 +771,8 @@ macro_rules! nmap_fast {
             }
             #[export_name = concat!("tri_q14_1_nmap_", stringify!($set))]
             pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
-                let lit = lighting::<Q14<1>, _, $M>([dir::<Q14<1>>()]);
-                draw_nm(fixshade::shade::FastNormalMapShader::<_, _, Rgb565>::new(&lit, nmap()), scale, out)
+                let lit = lighting::<Q14<1>, _, $M>(dir::<Q14<1>>());
+                draw_nm(Shader::new(PhongShading.normal_mapped(nmap()), &lit, Linear), scale, out)
             }
             #[used]
             static KEEP_NMAP: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
@@ -962,7 +795,7 @@ macro_rules! nmap_general {
             #[export_name = concat!("tri_", stringify!($tier), "_nmap_general_", stringify!($set))]
             pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
                 let lit = lighting::<$S, _, $M>($mk::<$S>());
-                draw_nm(fixshade::shade::NormalMapShader::<_, _, Rgb565>::new(&lit, nmap(), Linear), scale, out)
+                draw_nm(Shader::new(GeneralPhongShading.normal_mapped(nmap()), &lit, Linear), scale, out)
             }
             #[used]
             static KEEP_NMAP_G: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
