@@ -14,7 +14,7 @@ use embedded_graphics_core::geometry::Size;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::render::{CachedVertex, Carry};
-use fixshade::target::Checksum;
+use fixshade::framebuffer::Checksum;
 use fixshade_qemu::{bins, Buffers, Fail, CARRY, NV, W};
 
 mod board {

@@ -15,9 +15,9 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::prelude::*;
 use fixshade::render::{
-    Bands, CachedVertex, Carry, DrawBand, Layout, Lerp, MeshDraw, MeshMemory, RenderError,
+    Bands, CachedVertex, Carry, DrawBand, Layout, MeshDraw, MeshMemory, RenderError,
 };
-use fixshade::shade::{DirectionalLighting, Kernel};
+use fixshade::shade::{DirectionalLighting, GeneralPhongShading, Kernel};
 use fixshade::standard;
 
 /// Frame width and height (240).
@@ -95,7 +95,6 @@ pub fn draw<K, D>(
 ) -> Result<usize, Fail>
 where
     K: Kernel<Color = Rgb565>,
-    K::Vertex: Lerp,
     D: DrawTarget<Color = Rgb565>,
 {
     let layout = Layout::banded(W as u32, W as u32, rows as u32)?;
@@ -202,7 +201,7 @@ configs! {
     blinn_gouraud: [u16; 3], Lighting<Q14, Dir, BlinnPhong>
         = standard::blinn::<Q14>(), GouraudShading;
     blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>
-        = standard::blinn::<Q14>(), PhongShading;
+        = standard::blinn::<Q14>(), GeneralPhongShading;
     blinn_phong_inc: [i16; 3], DirectionalLighting<2, 1, BlinnPhong>
         = inc_lighting(), IncrementalPhongShading;
     flat: [i16; 3], Lighting<Q14, Dir, Lambert>

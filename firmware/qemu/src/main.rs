@@ -3,7 +3,7 @@
 //! * `thumbv6m-none-eabi` (QEMU `microbit`, Cortex-M0, 16 KiB RAM) and
 //!   `thumbv7em-none-eabihf` (QEMU `mps2-an386`, Cortex-M4F): one
 //!   configuration per image (a cargo feature). It renders the standard
-//!   scene twice through a band strip into a `fixshade::target::Checksum`,
+//!   scene twice through a band strip into a `fixshade::framebuffer::Checksum`,
 //!   times every stage with SysTick (under `qemu -icount shift=0` one
 //!   instruction is one nanosecond of virtual time, so the count is exact
 //!   and deterministic), reads the painted stack's low-water mark, prints one
@@ -29,7 +29,7 @@ fn main() {
     use embedded_graphics_core::geometry::Size;
     use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
     use fixshade::render::Carry;
-    use fixshade::target::Checksum;
+    use fixshade::framebuffer::Checksum;
     use fixshade_qemu::*;
 
     let t = transform().expect("standard transform");
