@@ -323,7 +323,8 @@ pub(crate) fn classify<const PERSP: bool>(
     let r1 = ymax.saturating_sub(half) >> SUBPIXEL_BITS;
     let c0 = (xmin.saturating_sub(half).saturating_add(one)) >> SUBPIXEL_BITS;
     let c1 = xmax.saturating_sub(half) >> SUBPIXEL_BITS;
-    let (h, w) = (height as i32, width as i32);
+    let clamp = |n: u32| n.min(i32::MAX as u32) as i32;
+    let (h, w) = (clamp(height), clamp(width));
     if r1 < 0 || r0 >= h || r0 > r1 || c1 < 0 || c0 >= w || c0 > c1 {
         return None;
     }
