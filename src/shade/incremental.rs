@@ -1,7 +1,7 @@
 //! Incremental Phong shading: the Cortex-M0 fast path for directional lights and a
 //! viewer at infinity in the Q14 tier.
 
-use super::phong::{lit_span, PhongTriangle};
+use super::perpixel::{self, HasSources, PixelTriangle, Plain};
 use super::{IncrementalPhongShading, Kernel, Linear, ModeState, Shader};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
@@ -237,15 +237,14 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
             >> 24;
         let dd = dn.iter().map(|&b| b as i64 * b as i64).sum::<i64>() >> 24;
         let general = |out: &mut [C]| {
-            let g = |v: &[i32]| [0, 1, 2].map(|i| v.get(i).copied().unwrap_or(0));
-            lit_span(
+            let g = |v: &[i32]| [0, 1, 2, 6, 6, 6].map(|i| v.get(i).copied().unwrap_or(0) * i32::from(i < 3));
+            perpixel::span::<Plain, _, _, C, false>(
                 lighting,
                 &Linear,
-                &PhongTriangle::default(),
-                g(a),
-                g(d),
-                [0; 3],
-                [0; 3],
+                &().get(),
+                &PixelTriangle::default(),
+                &g(a),
+                &g(d),
                 x,
                 y,
                 out,

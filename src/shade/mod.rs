@@ -36,6 +36,7 @@ mod flat;
 mod gouraud;
 mod incremental;
 mod normalmap;
+mod perpixel;
 mod phong;
 mod quadratic;
 mod segment;
@@ -44,9 +45,8 @@ mod textured;
 pub use crate::color::{Dithered, Encoder, Gamma, Linear};
 pub use incremental::{DirectionalLighting, IncrementalModel};
 pub use normalmap::NormalMapped;
-pub use phong::PhongTriangle;
 pub use quadratic::{QuadraticLighting, QuadraticModel, QuadraticTier};
-pub use textured::{TexPayload, TextureBinding, Textured, TexturedTriangle};
+pub use textured::Textured;
 
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;

@@ -2,16 +2,16 @@
 //! [`NormalMap`] in the tangent frame of the surface.
 
 use super::incremental::{channel_units, PowTable};
-use super::phong::PhongTriangle;
-use super::{eye_point, unit_q14, Encoder, GeneralPhongShading, Kernel, Mode, ModeState};
+use super::perpixel::{self, sat16, GeneralSurface, Mapped, PixelTriangle, Sources};
+use super::perpixel::UV_FRAC;
+use super::{unit_q14, Encoder, GeneralPhongShading, Kernel, Mode, ModeState};
 use super::{PhongShading, Shader, VertexIn};
-use crate::color::{OutputColor, Rgb};
+use crate::color::OutputColor;
 use crate::lighting::{DirectionalTerms, Illuminate};
 use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
-use crate::num::{Flag, Off, On, Point3, Scalar, Vec3};
+use crate::num::{Flag, Off, On, Scalar, Vec3};
 use crate::raster::interp::Varyings;
-use crate::raster::ATTR_FRAC;
-use crate::texture::{NormalMap, NormalTexel, Wrap};
+use crate::texture::{Nearest, NormalMap, Wrap};
 
 /// A per-pixel mode with surface detail from a normal map (made by
 /// [`PhongShading::normal_mapped`] or [`GeneralPhongShading::normal_mapped`]):
@@ -48,7 +48,7 @@ use crate::texture::{NormalMap, NormalTexel, Wrap};
 #[derive(Clone, Copy, Debug)]
 pub struct NormalMapped<'m, M> {
     mode: M,
-    map: NormalMap<'m>,
+    pub(super) map: NormalMap<'m>,
 }
 
 impl<M: Mode> Mode for NormalMapped<'_, M> {
@@ -71,284 +71,17 @@ impl GeneralPhongShading {
     }
 }
 
-impl<'m, I: Illuminate, C> ModeState<I, C> for NormalMapped<'m, GeneralPhongShading> {
-    type State = NormalMap<'m>;
-    fn state(self, _: &I) -> NormalMap<'m> {
+impl<'m> GeneralSurface for NormalMapped<'m, GeneralPhongShading> {
+    type Features = Mapped;
+    type Sources = Sources<'m, 'static>;
+    fn sources(self) -> Sources<'m, 'static> {
         let _ = self.mode;
-        self.map
-    }
-}
-
-/// The handedness of three vertices: the sign of their sum (`+1` on ties and
-/// zeros).
-#[inline]
-fn majority(h: [i32; 3]) -> i32 {
-    if h.iter().map(|v| v.signum()).sum::<i32>() < 0 {
-        -1
-    } else {
-        1
-    }
-}
-
-/// The colour of one pixel: interpolated normal `n` and tangent `t` (the
-/// tier's attribute scale, not normalised), handedness `hand`, map texel `m`,
-/// position `p`.
-#[inline(always)]
-fn general_pixel<S: Scalar, I: Illuminate<Scalar = S>>(
-    lighting: &I,
-    n: [i32; 3],
-    t: [i32; 3],
-    hand: i32,
-    m: NormalTexel,
-    p: &Point3<S>,
-) -> Rgb<S> {
-    let v = |a: [i32; 3]| Vec3::new(S::from_attr(a[0]), S::from_attr(a[1]), S::from_attr(a[2]));
-    let (n, t) = (v(n), v(t));
-    // the texel (Q14) in the attribute scale (Q26); the bitangent's weight
-    // carries the handedness
-    let c = |x: i32| S::from_attr(x << 12);
-    let (mx, my, mz) = (
-        c(i32::from(m[0])),
-        c(i32::from(m[1]) * hand),
-        c(i32::from(m[2])),
-    );
-    // B = N × T
-    let b = Vec3::new(
-        S::sub(S::mul(n.y, t.z), S::mul(n.z, t.y)),
-        S::sub(S::mul(n.z, t.x), S::mul(n.x, t.z)),
-        S::sub(S::mul(n.x, t.y), S::mul(n.y, t.x)),
-    );
-    let np = t.scale(mx).add(b.scale(my)).add(n.scale(mz));
-    lighting.shade(p, S::normalize_interpolated(np))
-}
-
-/// What the vertex cache holds per vertex for the general path: the Q14
-/// eye-space unit normal and tangent, the handedness (±1) and the Q12 texture
-/// coordinates (18 bytes).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct NormalMapPayload {
-    n: [i16; 3],
-    t: [i16; 3],
-    hand: i16,
-    uv: [i16; 2],
-}
-
-/// Clamps an `i32` to `i16`.
-#[inline]
-fn sat16(v: i32) -> i16 {
-    v.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16
-}
-
-/// A normal-mapped triangle (general path): the handedness of its tangent
-/// frame and the origin of its interpolated positions.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct NormalMapTriangle {
-    pos: PhongTriangle,
-    hand: i32,
-}
-
-/// The general kernel's vertex payload.
-#[inline]
-fn general_vertex(v: &VertexIn) -> NormalMapPayload {
-    NormalMapPayload {
-        n: unit_q14(v.normal),
-        t: unit_q14([v.tangent[0], v.tangent[1], v.tangent[2]]),
-        hand: if v.tangent[3] < 0 { -1 } else { 1 },
-        uv: [sat16(v.uv[0]), sat16(v.uv[1])],
-    }
-}
-
-/// The general kernel's triangle: normal (3), tangent (3) (Q14), `u`, `v`
-/// (Q12), then the position (see [`PhongTriangle`]) when `position`.
-#[inline]
-fn general_triangle(
-    v: [&NormalMapPayload; 3],
-    eye: &[[i32; 3]; 3],
-    position: bool,
-) -> (NormalMapTriangle, [[i32; 11]; 3]) {
-    let (pos, p) = if position {
-        PhongTriangle::new(eye)
-    } else {
-        (PhongTriangle::default(), [[0; 3]; 3])
-    };
-    let var = core::array::from_fn(|k| {
-        let q = v[k];
-        let p = p[k];
-        [
-            i32::from(q.n[0]),
-            i32::from(q.n[1]),
-            i32::from(q.n[2]),
-            i32::from(q.t[0]),
-            i32::from(q.t[1]),
-            i32::from(q.t[2]),
-            i32::from(q.uv[0]),
-            i32::from(q.uv[1]),
-            p[0],
-            p[1],
-            p[2],
-        ]
-    });
-    let tri = NormalMapTriangle {
-        pos,
-        hand: majority(v.map(|q| i32::from(q.hand))),
-    };
-    (tri, var)
-}
-
-/// The general kernel's range of value `i`: the normal and tangent within
-/// [−1, 1] in Q14 (Q28 with ATTR_FRAC bits).
-#[inline(always)]
-fn general_safe(i: usize) -> (i32, i32) {
-    let one = 1 << (14 + ATTR_FRAC);
-    if i < 6 {
-        (-one, one)
-    } else {
-        (-(1 << 30), 1 << 30)
-    }
-}
-
-/// The general kernel's span.
-#[allow(clippy::too_many_arguments)]
-fn general_span<S: Scalar, I: Illuminate<Scalar = S>, E: Encoder<C>, C: OutputColor>(
-    lighting: &I,
-    encoder: &E,
-    map: &NormalMap<'_>,
-    t: &NormalMapTriangle,
-    a: &[i32; 11],
-    d: &[i32; 11],
-    x: i32,
-    y: i32,
-    color: &mut [C],
-) {
-    // the values the lighting reads, in an array of their own length; the
-    // map's wrap mode as a constant
-    let eight = |v: &[i32; 11]| core::array::from_fn(|i| v[i]);
-    match (I::NEEDS_POSITION, map.wrap()) {
-        (true, Wrap::Repeat) => {
-            general_run::<_, _, _, _, 11, true>(lighting, encoder, map, t, *a, *d, x, y, color)
-        }
-        (true, Wrap::Clamp) => {
-            general_run::<_, _, _, _, 11, false>(lighting, encoder, map, t, *a, *d, x, y, color)
-        }
-        (false, Wrap::Repeat) => general_run::<_, _, _, _, 8, true>(
-            lighting, encoder, map, t, eight(a), eight(d), x, y, color,
-        ),
-        (false, Wrap::Clamp) => general_run::<_, _, _, _, 8, false>(
-            lighting, encoder, map, t, eight(a), eight(d), x, y, color,
-        ),
-    }
-}
-
-/// [`general_span`] over the first `N` values (8: no position); `REPEAT`
-/// wraps the texture coordinates (else clamps).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn general_run<
-    S: Scalar,
-    I: Illuminate<Scalar = S>,
-    E: Encoder<C>,
-    C: OutputColor,
-    const N: usize,
-    const REPEAT: bool,
->(
-    lighting: &I,
-    encoder: &E,
-    map: &NormalMap<'_>,
-    t: &NormalMapTriangle,
-    mut a: [i32; N],
-    d: [i32; N],
-    x: i32,
-    y: i32,
-    color: &mut [C],
-) {
-    let at = |a: &[i32; N], i: usize| a.get(i).copied().unwrap_or(0);
-    // texture coordinates (Q12 with ATTR_FRAC bits) to texels: shifts per span
-    let (wl, hl) = map.size_log2();
-    let su = UV_FRAC.saturating_sub(u32::from(wl)).min(31);
-    let sv = UV_FRAC.saturating_sub(u32::from(hl)).min(31);
-    let (wm, hm, wl) = ((1i32 << wl) - 1, (1i32 << hl) - 1, u32::from(wl));
-    let texels = map.texels();
-    for (x, c) in (x..).zip(color.iter_mut()) {
-        let pos = if N > 8 {
-            eye_point::<S>(t.pos.position([at(&a, 8), at(&a, 9), at(&a, 10)]))
-        } else {
-            eye_point::<S>([0; 3])
-        };
-        let (u, v) = (at(&a, 6) >> su, at(&a, 7) >> sv);
-        let (u, v) = if REPEAT {
-            (u & wm, v & hm)
-        } else {
-            (u.clamp(0, wm), v.clamp(0, hm))
-        };
-        let m = texels
-            .get(((v << wl) | u) as usize)
-            .copied()
-            .unwrap_or(crate::texture::FLAT_NORMAL);
-        // Q14 with ATTR_FRAC bits (Q28) → the tier's attribute (Q26)
-        let lit = general_pixel(
-            lighting,
-            [at(&a, 0) >> 2, at(&a, 1) >> 2, at(&a, 2) >> 2],
-            [at(&a, 3) >> 2, at(&a, 4) >> 2, at(&a, 5) >> 2],
-            t.hand,
-            m,
-            &pos,
-        );
-        *c = encoder.encode(lit, x, y);
-        for (a, d) in a.iter_mut().zip(d) {
-            // the values after the last pixel are not used: wrapping is harmless
-            *a = a.wrapping_add(d);
+        Sources {
+            map: Some(self.map),
+            tex: None,
         }
     }
 }
-
-impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
-    for Shader<'_, NormalMapped<'_, GeneralPhongShading>, I, E, C>
-{
-    type Color = C;
-    type Vertex = NormalMapPayload;
-    /// Normal (3), tangent (3) (Q14), `u`, `v` (Q12), then the position (see
-    /// [`PhongTriangle`]) when the lighting reads it.
-    type Varyings = [i32; 11];
-    type Triangle = NormalMapTriangle;
-    const USED: usize = if I::NEEDS_POSITION { 11 } else { 8 };
-    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
-    const NEEDS_TEXCOORD: bool = true;
-    const NEEDS_TANGENT: bool = true;
-
-    #[inline]
-    fn vertex(&self, v: &VertexIn) -> NormalMapPayload {
-        general_vertex(v)
-    }
-
-    fn triangle(
-        &self,
-        v: [&NormalMapPayload; 3],
-        eye: &[[i32; 3]; 3],
-    ) -> (NormalMapTriangle, [[i32; 11]; 3]) {
-        general_triangle(v, eye, I::NEEDS_POSITION)
-    }
-
-    #[inline(always)]
-    fn safe(&self, i: usize) -> (i32, i32) {
-        general_safe(i)
-    }
-
-    fn span(
-        &self,
-        t: &NormalMapTriangle,
-        a: &[i32; 11],
-        d: &[i32; 11],
-        x: i32,
-        y: i32,
-        color: &mut [C],
-    ) {
-        general_span(self.lighting, &self.encoder, &self.state, t, a, d, x, y, color)
-    }
-}
-
-/// Fraction bits of interpolated texture coordinates: Q12 with
-/// [`ATTR_FRAC`] bits.
-const UV_FRAC: u32 = 12 + ATTR_FRAC;
 
 // ---- the fast Q14 path ------------------------------------------------------------
 
@@ -365,14 +98,6 @@ pub struct FastNormal<'m> {
     base: [i32; 3],
     pow: PowTable,
     spec: bool,
-}
-
-/// What the vertex cache holds per vertex for the fast path: `L` and `H` in
-/// the vertex's tangent frame (Q14) and the Q12 texture coordinates (16 bytes).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct TangentLightPayload {
-    lh: [i16; 6],
-    uv: [i16; 2],
 }
 
 /// `L` and `H` (Q14) in the tangent frame of Q14 normal `n` (any length),
@@ -488,17 +213,18 @@ impl<'m> FastNormal<'m> {
         }
     }
 
-    /// The payload of a vertex with Q14 normal `n`, tangent `t`, handedness
-    /// `hand` and Q12 texture coordinates `uv`.
-    fn payload(&self, n: [i32; 3], t: [i32; 3], hand: i32, uv: [i32; 2]) -> TangentLightPayload {
-        TangentLightPayload {
-            lh: tangent_space(n, t, hand, &self.l, &self.h),
-            uv: [sat16(uv[0]), sat16(uv[1])],
-        }
+    /// The payload of vertex `v`: `L` in the tangent frame (Q14), the
+    /// texture coordinates (Q12), `H` in the tangent frame, in the places of
+    /// the general kernel's normal, coordinates and tangent.
+    fn payload(&self, v: &VertexIn) -> [i16; 9] {
+        let t = [v.tangent[0], v.tangent[1], v.tangent[2]];
+        let lh = tangent_space(v.normal, t, v.tangent[3], &self.l, &self.h);
+        let uv = v.uv.map(sat16);
+        [lh[0], lh[1], lh[2], uv[0], uv[1], lh[3], lh[4], lh[5], 1]
     }
 
     /// Shades one span: `lh`/`dlh` are `L` and `H` in Q24 with their steps,
-    /// `uv`/`duv` the texture coordinates with `uvf` fraction bits.
+    /// `uv`/`duv` the texture coordinates (Q12 with `ATTR_FRAC` bits).
     #[inline(always)]
     fn shade_run<C: OutputColor>(
         &self,
@@ -506,7 +232,6 @@ impl<'m> FastNormal<'m> {
         dlh: [i32; 6],
         uv: [i32; 2],
         duv: [i32; 2],
-        uvf: [u32; 2],
         out: &mut [C],
     ) {
         let n = out.len() as i64;
@@ -518,17 +243,12 @@ impl<'m> FastNormal<'m> {
         } else {
             0
         });
-        let (wl, hl) = self.map.size_log2();
         let st = Span {
             lh,
             dlh,
             uv,
             duv,
-            su: uvf[0].saturating_sub(u32::from(wl)).min(31),
-            sv: uvf[1].saturating_sub(u32::from(hl)).min(31),
-            wm: (1 << wl) - 1,
-            hm: (1 << hl) - 1,
-            wl: u32::from(wl),
+            map: self.map.nearest(UV_FRAC),
             s: [l.0 as i32, h.0 as i32],
             ds: [l.1 as i32, h.1 as i32],
             dds: [l.2 as i32, h.2 as i32],
@@ -556,7 +276,7 @@ impl<'m> FastNormal<'m> {
     #[inline(always)]
     fn run<C: OutputColor, const NEWTON: u32, const REPEAT: bool, const SPEC: bool>(
         &self,
-        st: Span,
+        st: Span<'_>,
         out: &mut [C],
     ) {
         let Span {
@@ -564,31 +284,17 @@ impl<'m> FastNormal<'m> {
             dlh,
             mut uv,
             duv,
-            su,
-            sv,
-            wm,
-            hm,
-            wl,
+            map,
             mut s,
             mut ds,
             dds,
         } = st;
         let spec = SPEC;
         let max = C::CHANNEL_MAX.map(|m| m as i32);
-        let texels = self.map.texels();
         // exact 1/|L|, 1/|H| at the span start (when FAST: refined per pixel)
         let mut r = [inv_len_q14(s[0]), inv_len_q14(s[1])];
         for p in out.iter_mut() {
-            let (x, y) = if REPEAT {
-                ((uv[0] >> su) & wm, (uv[1] >> sv) & hm)
-            } else {
-                ((uv[0] >> su).clamp(0, wm), (uv[1] >> sv).clamp(0, hm))
-            };
-            let m = texels
-                .get(((y << wl) | x) as usize)
-                .copied()
-                .unwrap_or(crate::texture::FLAT_NORMAL)
-                .map(i32::from);
+            let m = map.get::<REPEAT>(uv[0], uv[1]).map(i32::from);
             let mut acc = self.base;
             // n·L/|L|: Q14 · (Q24 ≫ 8 = Q16) = Q30, ≫ 14 = Q16; |n·L| ≤ |L|, and
             // (n·L)·(1/|L|) ≤ |n| ≈ 1: the Q30 product fits, rounded to Q14
@@ -641,16 +347,12 @@ impl<'m> FastNormal<'m> {
 
 /// A span's running state in the fast path.
 #[derive(Clone, Copy, Debug)]
-struct Span {
+struct Span<'m> {
     lh: [i32; 6],
     dlh: [i32; 6],
     uv: [i32; 2],
     duv: [i32; 2],
-    su: u32,
-    sv: u32,
-    wm: i32,
-    hm: i32,
-    wl: u32,
+    map: Nearest<'m>,
     /// `|L|²`, `|H|²` (Q28) and their forward differences.
     s: [i32; 2],
     ds: [i32; 2],
@@ -665,12 +367,8 @@ struct Span {
     note = "every `Lighting` of this crate is served; a lighting of your own implements `Illuminate` with `type Fast = fixshade::num::Off`"
 )]
 pub trait NormalMapPath<'m, I: Illuminate, C: OutputColor>: Flag {
-    /// The vertex payload.
-    type Vertex: Copy + Default + core::fmt::Debug;
     /// The values interpolated.
     type Varyings: Varyings;
-    /// The triangle constants.
-    type Triangle: Copy + core::fmt::Debug;
     /// What the shader precomputes.
     type State: Copy + core::fmt::Debug;
     /// How many values are used.
@@ -678,18 +376,16 @@ pub trait NormalMapPath<'m, I: Illuminate, C: OutputColor>: Flag {
     /// Precomputes it.
     fn state(lighting: &I, map: NormalMap<'m>) -> Self::State;
     /// The payload of a vertex.
-    fn vertex(state: &Self::State, v: &VertexIn) -> Self::Vertex;
+    fn vertex(state: &Self::State, v: &VertexIn) -> [i16; 9];
     /// The triangle.
-    fn triangle(v: [&Self::Vertex; 3], eye: &[[i32; 3]; 3]) -> (Self::Triangle, [Self::Varyings; 3]);
-    /// The range of value `i`.
-    fn safe(i: usize) -> (i32, i32);
+    fn triangle(v: [&[i16; 9]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [Self::Varyings; 3]);
     /// Shades a span.
     #[allow(clippy::too_many_arguments)]
     fn span<E: Encoder<C>>(
         state: &Self::State,
         lighting: &I,
         encoder: &E,
-        t: &Self::Triangle,
+        t: &PixelTriangle,
         a: &Self::Varyings,
         d: &Self::Varyings,
         x: i32,
@@ -699,46 +395,50 @@ pub trait NormalMapPath<'m, I: Illuminate, C: OutputColor>: Flag {
 }
 
 impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for Off {
-    type Vertex = NormalMapPayload;
     type Varyings = [i32; 11];
-    type Triangle = NormalMapTriangle;
-    type State = NormalMap<'m>;
-    const USED: usize = if I::NEEDS_POSITION { 11 } else { 8 };
-    fn state(_: &I, map: NormalMap<'m>) -> NormalMap<'m> {
-        map
+    type State = Sources<'m, 'static>;
+    const USED: usize = perpixel::used::<Mapped, I>();
+    fn state(_: &I, map: NormalMap<'m>) -> Self::State {
+        Sources {
+            map: Some(map),
+            tex: None,
+        }
     }
     #[inline]
-    fn vertex(_: &NormalMap<'m>, v: &VertexIn) -> NormalMapPayload {
-        general_vertex(v)
+    fn vertex(_: &Self::State, v: &VertexIn) -> [i16; 9] {
+        perpixel::vertex::<Mapped>(v)
     }
-    fn triangle(
-        v: [&NormalMapPayload; 3],
-        eye: &[[i32; 3]; 3],
-    ) -> (NormalMapTriangle, [[i32; 11]; 3]) {
-        general_triangle(v, eye, I::NEEDS_POSITION)
-    }
-    #[inline(always)]
-    fn safe(i: usize) -> (i32, i32) {
-        general_safe(i)
+    fn triangle(v: [&[i16; 9]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [[i32; 11]; 3]) {
+        if I::NEEDS_POSITION {
+            perpixel::triangle::<Mapped, true>(v, eye)
+        } else {
+            perpixel::triangle::<Mapped, false>(v, eye)
+        }
     }
     fn span<E: Encoder<C>>(
-        map: &NormalMap<'m>,
+        src: &Self::State,
         lighting: &I,
         encoder: &E,
-        t: &NormalMapTriangle,
+        t: &PixelTriangle,
         a: &[i32; 11],
         d: &[i32; 11],
         x: i32,
         y: i32,
         out: &mut [C],
     ) {
-        general_span(lighting, encoder, map, t, a, d, x, y, out)
+        if I::NEEDS_POSITION {
+            perpixel::span::<Mapped, I, E, C, true>(lighting, encoder, src, t, a, d, x, y, out)
+        } else {
+            perpixel::span::<Mapped, I, E, C, false>(lighting, encoder, src, t, a, d, x, y, out)
+        }
     }
 }
 
 /// The fast kernel's constants, or the map alone for a lighting whose model
 /// the fast kernel does not evaluate (then the general pixel, from the
 /// interpolated normal, tangent and handedness carried in the payload).
+// one per shader, no allocation: the size of the fast constants is the point
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 pub enum FastNormalState<'m> {
     /// The fast kernel.
@@ -748,11 +448,9 @@ pub enum FastNormalState<'m> {
 }
 
 impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for On {
-    type Vertex = NormalMapPayload;
-    /// `L`, `H` in the tangent frame (Q14), `u`, `v` (Q12) for the fast
+    /// `L` (Q14), `u`, `v` (Q12), `H` (Q14) in the tangent frame for the fast
     /// kernel; the general kernel's first 8 values otherwise.
     type Varyings = [i32; 8];
-    type Triangle = NormalMapTriangle;
     type State = FastNormalState<'m>;
     const USED: usize = 8;
     fn state(lighting: &I, map: NormalMap<'m>) -> FastNormalState<'m> {
@@ -762,39 +460,22 @@ impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for On {
         }
     }
     #[inline]
-    fn vertex(state: &FastNormalState<'m>, v: &VertexIn) -> NormalMapPayload {
+    fn vertex(state: &FastNormalState<'m>, v: &VertexIn) -> [i16; 9] {
         match state {
-            FastNormalState::Fast(f) => {
-                let p = f.payload(
-                    v.normal,
-                    [v.tangent[0], v.tangent[1], v.tangent[2]],
-                    v.tangent[3],
-                    v.uv,
-                );
-                // L and H in the normal's and tangent's places
-                NormalMapPayload {
-                    n: [p.lh[0], p.lh[1], p.lh[2]],
-                    t: [p.lh[3], p.lh[4], p.lh[5]],
-                    hand: 1,
-                    uv: p.uv,
-                }
-            }
-            FastNormalState::General(_) => general_vertex(v),
+            FastNormalState::Fast(f) => f.payload(v),
+            FastNormalState::General(_) => perpixel::vertex::<Mapped>(v),
         }
     }
-    fn triangle(v: [&NormalMapPayload; 3], eye: &[[i32; 3]; 3]) -> (NormalMapTriangle, [[i32; 8]; 3]) {
-        let (t, var) = general_triangle(v, eye, false);
+    fn triangle(v: [&[i16; 9]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [[i32; 8]; 3]) {
+        // a directional lighting reads no position
+        let (t, var) = perpixel::triangle::<Mapped, false>(v, eye);
         (t, var.map(|a| core::array::from_fn(|i| a[i])))
-    }
-    #[inline(always)]
-    fn safe(i: usize) -> (i32, i32) {
-        general_safe(i)
     }
     fn span<E: Encoder<C>>(
         state: &FastNormalState<'m>,
         lighting: &I,
         encoder: &E,
-        t: &NormalMapTriangle,
+        t: &PixelTriangle,
         a: &[i32; 8],
         d: &[i32; 8],
         x: i32,
@@ -804,13 +485,26 @@ impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for On {
         match state {
             FastNormalState::Fast(f) => {
                 // Q28 → Q24
-                let lh = core::array::from_fn(|i| a[i] >> 4);
-                let dlh = core::array::from_fn(|i| d[i] >> 4);
-                f.shade_run(lh, dlh, [a[6], a[7]], [d[6], d[7]], [UV_FRAC; 2], out)
+                let lh = |v: &[i32; 8]| [0, 1, 2, 5, 6, 7].map(|i| v[i] >> 4);
+                f.shade_run(lh(a), lh(d), [a[3], a[4]], [d[3], d[4]], out)
             }
             FastNormalState::General(map) => {
                 let wide = |v: &[i32; 8]| core::array::from_fn(|i| v.get(i).copied().unwrap_or(0));
-                general_span(lighting, encoder, map, t, &wide(a), &wide(d), x, y, out)
+                let src = Sources {
+                    map: Some(*map),
+                    tex: None,
+                };
+                perpixel::span::<Mapped, I, E, C, false>(
+                    lighting,
+                    encoder,
+                    &src,
+                    t,
+                    &wide(a),
+                    &wide(d),
+                    x,
+                    y,
+                    out,
+                )
             }
         }
     }
@@ -832,35 +526,35 @@ where
     I::Fast: NormalMapPath<'m, I, C>,
 {
     type Color = C;
-    type Vertex = <I::Fast as NormalMapPath<'m, I, C>>::Vertex;
+    type Vertex = [i16; 9];
     type Varyings = <I::Fast as NormalMapPath<'m, I, C>>::Varyings;
-    type Triangle = <I::Fast as NormalMapPath<'m, I, C>>::Triangle;
+    type Triangle = PixelTriangle;
     const USED: usize = <I::Fast as NormalMapPath<'m, I, C>>::USED;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
     const NEEDS_TEXCOORD: bool = true;
     const NEEDS_TANGENT: bool = true;
 
     #[inline]
-    fn vertex(&self, v: &VertexIn) -> Self::Vertex {
+    fn vertex(&self, v: &VertexIn) -> [i16; 9] {
         <I::Fast as NormalMapPath<'m, I, C>>::vertex(&self.state, v)
     }
 
     fn triangle(
         &self,
-        v: [&Self::Vertex; 3],
+        v: [&[i16; 9]; 3],
         eye: &[[i32; 3]; 3],
-    ) -> (Self::Triangle, [Self::Varyings; 3]) {
+    ) -> (PixelTriangle, [Self::Varyings; 3]) {
         <I::Fast as NormalMapPath<'m, I, C>>::triangle(v, eye)
     }
 
     #[inline(always)]
     fn safe(&self, i: usize) -> (i32, i32) {
-        <I::Fast as NormalMapPath<'m, I, C>>::safe(i)
+        perpixel::safe::<Mapped>(i)
     }
 
     fn span(
         &self,
-        t: &Self::Triangle,
+        t: &PixelTriangle,
         a: &Self::Varyings,
         d: &Self::Varyings,
         x: i32,

@@ -1,11 +1,14 @@
 //! Textured Gouraud shading (see [`Textured`]).
 
+use super::normalmap::NormalMapped;
+use super::perpixel::{GeneralSurface, MappedTex, Sources, Tex};
 use super::{eye_point, unit_normal, Encoder, GouraudShading, Kernel, Mode, ModeState, Shader};
-use super::VertexIn;
+use super::{GeneralPhongShading, PhongShading, VertexIn};
 use crate::color::{OutputColor, Rgb};
-use crate::lighting::Illuminate;
+use crate::lighting::{Illuminate, LitColor};
+use crate::num::Scalar;
 use crate::raster::{ClampTo, ATTR_FRAC};
-use crate::texture::{Filter, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
+use crate::texture::{modulate_run, Filter, Pieces, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
 
 /// A mode with a colour texture: OpenGL's `GL_MODULATE` with
 /// `GL_SEPARATE_SPECULAR_COLOR` (made by [`GouraudShading::textured`]).
@@ -58,16 +61,65 @@ impl<'t, M: Mode> Mode for Textured<'t, M> {
     const NAME: &'static str = "textured";
 }
 
-impl GouraudShading {
+/// `textured` on the modes a colour texture composes with.
+macro_rules! textured {
+    ($($(#[$doc:meta])* $mode:ty;)*) => {$(
+        impl<'m> $mode {
+            $(#[$doc])*
+            pub fn textured(self, texture: Texture<'_>, filter: Filter) -> Textured<'_, Self> {
+                Textured {
+                    mode: self,
+                    texture,
+                    filter,
+                }
+            }
+        }
+    )*};
+}
+
+textured! {
     /// Gouraud shading with the colour texture `texture`, sampled with
     /// `filter` (see [`Textured`]).
-    pub fn textured(self, texture: Texture<'_>, filter: Filter) -> Textured<'_, Self> {
-        Textured {
-            mode: self,
-            texture,
-            filter,
+    GouraudShading;
+    /// Per-pixel lighting with the colour texture `texture`, sampled with
+    /// `filter` (see [`Textured`]): the general kernel.
+    PhongShading;
+    /// Per-pixel lighting with the colour texture `texture`, sampled with
+    /// `filter` (see [`Textured`]).
+    GeneralPhongShading;
+    /// Normal-mapped per-pixel lighting with the colour texture `texture`,
+    /// sampled with `filter` (see [`Textured`]): the general kernel.
+    NormalMapped<'m, PhongShading>;
+    /// Normal-mapped per-pixel lighting with the colour texture `texture`,
+    /// sampled with `filter` (see [`Textured`]).
+    NormalMapped<'m, GeneralPhongShading>;
+}
+
+/// A textured per-pixel mode's surface.
+macro_rules! textured_surface {
+    ($([$($g:lifetime),*] $mode:ty => $features:ty, $ml:lifetime, |$s:ident| $map:expr;)*) => {$(
+        impl<'t, $($g),*> GeneralSurface for Textured<'t, $mode> {
+            type Features = $features;
+            type Sources = Sources<$ml, 't>;
+            fn sources(self) -> Sources<$ml, 't> {
+                let $s = self.mode;
+                Sources {
+                    map: $map,
+                    tex: Some(TextureBinding {
+                        texture: self.texture,
+                        filter: self.filter,
+                    }),
+                }
+            }
         }
-    }
+    )*};
+}
+
+textured_surface! {
+    [] PhongShading => Tex, 'static, |_m| None;
+    [] GeneralPhongShading => Tex, 'static, |_m| None;
+    ['m] NormalMapped<'m, PhongShading> => MappedTex, 'm, |m| Some(m.map);
+    ['m] NormalMapped<'m, GeneralPhongShading> => MappedTex, 'm, |m| Some(m.map);
 }
 
 /// The texture and filter a [`Textured`] shader samples.
@@ -75,6 +127,71 @@ impl GouraudShading {
 pub struct TextureBinding<'t> {
     texture: Texture<'t>,
     filter: Filter,
+}
+
+impl TextureBinding<'_> {
+    /// The primary (without the encoder's rounding offset) and secondary
+    /// (with it) parts of `lit` in encoder values (each below 2^15).
+    #[inline(always)]
+    pub(crate) fn parts<S: Scalar, E: Encoder<C>, C: OutputColor>(
+        encoder: &E,
+        lit: LitColor<S>,
+    ) -> ([i32; 3], [i32; 3]) {
+        let black = encoder.vertex(Rgb::<S>::BLACK);
+        let p = encoder.vertex(lit.primary);
+        let s = encoder.vertex(lit.secondary);
+        (
+            core::array::from_fn(|i| (p[i] - black[i]).clamp(0, 0x7FFF)),
+            s.map(|v| v.clamp(0, 0x7FFF)),
+        )
+    }
+
+    /// The pixel `texel × primary + secondary` at `c` of the lit colour
+    /// `lit` (a per-pixel kernel's).
+    #[inline(always)]
+    pub(crate) fn modulate<S: Scalar, E: Encoder<C>, C: OutputColor>(
+        &self,
+        encoder: &E,
+        lit: LitColor<S>,
+        c: TexCoord,
+        x: i32,
+        y: i32,
+    ) -> C {
+        let (p, s) = Self::parts(encoder, lit);
+        self.pixel(
+            encoder,
+            p.map(|v| v << ATTR_FRAC),
+            s.map(|v| v << ATTR_FRAC),
+            c,
+            x,
+            y,
+        )
+    }
+
+    /// The pixel `texel × primary + secondary` on encoder values `p`, `s`
+    /// (with [`ATTR_FRAC`] bits), clamped to the encoder's range.
+    #[inline(always)]
+    fn pixel<E: Encoder<C>, C: OutputColor>(
+        &self,
+        encoder: &E,
+        p: [i32; 3],
+        s: [i32; 3],
+        c: TexCoord,
+        x: i32,
+        y: i32,
+    ) -> C {
+        let t = self.texture.sample(c, self.filter);
+        let a = core::array::from_fn(|i| {
+            let t = i32::from(t[i]);
+            let w = t + (t >> 7);
+            let (lo, hi) = E::safe(i);
+            (p[i] >> 8)
+                .wrapping_mul(w)
+                .wrapping_add(s[i])
+                .clamp_to(lo, hi)
+        });
+        encoder.pixel(a, x, y)
+    }
 }
 
 impl<'t, I: Illuminate, C> ModeState<I, C> for Textured<'t, GouraudShading> {
@@ -125,14 +242,7 @@ impl<'t, I: Illuminate, E: Encoder<C>, C: OutputColor>
         position: &crate::num::Point3<I::Scalar>,
         normal: crate::num::Vec3<I::Scalar>,
     ) -> ([i32; 3], [i32; 3]) {
-        let parts = self.lighting.shade_parts(position, normal, None);
-        let black = self.encoder.vertex(Rgb::<I::Scalar>::BLACK);
-        let p = self.encoder.vertex(parts.primary);
-        let s = self.encoder.vertex(parts.secondary);
-        (
-            core::array::from_fn(|i| (p[i] - black[i]).clamp(0, 0x7FFF)),
-            s.map(|v| v.clamp(0, 0x7FFF)),
-        )
+        TextureBinding::parts(&self.encoder, self.lighting.shade_parts(position, normal, None))
     }
 
     /// Whether the mesh kernel may take the 5-6-5 fast path.
@@ -147,72 +257,6 @@ impl<'t, I: Illuminate, E: Encoder<C>, C: OutputColor>
             && lw >= 1
             && lh >= 1
             && matches!(t.texels(), Texels::Rgb565(_))
-    }
-
-    /// The general pixel: texel × primary + secondary on encoder values,
-    /// clamped to the encoder's range.
-    #[inline(always)]
-    fn pixel(&self, p: [i32; 3], s: [i32; 3], c: TexCoord, x: i32, y: i32) -> C {
-        let t = self.state.texture.sample(c, self.state.filter);
-        let a = core::array::from_fn(|i| {
-            let t = i32::from(t[i]);
-            let w = t + (t >> 7);
-            let (lo, hi) = E::safe(i);
-            (p[i] >> 8)
-                .wrapping_mul(w)
-                .wrapping_add(s[i])
-                .clamp_to(lo, hi)
-        });
-        self.encoder.pixel(a, x, y)
-    }
-}
-
-/// Pixels per piece of an affine run: the packed 16-bit coordinates of the
-/// fast path are re-anchored this often (their rounded steps drift by at most
-/// `2^−17` of a texture per pixel).
-const AFFINE_CHUNK: usize = 32;
-
-/// The texture coordinates of a run, piece by piece: [`Pieces::next`] gives
-/// `(len, u, du, v, dv)` (Q24) for the next `len` pixels (at most
-/// [`AFFINE_CHUNK`]), pixel `j` of the piece at `u + j·du`.
-#[derive(Clone, Copy, Debug)]
-struct Pieces {
-    n: usize,
-    k0: usize,
-    u: i32,
-    du: i32,
-    v: i32,
-    dv: i32,
-}
-
-impl Pieces {
-    /// `n` pixels from `(u, v)` stepping by `(du, dv)` (Q24).
-    #[inline(always)]
-    fn new(n: usize, u: i32, du: i32, v: i32, dv: i32) -> Self {
-        Pieces {
-            n,
-            k0: 0,
-            u,
-            du,
-            v,
-            dv,
-        }
-    }
-
-    /// The next piece: `(len, u, du, v, dv)`.
-    #[inline(always)]
-    fn next(&mut self) -> Option<(usize, i32, i32, i32, i32)> {
-        let k0 = self.k0;
-        if k0 >= self.n {
-            return None;
-        }
-        let len = (self.n - k0).min(AFFINE_CHUNK);
-        let r = (len, self.u, self.du, self.v, self.dv);
-        // the values at the next piece's start, as if stepped
-        self.u = self.u.wrapping_add(self.du.wrapping_mul(len as i32));
-        self.v = self.v.wrapping_add(self.dv.wrapping_mul(len as i32));
-        self.k0 = k0 + len;
-        Some(r)
     }
 }
 
@@ -311,14 +355,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
                     .wrapping_add(((dp[2] + half) >> sh) as u32);
                 let c = [rb, drb, p[1] as u32, dp[1] as u32];
                 let (lw, lh) = self.state.texture.log2_size();
-                match (lw, lh) {
-                    (4, 4) => fast_run::<C, 4, 4, 256>(words, coords, c, color),
-                    (5, 5) => fast_run::<C, 5, 5, 1024>(words, coords, c, color),
-                    (6, 6) => fast_run::<C, 6, 6, 4096>(words, coords, c, color),
-                    (7, 7) => fast_run::<C, 7, 7, 16384>(words, coords, c, color),
-                    (8, 8) => fast_run::<C, 8, 8, 65536>(words, coords, c, color),
-                    _ => fast_run_any(words, (u32::from(lw), u32::from(lh)), coords, c, color),
-                }
+                modulate_run(words, (lw, lh), coords, c, color);
                 return;
             }
         }
@@ -340,7 +377,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
                     u: u >> (24 - TEX_FRAC),
                     v: v >> (24 - TEX_FRAC),
                 };
-                *c = self.pixel(prim.get(), spec.get(), tc, px, y);
+                *c = self.state.pixel(&self.encoder, prim.get(), spec.get(), tc, px, y);
                 prim.step();
                 spec.step();
                 u = u.wrapping_add(du);
@@ -404,119 +441,3 @@ impl Steps {
     }
 }
 
-/// Q24 coordinates and steps packed for the fast path: `v` in the top 15
-/// bits (2^15 per texture), a guard bit, `u` in the low 16 bits (2^16 per
-/// texture). The guard bit takes `u`'s carry (or borrow, for a negative
-/// step: then it starts set) when `u` wraps once within a piece, so that `v`
-/// is not disturbed.
-#[inline(always)]
-fn pack(u: i32, du: i32, v: i32, dv: i32) -> (u32, u32) {
-    let u16 = ((u >> 8) as u32) & 0xFFFF;
-    let v15 = ((v >> 9) as u32) << 17;
-    let guard = if du < 0 { 1 << 16 } else { 0 };
-    // steps rounded to nearest
-    let du16 = (du.wrapping_add(128) >> 8) as u32;
-    let dv15 = ((dv.wrapping_add(256) >> 9) as u32) << 17;
-    (v15 | guard | u16, dv15.wrapping_add(du16))
-}
-
-/// The 5-6-5 fast path for a `2^LW × 2^LH` texture of `N` texels (see
-/// [`fill_tex565`]).
-#[inline(never)]
-fn fast_run<C: OutputColor, const LW: u32, const LH: u32, const N: usize>(
-    words: &[u16],
-    mut gen: Pieces,
-    mut c: [u32; 4],
-    color: &mut [C],
-) {
-    let Ok(words) = <&[u16; N]>::try_from(words) else {
-        return;
-    };
-    let mut rest = color;
-    while let Some((len, u, du, v, dv)) = gen.next() {
-        let uv = pack(u, du, v, dv);
-        let (part, tail) = rest.split_at_mut(len.min(rest.len()));
-        tex565_const::<C, LW, LH, N>(words, uv, &mut c, part);
-        rest = tail;
-    }
-}
-
-/// [`fill_tex565`] for constant sizes: the index is provably in the array.
-#[inline(never)]
-fn tex565_const<C: OutputColor, const LW: u32, const LH: u32, const N: usize>(
-    words: &[u16; N],
-    uv: (u32, u32),
-    c: &mut [u32; 4],
-    out: &mut [C],
-) {
-    let [rb, drb, g, dg] = *c;
-    let (rb, g) = fill_tex565::<C>(
-        words.as_slice(),
-        (LW, LH),
-        [uv.0, uv.1],
-        [rb, drb],
-        [g, dg],
-        out,
-    );
-    c[0] = rb;
-    c[2] = g;
-}
-
-/// [`fast_run`] for any texture size (run-time shifts).
-#[inline(never)]
-fn fast_run_any<C: OutputColor>(
-    words: &[u16],
-    size: (u32, u32),
-    mut gen: Pieces,
-    c: [u32; 4],
-    color: &mut [C],
-) {
-    let [mut rb, drb, mut g, dg] = c;
-    let (lw, lh) = (size.0.clamp(1, 15), size.1.clamp(1, 15));
-    let mut rest = color;
-    while let Some((len, u, du, v, dv)) = gen.next() {
-        let (uv, duv) = pack(u, du, v, dv);
-        let (part, tail) = rest.split_at_mut(len.min(rest.len()));
-        (rb, g) = fill_tex565(words, (lw, lh), [uv, duv], [rb, drb], [g, dg], part);
-        rest = tail;
-    }
-}
-
-/// The fast path's loop (see the [`Textured`] docs): `Rgb565` texels at the
-/// packed coordinates `uv` (see [`pack`]; the wrapping addition is
-/// [`Wrap::Repeat`]), the Gouraud channels packed as in the Gouraud kernel
-/// (red and blue in `rb`, 16 bits each with 11 fraction bits; green in `g`
-/// with 23), modulated as `⌊(t + 1)·A / 2^k⌋`; `lw`, `lh` (1 to 15): the
-/// texture's `log2` sides. Returns `rb`, `g` after the last pixel.
-#[inline(always)]
-fn fill_tex565<C: OutputColor>(
-    words: &[u16],
-    (lw, lh): (u32, u32),
-    [mut uv, duv]: [u32; 2],
-    [mut rb, drb]: [u32; 2],
-    [mut g, dg]: [u32; 2],
-    out: &mut [C],
-) -> (u32, u32) {
-    for c in out.iter_mut() {
-        let col = (uv << 16) >> (32 - lw);
-        let row = uv >> (32 - lh);
-        let t = u32::from(
-            words
-                .get(((row << lw) | col) as usize)
-                .copied()
-                .unwrap_or(0),
-        );
-        // (t + 1)·A < 2^16 for every channel: the product's top bits are the
-        // channel (shift pairs instead of masks: no constants to hold)
-        let r = ((((t >> 11) + 1) * (rb >> 21)) >> 11) << 11;
-        let gr = (((((t << 21) >> 26) + 1) * (g >> 19)) >> 10) << 5;
-        let b = ((((t << 27) >> 27) + 1) * ((rb << 16) >> 21)) >> 11;
-        *c = C::from_rgb565_raw((r | gr | b) as u16);
-        // the values after the last pixel are not used: wrapping is harmless
-        uv = uv.wrapping_add(duv);
-        rb = rb.wrapping_add(drb);
-        g = g.wrapping_add(dg);
-        super::no_unroll();
-    }
-    (rb, g)
-}

@@ -27,8 +27,11 @@
 //! ```
 
 mod normal_map;
+mod rgb565;
 
 pub use normal_map::{bump_to_normals, normal_texel, NormalMap, NormalTexel, FLAT_NORMAL};
+pub(crate) use normal_map::Nearest;
+pub(crate) use rgb565::{modulate_run, Pieces};
 
 use crate::error::TextureError;
 

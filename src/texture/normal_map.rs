@@ -133,13 +133,11 @@ impl<'a> NormalMap<'a> {
     /// Texel `(x, y)` (any integers: wrapped or clamped by the map's mode).
     #[inline(always)]
     pub fn texel(&self, x: i32, y: i32) -> NormalTexel {
-        let (wm, hm) = ((1i32 << self.w_log2) - 1, (1i32 << self.h_log2) - 1);
-        let (x, y) = match self.wrap {
-            Wrap::Repeat => (x & wm, y & hm),
-            Wrap::Clamp => (x.clamp(0, wm), y.clamp(0, hm)),
-        };
-        let i = ((y << self.w_log2) | x) as usize;
-        self.texels.get(i).copied().unwrap_or(FLAT_NORMAL)
+        let s = self.nearest(0);
+        match self.wrap {
+            Wrap::Repeat => s.get::<true>(x, y),
+            Wrap::Clamp => s.get::<false>(x, y),
+        }
     }
 
     /// The texel containing the point `c` (nearest sampling).
@@ -152,9 +150,55 @@ impl<'a> NormalMap<'a> {
     /// (`frac ≥` [`NormalMap::MAX_LOG2_SIZE`]; 12 for the mesh's Q12 texture coordinates).
     #[inline(always)]
     pub fn sample_fixed(&self, u: i32, v: i32, frac: u32) -> NormalTexel {
-        let su = frac.saturating_sub(u32::from(self.w_log2)).min(31);
-        let sv = frac.saturating_sub(u32::from(self.h_log2)).min(31);
-        self.texel(u >> su, v >> sv)
+        let s = self.nearest(frac);
+        match self.wrap {
+            Wrap::Repeat => s.get::<true>(u, v),
+            Wrap::Clamp => s.get::<false>(u, v),
+        }
+    }
+
+    /// Nearest sampling at coordinates with `frac` fraction bits, its shifts
+    /// and masks worked out once (for a span's loop).
+    #[inline(always)]
+    pub(crate) fn nearest(&self, frac: u32) -> Nearest<'a> {
+        let (wl, hl) = (u32::from(self.w_log2), u32::from(self.h_log2));
+        Nearest {
+            texels: self.texels,
+            su: frac.saturating_sub(wl).min(31),
+            sv: frac.saturating_sub(hl).min(31),
+            wm: (1 << wl) - 1,
+            hm: (1 << hl) - 1,
+            wl,
+        }
+    }
+}
+
+/// Nearest sampling of a [`NormalMap`] at fixed-point coordinates (see
+/// [`NormalMap::nearest`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Nearest<'a> {
+    texels: &'a [NormalTexel],
+    su: u32,
+    sv: u32,
+    wm: i32,
+    hm: i32,
+    wl: u32,
+}
+
+impl Nearest<'_> {
+    /// The texel containing `(u, v)`: wrapped (`REPEAT`) or clamped.
+    #[inline(always)]
+    pub(crate) fn get<const REPEAT: bool>(&self, u: i32, v: i32) -> NormalTexel {
+        let (x, y) = (u >> self.su, v >> self.sv);
+        let (x, y) = if REPEAT {
+            (x & self.wm, y & self.hm)
+        } else {
+            (x.clamp(0, self.wm), y.clamp(0, self.hm))
+        };
+        self.texels
+            .get(((y << self.wl) | x) as usize)
+            .copied()
+            .unwrap_or(FLAT_NORMAL)
     }
 }
 

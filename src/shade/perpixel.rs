@@ -1,0 +1,555 @@
+//! The general per-pixel kernel: every pixel lit with the full lighting model,
+//! for every tier, light kind and model, any [`Encoder`]. One loop serves
+//! plain per-pixel Phong, normal mapping, a colour texture and both: the
+//! surface's features ([`Surface`]) decide which values are interpolated and
+//! what a pixel reads.
+//!
+//! The values interpolated, in this order (only what the surface has):
+//! the normal (3, Q14), the texture coordinates (2, Q12), the tangent (3,
+//! Q14; normal maps), the eye-space position (3, see [`Positions`]; when the
+//! lighting reads it).
+
+use super::textured::TextureBinding;
+use super::{eye_point, unit_q14, Encoder, Kernel, Mode, ModeState, Shader, VertexIn};
+use crate::color::OutputColor;
+use crate::lighting::Illuminate;
+use crate::num::{Point3, Scalar, Vec3};
+use crate::raster::interp::{Varyings, VARYING_LIMIT};
+use crate::raster::ATTR_FRAC;
+use crate::texture::{NormalMap, TexCoord, Wrap, TEX_FRAC};
+
+/// Fraction bits of interpolated texture coordinates: Q12 with
+/// [`ATTR_FRAC`] bits.
+pub(crate) const UV_FRAC: u32 = 12 + ATTR_FRAC;
+
+/// Where a triangle's interpolated eye-space positions are measured from
+/// (vertex 0, Q16.16) and their shift (the values hold `(eye − origin) >>
+/// shift`, within ±[`VARYING_LIMIT`]).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Positions {
+    origin: [i32; 3],
+    shift: u32,
+}
+
+impl Positions {
+    /// The positions of a triangle of eye positions `eye` and the values of
+    /// its corners.
+    #[inline]
+    pub(crate) fn new(eye: &[[i32; 3]; 3]) -> (Positions, [[i32; 3]; 3]) {
+        let o = eye[0];
+        let rel = eye.map(|e| core::array::from_fn(|i| i64::from(e[i]) - i64::from(o[i])));
+        let big = rel
+            .iter()
+            .flatten()
+            .fold(0u64, |m: u64, v: &i64| m.max(v.unsigned_abs()));
+        let mut shift = 0;
+        while big >> shift > (VARYING_LIMIT as u64) {
+            shift += 1;
+        }
+        let v = rel.map(|r: [i64; 3]| r.map(|c| (c >> shift) as i32));
+        (Positions { origin: o, shift }, v)
+    }
+
+    /// The eye position (Q16.16) of interpolated values `a` (with
+    /// [`ATTR_FRAC`] bits).
+    #[inline(always)]
+    pub(crate) fn at(&self, a: [i32; 3]) -> [i32; 3] {
+        let sh = ATTR_FRAC as i32 - self.shift as i32;
+        core::array::from_fn(|i| {
+            let r = if sh > 0 {
+                ((a[i] >> (sh - 1)) + 1) >> 1
+            } else {
+                a[i].wrapping_shl((-sh) as u32)
+            };
+            self.origin[i].wrapping_add(r)
+        })
+    }
+}
+
+/// A triangle of a per-pixel kernel: its [`Positions`] and the handedness of
+/// its tangent frame (normal maps; the majority of its vertices').
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelTriangle {
+    pos: Positions,
+    hand: i32,
+}
+
+/// What a per-pixel surface has: a normal map (`MAP`), a colour texture
+/// (`TEX`). Implemented by [`Plain`], [`Mapped`], [`Tex`], [`MappedTex`].
+pub trait Surface {
+    /// A normal map: the tangent and handedness are carried.
+    const MAP: bool;
+    /// A colour texture (`texel × primary + secondary`).
+    const TEX: bool;
+    /// The vertex payload: normal, then (texture) coordinates, then (map)
+    /// tangent and handedness, Q14 / Q12.
+    type Vertex: Copy + Default + core::fmt::Debug + AsRef<[i16]> + AsMut<[i16]>;
+    /// The values interpolated (see the module docs).
+    type Varyings: Varyings;
+}
+
+/// Where the texture coordinates start.
+const UV: usize = 3;
+
+/// Where the tangent starts.
+const TANGENT: usize = 5;
+
+/// Where the position starts on surface `F`.
+const fn position<F: Surface>() -> usize {
+    3 + if F::MAP || F::TEX { 2 } else { 0 } + if F::MAP { 3 } else { 0 }
+}
+
+/// How many values are interpolated on surface `F` under lighting `I`.
+pub(crate) const fn used<F: Surface, I: Illuminate>() -> usize {
+    position::<F>() + if I::NEEDS_POSITION { 3 } else { 0 }
+}
+
+/// A surface lit per pixel with nothing else.
+#[derive(Clone, Copy, Debug)]
+pub enum Plain {}
+/// A normal-mapped surface.
+#[derive(Clone, Copy, Debug)]
+pub enum Mapped {}
+/// A colour-textured surface.
+#[derive(Clone, Copy, Debug)]
+pub enum Tex {}
+/// A normal-mapped, colour-textured surface.
+#[derive(Clone, Copy, Debug)]
+pub enum MappedTex {}
+
+impl Surface for Plain {
+    const MAP: bool = false;
+    const TEX: bool = false;
+    type Vertex = [i16; 3];
+    type Varyings = [i32; 6];
+}
+impl Surface for Tex {
+    const MAP: bool = false;
+    const TEX: bool = true;
+    type Vertex = [i16; 5];
+    type Varyings = [i32; 8];
+}
+impl Surface for Mapped {
+    const MAP: bool = true;
+    const TEX: bool = false;
+    type Vertex = [i16; 9];
+    type Varyings = [i32; 11];
+}
+impl Surface for MappedTex {
+    const MAP: bool = true;
+    const TEX: bool = true;
+    type Vertex = [i16; 9];
+    type Varyings = [i32; 11];
+}
+
+/// Clamps an `i32` to `i16`.
+#[inline]
+pub(crate) fn sat16(v: i32) -> i16 {
+    v.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16
+}
+
+/// The payload of vertex `v` on surface `F`.
+#[inline]
+pub(crate) fn vertex<F: Surface>(v: &VertexIn) -> F::Vertex {
+    let mut out = F::Vertex::default();
+    let o = out.as_mut();
+    let n = unit_q14(v.normal);
+    o.iter_mut().zip(n).for_each(|(o, n)| *o = n);
+    if F::MAP || F::TEX {
+        if let Some(uv) = o.get_mut(UV..UV + 2) {
+            uv[0] = sat16(v.uv[0]);
+            uv[1] = sat16(v.uv[1]);
+        }
+    }
+    if F::MAP {
+        let t = unit_q14([v.tangent[0], v.tangent[1], v.tangent[2]]);
+        if let Some(tt) = o.get_mut(TANGENT..TANGENT + 4) {
+            tt[..3].copy_from_slice(&t);
+            tt[3] = if v.tangent[3] < 0 { -1 } else { 1 };
+        }
+    }
+    out
+}
+
+/// The handedness of three vertices: the sign of their sum (`+1` on ties and
+/// zeros).
+#[inline]
+fn majority(h: [i32; 3]) -> i32 {
+    if h.iter().map(|v| v.signum()).sum::<i32>() < 0 {
+        -1
+    } else {
+        1
+    }
+}
+
+/// The triangle of payloads `v` and eye positions `eye` on surface `F` (the
+/// positions when `POS`) and the values at its corners.
+#[inline(always)]
+pub(crate) fn triangle<F: Surface, const POS: bool>(
+    v: [&F::Vertex; 3],
+    eye: &[[i32; 3]; 3],
+) -> (PixelTriangle, [F::Varyings; 3]) {
+    let (pos, p) = if POS {
+        Positions::new(eye)
+    } else {
+        (Positions::default(), [[0; 3]; 3])
+    };
+    let at = |k: usize, i: usize| v[k].as_ref().get(i).copied().map_or(0, i32::from);
+    let pp = position::<F>();
+    let var = [0, 1, 2].map(|k| {
+        F::Varyings::from_fn(|i| {
+            if i < pp {
+                at(k, i)
+            } else {
+                p[k].get(i - pp).copied().unwrap_or(0)
+            }
+        })
+    });
+    let hand = if F::MAP {
+        majority([0, 1, 2].map(|k| at(k, TANGENT + 3)))
+    } else {
+        1
+    };
+    (PixelTriangle { pos, hand }, var)
+}
+
+/// The range of value `i`: the normal and the tangent within [−1, 1] in Q14
+/// (Q28 with [`ATTR_FRAC`] bits), the others anywhere.
+#[inline(always)]
+pub(crate) fn safe<F: Surface>(i: usize) -> (i32, i32) {
+    let one = 1 << (14 + ATTR_FRAC);
+    let unit = i < UV || (F::MAP && (TANGENT..TANGENT + 3).contains(&i));
+    if unit {
+        (-one, one)
+    } else {
+        (-(1 << 30), 1 << 30)
+    }
+}
+
+/// What a surface samples: its normal map and its colour texture.
+#[derive(Clone, Copy, Debug)]
+pub struct Sources<'m, 't> {
+    pub(crate) map: Option<NormalMap<'m>>,
+    pub(crate) tex: Option<TextureBinding<'t>>,
+}
+
+/// What a mode's shader holds of its [`Sources`] (`()`: nothing).
+#[doc(hidden)]
+pub trait HasSources: Copy + core::fmt::Debug {
+    /// The sources.
+    fn get(&self) -> Sources<'_, '_>;
+}
+
+impl HasSources for () {
+    #[inline(always)]
+    fn get(&self) -> Sources<'_, '_> {
+        Sources {
+            map: None,
+            tex: None,
+        }
+    }
+}
+
+impl HasSources for Sources<'_, '_> {
+    #[inline(always)]
+    fn get(&self) -> Sources<'_, '_> {
+        *self
+    }
+}
+
+/// A mode whose shader is the general per-pixel kernel (see the module docs):
+/// its surface and what it samples.
+#[doc(hidden)]
+pub trait GeneralSurface: Mode {
+    /// The surface's features.
+    type Features: Surface;
+    /// What the shader holds.
+    type Sources: HasSources;
+    /// The maps it samples.
+    fn sources(self) -> Self::Sources;
+}
+
+impl<M: GeneralSurface, I: Illuminate, C> ModeState<I, C> for M {
+    type State = M::Sources;
+    fn state(self, _: &I) -> M::Sources {
+        self.sources()
+    }
+}
+
+/// The normal `T·mx + B·my + N·mz` of map texel `m` (Q14) in the frame of
+/// interpolated normal `n` and tangent `t` (the tier's attribute scale),
+/// `B = hand · N × T`.
+#[inline(always)]
+fn perturb<S: Scalar>(n: Vec3<S>, t: Vec3<S>, hand: i32, m: [i16; 3]) -> Vec3<S> {
+    // the texel (Q14) in the attribute scale (Q26); the bitangent's weight
+    // carries the handedness
+    let c = |x: i32| S::from_attr(x << 12);
+    let (mx, my, mz) = (
+        c(i32::from(m[0])),
+        c(i32::from(m[1]) * hand),
+        c(i32::from(m[2])),
+    );
+    let b = Vec3::new(
+        S::sub(S::mul(n.y, t.z), S::mul(n.z, t.y)),
+        S::sub(S::mul(n.z, t.x), S::mul(n.x, t.z)),
+        S::sub(S::mul(n.x, t.y), S::mul(n.y, t.x)),
+    );
+    t.scale(mx).add(b.scale(my)).add(n.scale(mz))
+}
+
+/// Shades a span on surface `F` (the positions when `POS`): values `a`
+/// stepping by `d`.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn span<F: Surface, I: Illuminate, E: Encoder<C>, C: OutputColor, const POS: bool>(
+    lighting: &I,
+    encoder: &E,
+    src: &Sources<'_, '_>,
+    t: &PixelTriangle,
+    a: &F::Varyings,
+    d: &F::Varyings,
+    x: i32,
+    y: i32,
+    out: &mut [C],
+) {
+    let repeat = src.map.is_none_or(|m| m.wrap() == Wrap::Repeat);
+    if repeat {
+        run::<F, I, E, C, POS, true>(lighting, encoder, src, t, *a, d, x, y, out)
+    } else {
+        run::<F, I, E, C, POS, false>(lighting, encoder, src, t, *a, d, x, y, out)
+    }
+}
+
+/// [`span`] with the normal map's wrap mode a constant (`REPEAT`, else
+/// clamped).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn run<
+    F: Surface,
+    I: Illuminate,
+    E: Encoder<C>,
+    C: OutputColor,
+    const POS: bool,
+    const REPEAT: bool,
+>(
+    lighting: &I,
+    encoder: &E,
+    src: &Sources<'_, '_>,
+    t: &PixelTriangle,
+    mut a: F::Varyings,
+    d: &F::Varyings,
+    x: i32,
+    y: i32,
+    out: &mut [C],
+) {
+    type S<I> = <I as Illuminate>::Scalar;
+    let n_used = position::<F>() + if POS { 3 } else { 0 };
+    let map = if F::MAP {
+        src.map.map(|m| m.nearest(UV_FRAC))
+    } else {
+        None
+    };
+    let tex = if F::TEX { src.tex } else { None };
+    for (x, c) in (x..).zip(out.iter_mut()) {
+        let v = a.values();
+        let at = |i: usize| v.get(i).copied().unwrap_or(0);
+        // Q14 with ATTR_FRAC bits (Q28) → the tier's attribute (Q26)
+        let q = |i: usize| {
+            Vec3::new(
+                S::<I>::from_attr(at(i) >> 2),
+                S::<I>::from_attr(at(i + 1) >> 2),
+                S::<I>::from_attr(at(i + 2) >> 2),
+            )
+        };
+        let (u, w) = (at(UV), at(UV + 1));
+        let mut n = q(0);
+        if let Some(m) = &map {
+            n = perturb(n, q(TANGENT), t.hand, m.get::<REPEAT>(u, w));
+        }
+        let n = S::<I>::normalize_interpolated(n);
+        let pos: Point3<S<I>> = if POS {
+            let p = position::<F>();
+            eye_point::<S<I>>(t.pos.at([at(p), at(p + 1), at(p + 2)]))
+        } else {
+            eye_point::<S<I>>([0; 3])
+        };
+        *c = match &tex {
+            Some(b) => {
+                let tc = TexCoord {
+                    u: u >> (UV_FRAC - TEX_FRAC),
+                    v: w >> (UV_FRAC - TEX_FRAC),
+                };
+                b.modulate(encoder, lighting.shade_parts(&pos, n, None), tc, x, y)
+            }
+            None => encoder.encode(lighting.shade(&pos, n), x, y),
+        };
+        // the values after the last pixel are not used: wrapping is harmless
+        for (a, d) in a.values_mut().iter_mut().zip(d.values()).take(n_used) {
+            *a = a.wrapping_add(*d);
+        }
+        super::no_unroll();
+    }
+}
+
+impl<M, I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, M, I, E, C>
+where
+    M: GeneralSurface,
+{
+    type Color = C;
+    type Vertex = <M::Features as Surface>::Vertex;
+    type Varyings = <M::Features as Surface>::Varyings;
+    type Triangle = PixelTriangle;
+    const USED: usize = used::<M::Features, I>();
+    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    const NEEDS_TEXCOORD: bool = M::Features::MAP || M::Features::TEX;
+    const NEEDS_TANGENT: bool = M::Features::MAP;
+
+    #[inline]
+    fn vertex(&self, v: &VertexIn) -> Self::Vertex {
+        vertex::<M::Features>(v)
+    }
+
+    #[inline(always)]
+    fn triangle(
+        &self,
+        v: [&Self::Vertex; 3],
+        eye: &[[i32; 3]; 3],
+    ) -> (PixelTriangle, [Self::Varyings; 3]) {
+        if I::NEEDS_POSITION {
+            triangle::<M::Features, true>(v, eye)
+        } else {
+            triangle::<M::Features, false>(v, eye)
+        }
+    }
+
+    #[inline(always)]
+    fn safe(&self, i: usize) -> (i32, i32) {
+        safe::<M::Features>(i)
+    }
+
+    #[inline(always)]
+    fn span(
+        &self,
+        t: &PixelTriangle,
+        a: &Self::Varyings,
+        d: &Self::Varyings,
+        x: i32,
+        y: i32,
+        out: &mut [C],
+    ) {
+        if I::NEEDS_POSITION {
+            span::<M::Features, I, E, C, true>(
+                self.lighting,
+                &self.encoder,
+                &self.state.get(),
+                t,
+                a,
+                d,
+                x,
+                y,
+                out,
+            )
+        } else {
+            span::<M::Features, I, E, C, false>(
+                self.lighting,
+                &self.encoder,
+                &self.state.get(),
+                t,
+                a,
+                d,
+                x,
+                y,
+                out,
+            )
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::prelude::*;
+    use crate::render::MeshMemory;
+    use crate::shade::Kernel;
+    use crate::texture::{Filter, NormalMap, Texels, Texture, Wrap, FLAT_NORMAL};
+    use crate::mesh::{textured_sphere_counts, TexturedMeshData};
+    use std::vec;
+    use std::vec::Vec;
+
+    const N: (usize, usize) = textured_sphere_counts(12, 16);
+    static SPHERE: TexturedMeshData<{ N.0 }, { N.1 }> = TexturedMeshData::uv_sphere(12, 16, 14);
+    const W: u32 = 64;
+
+    /// The standard sphere (textured) drawn with `kernel` on a 64 × 64 frame.
+    fn draw<K: Kernel<Color = Rgb565>>(kernel: K) -> Vec<Rgb565> {
+        let camera = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, Viewport::new(0, 0, W as i32, W as i32).unwrap())
+            .unwrap()
+            .with_view(Mat4::translate([0.0, 0.0, -5.0]));
+        let transform = camera.mesh_transform(&Mat4::rotate_y(0.4), SPHERE.frac).unwrap();
+        let mut cache = vec![K::Vertex::default(); N.0];
+        let mut bins = vec![0u16; bins_len(N.1, 8)];
+        let layout = Layout::full(W, W).unwrap();
+        let mut draw = MeshDraw::new(
+            layout,
+            SPHERE.mesh(),
+            &transform,
+            kernel,
+            MeshMemory::new(&mut cache, &mut bins),
+        )
+        .unwrap();
+        let mut color = vec![Rgb565::BLACK; (W * W) as usize];
+        let mut depth = vec![0u16; (W * W) as usize];
+        let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth)).unwrap();
+        frame.render(Rgb565::BLACK, &mut [&mut draw]).unwrap();
+        color
+    }
+
+    static WHITE: [u16; 16] = [0xFFFF; 16];
+    static FLAT: [[i16; 3]; 4] = [FLAT_NORMAL; 4];
+
+    fn white() -> Texture<'static> {
+        Texture::new(Texels::Rgb565(&WHITE), 2, 2, Wrap::Repeat).unwrap()
+    }
+
+    fn flat() -> NormalMap<'static> {
+        NormalMap::new(&FLAT, 1, 1, Wrap::Repeat).unwrap()
+    }
+
+    /// A white texture on a surface without specular light gives the plain
+    /// per-pixel pixels, and so does a flat normal map, alone or with it;
+    /// `PhongShading` textured takes the general kernel.
+    #[test]
+    fn neutral_maps_give_the_plain_pixels() {
+        let lighting = crate::standard::lambert::<Q14>().unwrap();
+        let plain = draw(Shader::new(GeneralPhongShading, &lighting, Linear));
+        assert!(plain.iter().filter(|&&c| c != Rgb565::BLACK).count() > 1500);
+        let tex = draw(Shader::new(PhongShading.textured(white(), Filter::Nearest), &lighting, Linear));
+        assert_eq!(tex, plain);
+        let tex = draw(Shader::new(GeneralPhongShading.textured(white(), Filter::Bilinear), &lighting, Linear));
+        assert_eq!(tex, plain);
+        let mapped = draw(Shader::new(GeneralPhongShading.normal_mapped(flat()), &lighting, Linear));
+        assert_eq!(mapped, plain);
+        let both = draw(Shader::new(
+            PhongShading.normal_mapped(flat()).textured(white(), Filter::Nearest),
+            &lighting,
+            Linear,
+        ));
+        assert_eq!(both, plain);
+    }
+
+    /// A black texture leaves the specular light alone: textured Blinn-Phong
+    /// on black is the highlight, zero outside it, and never brighter than
+    /// the plain pixels.
+    #[test]
+    fn black_texture_keeps_the_specular() {
+        static BLACK: [u16; 16] = [0; 16];
+        let black = Texture::new(Texels::Rgb565(&BLACK), 2, 2, Wrap::Repeat).unwrap();
+        let lighting = crate::standard::blinn::<Q14>().unwrap();
+        let plain = draw(Shader::new(GeneralPhongShading, &lighting, Linear));
+        let spec = draw(Shader::new(PhongShading.textured(black, Filter::Nearest), &lighting, Linear));
+        let lit = spec.iter().filter(|&&c| c != Rgb565::BLACK).count();
+        assert!(lit > 20 && lit < 1000, "{lit} pixels with a highlight");
+        for (s, p) in spec.iter().zip(&plain) {
+            assert!(s.r() <= p.r() && s.g() <= p.g() && s.b() <= p.b());
+        }
+    }
+}
