@@ -70,7 +70,10 @@ from_stage!(ParamError => Param, MeshError => Mesh, TextureError => Texture, Ren
 
 /// Writes `which too small: needed N, got M`.
 fn too_small(f: &mut fmt::Formatter<'_>, which: &str, needed: usize, got: usize) -> fmt::Result {
-    write!(f, "{which} too small: {needed} elements needed, {got} given")
+    write!(
+        f,
+        "{which} too small: {needed} elements needed, {got} given"
+    )
 }
 
 /// Why a lighting, material, colour or gamma parameter was rejected.
@@ -403,9 +406,7 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
             Self::TooManyVertices { needed } => {
                 write!(f, "{needed} vertices exceed the u16 index range")
             }
-            Self::LayoutMismatch => {
-                f.write_str("the mesh was prepared for another frame layout")
-            }
+            Self::LayoutMismatch => f.write_str("the mesh was prepared for another frame layout"),
             Self::MissingAttribute(a) => write!(f, "the shader needs {a}, the mesh has none"),
             Self::Display(e) => write!(f, "display error: {e:?}"),
         }

@@ -115,6 +115,8 @@ pub mod prelude {
     };
     pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
     pub use crate::error::{Error, ParamError};
+    pub use crate::framebuffer::Checksum;
+    pub use crate::lighting::{AmbientSource, Material, MaterialDesc};
     pub use crate::lighting::{
         AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight,
     };
@@ -122,9 +124,8 @@ pub mod prelude {
         BlinnPhong, Full, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer, NoFog, Phong,
         Terms,
     };
-    pub use crate::lighting::{AmbientSource, Material, MaterialDesc};
-    pub use crate::framebuffer::Checksum;
     pub use crate::mesh::{uv_sphere_counts, Mesh, MeshData};
+    pub use crate::num::Vec3;
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
     pub use crate::raster::Cull;
     pub use crate::render::{bins_len, Bands, FullFrame, Layout, MeshBuffers, MeshDraw};
@@ -132,7 +133,6 @@ pub mod prelude {
         Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Kernel, Linear,
         PhongShading, QuadraticPhongShading, Shader,
     };
-    pub use crate::num::Vec3;
     pub use embedded_graphics_core::geometry::Size;
     pub use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888, RgbColor};
 }

@@ -3,9 +3,9 @@
 //! compare every tier against it; firmware never uses it (enable the `reference`
 //! feature to get it).
 
-use crate::lighting::{LightDesc, LightKind};
-use crate::lighting::{ColorMaterial, Specular};
 use crate::lighting::MaterialDesc;
+use crate::lighting::{ColorMaterial, Specular};
+use crate::lighting::{LightDesc, LightKind};
 
 /// A 3-vector of `f64`.
 pub type V3 = [f64; 3];

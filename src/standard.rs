@@ -11,11 +11,11 @@
 //! depth test on; back faces culled.
 
 use crate::camera::{Camera, FixedCamera, MeshTransform, Orthographic, Pose};
-use crate::error::ParamError;
-use crate::lighting::{DirectionalLight, LightColors};
-use crate::lighting::{BlinnPhong, Lambert, Lighting};
-use crate::lighting::{Material, MaterialDesc};
 use crate::camera::{Mat4, Viewport};
+use crate::error::ParamError;
+use crate::lighting::{BlinnPhong, Lambert, Lighting};
+use crate::lighting::{DirectionalLight, LightColors};
+use crate::lighting::{Material, MaterialDesc};
 use crate::mesh::{uv_sphere_counts, MeshData};
 use crate::num::Scalar;
 

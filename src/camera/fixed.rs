@@ -7,11 +7,11 @@
 //! 16 × 16-bit ones, [`crate::num::wide`]): no soft float, no
 //! `__aeabi_lmul`, no division.
 
+use super::SUBPIXEL_BITS;
 use super::{Camera, ClipSpace, EyeRows, MeshTransform, NormalRows, Projection, Row};
 use crate::error::ParamError;
-use crate::num::wide::mul_u32;
-use super::SUBPIXEL_BITS;
 use crate::num::at3;
+use crate::num::wide::mul_u32;
 use core::marker::PhantomData;
 
 /// An angle as a fraction of a turn: `65536` is 360°, so every `u16` is an

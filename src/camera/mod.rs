@@ -664,7 +664,7 @@ mod tests {
             let want_x = 16.0 * 120.0 + 8.0 * 240.0 * c[0];
             let want_y = 16.0 * 120.0 - 8.0 * 240.0 * c[1];
             let want_z = (c[2] + 1.0) * 0.5 * 65535.0;
-            let v = t.project(p);
+            let v = t.project(p).expect("in front of the camera");
             assert!(
                 (v.x as f32 - want_x).abs() <= 0.51,
                 "{p:?} {} {want_x}",

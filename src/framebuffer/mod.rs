@@ -365,4 +365,3 @@ impl<'a, C: PixelColor> FullFrame<'a, C> {
 fn fill<T: Copy>(buf: &mut [T], v: T) {
     buf.fill(v);
 }
-

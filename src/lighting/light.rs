@@ -8,8 +8,8 @@
 use crate::color::Rgb;
 use crate::error::{direction, finite, non_negative, non_negative3, ParamError};
 use crate::lighting::Material;
-use crate::num::{Exponent, Flag, GeoScalar, Off, On, Scalar};
 use crate::num::{point_from_f32, point_sub, Point3, Vec3};
+use crate::num::{Exponent, Flag, GeoScalar, Off, On, Scalar};
 use core::marker::PhantomData;
 
 /// The colours a light emits into each term (OpenGL's `GL_AMBIENT`, `GL_DIFFUSE`,

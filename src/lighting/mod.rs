@@ -53,8 +53,8 @@ pub use viewer::{FogModel, InfiniteViewer, LinearFog, LocalViewer, NoFog, Viewer
 
 use crate::color::Rgb;
 use crate::error::ParamError;
-use crate::num::{Flag, Off, Scalar};
 use crate::num::{point_from_f32, Point3, Vec3};
+use crate::num::{Flag, Off, Scalar};
 use core::marker::PhantomData;
 
 /// `GL_COLOR_MATERIAL`: which material colour a per-vertex colour replaces
@@ -639,7 +639,10 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illumina
 {
     type Scalar = S;
     const NEEDS_POSITION: bool = Self::NEEDS_POSITION;
-    type Fast = <<<S::Fixed14 as Flag>::And<L::OneDirectional> as Flag>::And<V::AtInfinity> as Flag>::And<F::Clear>;
+    type Fast =
+        <<<S::Fixed14 as Flag>::And<L::OneDirectional> as Flag>::And<V::AtInfinity> as Flag>::And<
+            F::Clear,
+        >;
     fn directional(&self) -> Option<DirectionalTerms<S>> {
         let plain = matches!(M::SPECULAR, Specular::None | Specular::BlinnPhong)
             && !M::BRILLIANCE

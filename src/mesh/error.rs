@@ -4,11 +4,7 @@
 use crate::error::MeshError;
 
 /// `Ok` when `got ≥ needed`.
-pub(crate) fn check_len(
-    which: &'static str,
-    needed: usize,
-    got: usize,
-) -> Result<(), MeshError> {
+pub(crate) fn check_len(which: &'static str, needed: usize, got: usize) -> Result<(), MeshError> {
     if got < needed {
         Err(MeshError::BufferTooSmall { which, needed, got })
     } else {

@@ -3,8 +3,8 @@
 
 use super::error::check_len;
 use crate::error::MeshError;
-use crate::num::{Geo16, Scalar, Q14};
 use crate::num::Vec3;
+use crate::num::{Geo16, Scalar, Q14};
 
 /// How [`vertex_normals`] weights the faces around a vertex.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -379,6 +379,7 @@ mod tests {
         assert_eq!(
             icosphere(2, [0.0; 3], 1.0, &mut p, &mut n, &mut t),
             e(MeshError::BufferTooSmall {
+                which: "positions",
                 needed: 162,
                 got: 64
             })
@@ -386,6 +387,7 @@ mod tests {
         assert_eq!(
             icosphere(1, [0.0; 3], 1.0, &mut p, &mut n, &mut t[..79]),
             e(MeshError::BufferTooSmall {
+                which: "triangles",
                 needed: 80,
                 got: 79
             })

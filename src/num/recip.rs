@@ -26,16 +26,17 @@ pub(crate) fn recip16(q: u32) -> u32 {
     let r0 = u32::from(SEED[i]);
     // q·r0 ≈ 2^31 within 2^22; d·r0/2^31 is the Newton correction
     let d = (1u32 << 31).wrapping_sub(q.wrapping_mul(r0)) as i32;
-    (r0 as i32).wrapping_add(((d >> 7).wrapping_mul(r0 as i32)) >> 24) as u32
+    (r0 as i32).wrapping_add(((d >> 8).wrapping_mul(r0 as i32).wrapping_add(1 << 22)) >> 23) as u32
 }
 
 /// `(v·2^m, m)` with `v·2^m` in `[2^top, 2^(top + 1))` for `v ≥ 1` and
-/// `top ≤ 30` (0 gives `(0, 0)`), without a count-leading-zeros call.
+/// `15 ≤ top ≤ 30` (0 gives `(0, 0)`), without a count-leading-zeros call.
 #[inline(always)]
 pub(crate) fn normalise(v: u32, top: u32) -> (u32, i32) {
     if v == 0 {
         return (0, 0);
     }
+    let top = top.clamp(15, 30);
     let mut v = v;
     let mut m = 0i32;
     while v >= 2 << top {
@@ -69,7 +70,7 @@ mod tests {
     #[test]
     fn normalise_hits_the_interval() {
         for v in [1u32, 2, 3, 255, 1 << 20, u32::MAX, 0x8000_0001] {
-            for top in [14, 15, 28, 30] {
+            for top in [15, 16, 28, 30] {
                 let (n, m) = normalise(v, top);
                 assert!((1 << top..2u64 << top).contains(&u64::from(n)), "{v} {top}");
                 let back = if m >= 0 {

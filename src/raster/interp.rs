@@ -96,7 +96,6 @@ pub(crate) fn lerp<V: Varyings>(a: &V, b: &V, num: u32, den: u32) -> V {
     V::from_fn(|i| crate::num::wide::lerp_i32(get(a, i), get(b, i), num, den))
 }
 
-
 /// The values of the oriented vertices (`s.order`).
 #[inline(always)]
 pub(crate) fn oriented<T: Copy>(s: &Setup, v: &[T; 3]) -> [T; 3] {
@@ -252,7 +251,11 @@ impl<V: Varyings> Persp<V> {
         let b2 = (self.beta[1].at(x) >> ATTR_FRAC).clamp_to(0, one - b1);
         let b0 = one - b1 - b2;
         // tᵢ = βᵢ·qᵢ ≤ 2^30; the weights tᵢ / Σt in Q14
-        let t = [b0 as u32 * self.q[0], b1 as u32 * self.q[1], b2 as u32 * self.q[2]];
+        let t = [
+            b0 as u32 * self.q[0],
+            b1 as u32 * self.q[1],
+            b2 as u32 * self.q[2],
+        ];
         let sum = t[0] + t[1] + t[2];
         let (sn, m) = normalise(sum, 15);
         if sn == 0 {

@@ -54,7 +54,6 @@ pub(crate) fn next3(i: usize) -> usize {
     }
 }
 
-
 /// `v · 2^s` for a signed shift `s`: a right shift rounds to nearest, a left
 /// shift saturates at ±2^30 (gradients of triangles smaller than a pixel).
 #[inline]

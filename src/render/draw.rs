@@ -383,7 +383,11 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             }
         }
         let idx = self.indices(t)?;
-        let v = [self.vertex(idx[0])?, self.vertex(idx[1])?, self.vertex(idx[2])?];
+        let v = [
+            self.vertex(idx[0])?,
+            self.vertex(idx[1])?,
+            self.vertex(idx[2])?,
+        ];
         let inside = v[0].inside() && v[1].inside() && v[2].inside();
         let clip = || {
             let c = [
@@ -428,10 +432,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             return self.clipped(tri, idx, &t, &var, band);
         }
         let w = if P::PERSPECTIVE {
-            idx.map(|i| {
-                self.position(i)
-                    .map_or(1, |p| self.transform.clip(p).w)
-            })
+            idx.map(|i| self.position(i).map_or(1, |p| self.transform.clip(p).w))
         } else {
             [1; 3]
         };

@@ -252,7 +252,16 @@ pub(crate) fn draw_clipped<K: Kernel, const PERSP: bool>(
         }
         let xy = p.map(|c| (c.s.x, c.s.y));
         let v = p.map(|c| c.v);
-        let _ = draw::<K, PERSP>(kernel, t, xy, p.map(|c| c.s.z), p.map(|c| c.s.w), &v, None, band);
+        let _ = draw::<K, PERSP>(
+            kernel,
+            t,
+            xy,
+            p.map(|c| c.s.z),
+            p.map(|c| c.s.w),
+            &v,
+            None,
+            band,
+        );
     });
     more
 }
@@ -453,8 +462,10 @@ fn front<K: Kernel, const PERSP: bool>(
         let w = clip.map(|c| if PERSP { c.w } else { 1 });
         let _ = draw::<K, PERSP>(kernel, &t, xy, z, w, &var, None, band);
     } else {
-        let c: [ClipCorner<K::Varyings>; 3] =
-            core::array::from_fn(|k| ClipCorner { c: clip[k], v: var[k] });
+        let c: [ClipCorner<K::Varyings>; 3] = core::array::from_fn(|k| ClipCorner {
+            c: clip[k],
+            v: var[k],
+        });
         draw_clipped::<K, PERSP>(kernel, &t, &c, space, band);
     }
 }

@@ -67,7 +67,15 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     }
 
     #[inline(always)]
-    fn span(&self, t: &FlatTriangle<C>, _: &[i32; 0], _: &[i32; 0], x: i32, y: i32, color: &mut [C]) {
+    fn span(
+        &self,
+        t: &FlatTriangle<C>,
+        _: &[i32; 0],
+        _: &[i32; 0],
+        x: i32,
+        y: i32,
+        color: &mut [C],
+    ) {
         if E::POSITIONAL {
             for (x, c) in (x..).zip(color.iter_mut()) {
                 *c = self.encoder.pixel(t.a, x, y);

@@ -51,8 +51,8 @@ pub use textured::Textured;
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
-use crate::raster::interp::Varyings;
 use crate::num::{Point3, Vec3};
+use crate::raster::interp::Varyings;
 use core::marker::PhantomData;
 
 /// Flat shading: the triangle is lit once, at its centroid, with the normalised

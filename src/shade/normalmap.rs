@@ -2,8 +2,8 @@
 //! [`NormalMap`] in the tangent frame of the surface.
 
 use super::incremental::{channel_units, PowTable};
-use super::perpixel::{self, sat16, GeneralSurface, Mapped, PixelTriangle, Sources};
 use super::perpixel::UV_FRAC;
+use super::perpixel::{self, sat16, GeneralSurface, Mapped, PixelTriangle, Sources};
 use super::{unit_q14, Encoder, GeneralPhongShading, Kernel, Mode, ModeState};
 use super::{PhongShading, Shader, VertexIn};
 use crate::color::OutputColor;

@@ -63,11 +63,7 @@ impl<I: Illuminate, C: OutputColor> PhongPath<I, C> for Off {
     const USED: usize = perpixel::used::<Plain, I>();
     fn state(_: &I) {}
     #[inline(always)]
-    fn triangle(
-        _: &(),
-        n: [&[i16; 3]; 3],
-        eye: &[[i32; 3]; 3],
-    ) -> (PixelTriangle, [[i32; 6]; 3]) {
+    fn triangle(_: &(), n: [&[i16; 3]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [[i32; 6]; 3]) {
         if I::NEEDS_POSITION {
             perpixel::triangle::<Plain, true>(n, eye)
         } else {

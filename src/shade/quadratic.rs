@@ -12,9 +12,9 @@ use crate::lighting::DirectionalLight;
 use crate::lighting::{
     BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Phong, Specular,
 };
+use crate::num::Vec3;
 use crate::num::{F32Fast, Scalar, Q14};
 use crate::raster::ATTR_FRAC;
-use crate::num::Vec3;
 
 /// The reflection models [`QuadraticPhongShading`] evaluates: [`Lambert`],
 /// [`BlinnPhong`] and [`Phong`] (`R·V`). Brilliance, the Fresnel factor and
@@ -164,7 +164,8 @@ const DEV_RV: u32 = 8848;
 fn encoder_map<E: Encoder<C>, C: OutputColor>(enc: &E) -> ([i32; 3], [i32; 3]) {
     if E::LINEAR {
         let fs = C::CHANNEL_MAX.map(|m| (m << crate::color::encode::vertex_shift(m)) as i32);
-        let off = C::CHANNEL_MAX.map(|m| ((1u32 << crate::color::encode::vertex_shift(m)) >> 1) as i32);
+        let off =
+            C::CHANNEL_MAX.map(|m| ((1u32 << crate::color::encode::vertex_shift(m)) >> 1) as i32);
         (fs, off)
     } else {
         let b = enc.vertex(Rgb::<Q14>::BLACK);

@@ -506,7 +506,8 @@ fn run_encode<E: Encoder<C>, C: OutputColor, const K: usize, const CLAMP: bool>(
 #[inline(always)]
 fn in_565(v: [i32; 3], s: i32, max: u32) -> bool {
     let (lo, hi) = Quad::range(v[0], v[1], v[2]);
-    let top = ((max + 1) << (crate::color::encode::vertex_shift(max) + crate::raster::ATTR_FRAC)) as i32;
+    let top =
+        ((max + 1) << (crate::color::encode::vertex_shift(max) + crate::raster::ATTR_FRAC)) as i32;
     lo >= 0 && hi.saturating_add(s) < top
 }
 

@@ -242,7 +242,10 @@ impl<'t, I: Illuminate, E: Encoder<C>, C: OutputColor>
         position: &crate::num::Point3<I::Scalar>,
         normal: crate::num::Vec3<I::Scalar>,
     ) -> ([i32; 3], [i32; 3]) {
-        TextureBinding::parts(&self.encoder, self.lighting.shade_parts(position, normal, None))
+        TextureBinding::parts(
+            &self.encoder,
+            self.lighting.shade_parts(position, normal, None),
+        )
     }
 
     /// Whether the mesh kernel may take the 5-6-5 fast path.
@@ -377,7 +380,9 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
                     u: u >> (24 - TEX_FRAC),
                     v: v >> (24 - TEX_FRAC),
                 };
-                *c = self.state.pixel(&self.encoder, prim.get(), spec.get(), tc, px, y);
+                *c = self
+                    .state
+                    .pixel(&self.encoder, prim.get(), spec.get(), tc, px, y);
                 prim.step();
                 spec.step();
                 u = u.wrapping_add(du);
@@ -440,4 +445,3 @@ impl Steps {
         self.rb = self.rb.wrapping_add(self.drb);
     }
 }
-

@@ -29,8 +29,8 @@
 mod normal_map;
 mod rgb565;
 
-pub use normal_map::{bump_to_normals, normal_texel, NormalMap, NormalTexel, FLAT_NORMAL};
 pub(crate) use normal_map::Nearest;
+pub use normal_map::{bump_to_normals, normal_texel, NormalMap, NormalTexel, FLAT_NORMAL};
 pub(crate) use rgb565::{modulate_run, Pieces};
 
 use crate::error::TextureError;
@@ -466,11 +466,15 @@ mod tests {
         let d = [0u8; 8];
         assert_eq!(
             Texture::new(Texels::Gray8(&d), 16, 0, Wrap::Repeat),
-            Err(TextureError::TooLarge)
+            Err(TextureError::TooLarge { log2: 16 })
         );
         assert_eq!(
             Texture::new(Texels::Gray8(&d), 2, 2, Wrap::Repeat),
-            Err(TextureError::WrongLength { needed: 16, len: 8 })
+            Err(TextureError::BufferTooSmall {
+                which: "texels",
+                needed: 16,
+                got: 8
+            })
         );
         let pal = [0u16; 257];
         assert_eq!(

@@ -47,8 +47,6 @@ pub type NormalTexel = [i16; 3];
 /// The flat normal `(0, 0, 1)`: a map of it shades like no map at all.
 pub const FLAT_NORMAL: NormalTexel = [0, 0, 1 << 14];
 
-
-
 /// A tangent-space normal map over borrowed texels (see the [module docs](self)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NormalMap<'a> {
@@ -311,6 +309,7 @@ mod tests {
         assert_eq!(
             NormalMap::new(&t, 3, 2, Wrap::Repeat),
             Err(TextureError::BufferTooSmall {
+                which: "texels",
                 needed: 32,
                 got: 16
             })
@@ -322,7 +321,11 @@ mod tests {
         );
         assert_eq!(
             bump_to_normals(&[0; 3], 1, 1, Wrap::Repeat, 1.0, &mut out),
-            Err(TextureError::BufferTooSmall { needed: 4, got: 3 })
+            Err(TextureError::BufferTooSmall {
+                which: "heights or out",
+                needed: 4,
+                got: 3
+            })
         );
         assert_eq!(
             normal_texel([0.0; 3]),

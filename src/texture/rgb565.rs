@@ -55,7 +55,6 @@ impl Pieces {
     }
 }
 
-
 /// The 5-6-5 fast path over a run: texels `words` of a `2^lw × 2^lh`
 /// texture (`lw`, `lh` ≥ 1), coordinates from `coords`, the Gouraud channels
 /// `c = [rb, drb, g, dg]` packed as in the Gouraud kernel (see
