@@ -84,5 +84,3 @@ impl Cull {
     }
 }
 
-#[cfg(test)]
-mod tests;
