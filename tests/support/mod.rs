@@ -16,9 +16,13 @@ use embedded_graphics_core::geometry::{OriginDimensions, Size};
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
-use fixshade::camera::{Clip, ClipSpace};
+use fixshade::camera::{Clip, ClipSpace, MeshTransform, Projection};
+use fixshade::mesh::Mesh;
 use fixshade::raster::{Cull, SUBPIXEL_BITS};
-use fixshade::render::{draw_triangle, BandView, Bands, Corner, DrawBand, FullFrame, Layout};
+use fixshade::render::{
+    bins_len, draw_triangle, BandView, Bands, CachedVertex, Carry, Corner, DrawBand, DrawOptions,
+    FullFrame, Layout, MeshDraw, MeshMemory,
+};
 use fixshade::shade::{Kernel, VertexIn};
 
 /// Sub-pixels per pixel.
@@ -375,4 +379,80 @@ pub fn plane_bound(xy: [(i32, i32); 3], a: [i32; 3]) -> f64 {
     let w = f64::from(((xmax - xmin) >> SUBPIXEL_BITS) + 2);
     let h = f64::from((last - first).max(0) + 3);
     eps * (w + h) + 24.0
+}
+
+/// A mesh drawn triangle by triangle through the per-triangle front, with
+/// the corners of its transform: `t.clip(p)`, `VertexIn::new(t.normal(n),
+/// t.eye(p))` (what `MeshDraw` must equal bit for bit).
+pub struct Front<'a, K, P: Projection> {
+    pub mesh: Mesh<'a>,
+    pub t: MeshTransform<P>,
+    pub kernel: K,
+    pub cull: Cull,
+}
+
+impl<K: Kernel, P: Projection> DrawBand<K::Color> for Front<'_, K, P> {
+    fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
+        let (pos, nrm) = (self.mesh.positions(), self.mesh.normals());
+        let space = self.t.clip_space();
+        for tri in self.mesh.triangles() {
+            let c = tri.map(|i| {
+                let (p, n) = (pos[usize::from(i)], nrm[usize::from(i)]);
+                Corner {
+                    clip: self.t.clip(p),
+                    vertex: VertexIn::new(self.t.normal(n), self.t.eye(p)),
+                }
+            });
+            draw_triangle(band, &space, &self.kernel, &c, self.cull);
+        }
+    }
+}
+
+/// A `w × h` frame of `mesh` seen through `t`, drawn with `kernel`, back
+/// faces culled per `cull`, with a depth buffer, in bands of `rows` rows
+/// (`rows ≥ h`: one `FullFrame`), by `MeshDraw` (`front` false) or by the
+/// per-triangle front ([`Front`]).
+#[allow(clippy::too_many_arguments)]
+pub fn mesh_frame<K: Kernel + Copy, P: Projection>(
+    w: u32,
+    h: u32,
+    rows: u32,
+    mesh: Mesh<'_>,
+    t: &MeshTransform<P>,
+    kernel: K,
+    cull: Cull,
+    front: bool,
+    clear: K::Color,
+) -> Vec<K::Color>
+where
+    K::Color: PixelColor,
+{
+    let draw = |item: &mut dyn DrawBand<K::Color>| {
+        if rows >= h {
+            full(w, h, clear, true, &mut [item])
+        } else {
+            banded(w, h, rows, clear, true, &mut [item])
+        }
+    };
+    if front {
+        let mut item = Front {
+            mesh,
+            t: *t,
+            kernel,
+            cull,
+        };
+        return draw(&mut item);
+    }
+    let layout = Layout::banded(w, h, rows).unwrap();
+    let mut cache = vec![CachedVertex::<K::Vertex>::default(); mesh.vertex_count()];
+    let mut bins = vec![0u16; bins_len(mesh.triangle_count(), layout.bands() as usize)];
+    let mut carry = vec![Carry::default(); 2 * mesh.triangle_count()];
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut carry,
+    };
+    let mut item =
+        MeshDraw::with_options(layout, mesh, t, kernel, DrawOptions { cull }, memory).unwrap();
+    draw(&mut item)
 }
