@@ -7,8 +7,7 @@
 //! checks are on in the fuzz profile) is a crash the fuzzer reports.
 
 use fixshade::color::Rgb;
-use fixshade::light::{AnyLight, LightDesc, LightKind};
-use fixshade::material::MaterialDesc;
+use fixshade::lighting::{AnyLight, LightDesc, LightKind, MaterialDesc};
 use fixshade::num::Scalar;
 
 /// The fuzzer's bytes as a stream of parameters.
