@@ -266,3 +266,14 @@ fn huge_and_offscreen_triangles_do_not_panic() {
     let cov = coverage(&[off]);
     assert!(cov.iter().flatten().all(|&n| n == 0));
 }
+
+/// The per-triangle front draws a triangle whatever its first row (on
+/// `one-renderer` 3c38dd9…3b82c69 it passed `height = u32::MAX` to the
+/// classification, which read it as −1 and dropped every triangle starting
+/// at row −1 or below: nothing was drawn; its own doc example failed).
+#[test]
+fn a_triangle_below_the_top_row_is_drawn() {
+    let t = [v(2 * S, 20 * S), v(2 * S, 30 * S), v(12 * S, 20 * S)];
+    let px = counts(32, 32, &[t]);
+    assert_eq!(px.iter().filter(|&&n| n == 1).count(), 45);
+}
