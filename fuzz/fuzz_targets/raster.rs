@@ -296,7 +296,7 @@ fn space(inp: &mut Input) -> ClipSpace {
         0 => ClipSpace::SCREEN,
         1 => ClipSpace::perspective([coord(inp), coord(inp)], inp.i32()),
         _ => ClipSpace::perspective(
-            [coord(inp).abs(), coord(inp).abs()],
+            [i32::from(inp.u8()) << 2, i32::from(inp.u8()) << 2],
             1 + i32::from(inp.u8()),
         ),
     }
