@@ -10,7 +10,7 @@ use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Viewport};
 use fixshade::mesh::{icosphere, icosphere_counts, Mesh};
 use fixshade::raster::{Cull, SUBPIXEL_BITS};
-use fixshade::render::{bins_len, CachedVertex, Carry, DrawOptions, Layout, MeshDraw, MeshMemory};
+use fixshade::render::{bins_len, CachedVertex, DrawOptions, Layout, MeshDraw, MeshMemory};
 use support::{clip_corner, full, lumas, Count, Record, Tris};
 
 const W: i32 = 64;
@@ -65,7 +65,7 @@ fn draw(t: &MeshTransform<Perspective>, m: &Owned, cull: Cull) -> (usize, u32, u
     let memory = MeshMemory {
         vertices: &mut cache,
         bins: &mut bins,
-        carry: &mut [Carry::default(); 0],
+        carry: &mut [],
     };
     let mut d =
         MeshDraw::with_options(layout, m.mesh(), t, Count, DrawOptions { cull }, memory).unwrap();
