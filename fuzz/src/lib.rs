@@ -93,6 +93,8 @@ impl Input<'_> {
     }
 
     /// A material description with any values.
+    // the update keeps this compiling when the description gains a field
+    #[allow(clippy::needless_update)]
     pub fn material(&mut self) -> MaterialDesc {
         MaterialDesc {
             emission: self.f3(),
