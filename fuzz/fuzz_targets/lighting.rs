@@ -5,11 +5,11 @@
 #![no_main]
 
 use fixshade::color::Rgb;
+use fixshade::lighting::Material;
 use fixshade::lighting::{
     BlinnPhong, FogModel, Full, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer, Model,
     NoFog, Phong, Viewer,
 };
-use fixshade::lighting::Material;
 use fixshade::num::{point_from_f32, Point3, Vec3};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
 use fixshade_fuzz::{check_color, Input};
