@@ -103,14 +103,12 @@ fn known_points_land_on_known_pixels() {
         (s.x, s.y)
     };
     let sub = |x: i32, y: i32| (x << SUBPIXEL_BITS, y << SUBPIXEL_BITS);
-    // within a sub-pixel (the fixed-point rows and the division round)
-    let near = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0).abs() <= 1 && (a.1 - b.1).abs() <= 1;
-    assert!(near(px([0.0; 3]), sub(88, 64)), "{:?}", px([0.0; 3]));
+    assert_eq!(px([0.0; 3]), sub(88, 64));
     // fovy = 90°: at distance 3 the top edge is y = 3, the right edge z = −4
     // (the camera looks along −x, so +z is to its left)
-    assert!(near(px([0.0, 3.0, 0.0]), sub(88, 4)));
-    assert!(near(px([0.0, 0.0, -4.0]), sub(168, 64)));
-    assert!(near(px([0.0, -3.0, 4.0]), sub(8, 124)));
+    assert_eq!(px([0.0, 3.0, 0.0]), sub(88, 4));
+    assert_eq!(px([0.0, 0.0, -4.0]), sub(168, 64));
+    assert_eq!(px([0.0, -3.0, 4.0]), sub(8, 124));
     // clip w is the distance in front of the eye (in the clip space's unit,
     // where the near plane is `near()`): nearer points have smaller w and z
     let (c, n) = (t.clip(q([0.0; 3])), t.clip(q([2.0, 0.0, 0.0])));
