@@ -1,240 +1,153 @@
-//! The same scene gives the same pixels through every framebuffer (issue 11,
-//! item 9): `SliceFramebuffer`, `BandBuffer` (8-row bands), `DrawTargetAdapter`
-//! (64-pixel pieces) and a test framebuffer that hands every span out in
-//! pieces of 1, 3 or 7 pixels. The rasterizer must continue `start + k·step`
-//! (and, in perspective, the sub-span of `PERSPECTIVE_SPAN` pixels) across
-//! pieces instead of restarting the attribute plane at each one.
+//! The same scene gives the same pixels however the frame is split (issue
+//! 11, item 9): a frame rendered whole (`FullFrame`) equals the frame
+//! rendered in bands of 1, 3 and 7 rows (`Bands`, as the display receives
+//! it), bit for bit, and the per-triangle front (`render::draw_triangle` with
+//! the corners of the mesh's transform) equals `MeshDraw`, bit for bit, both
+//! ways. A triangle continued in the next band must resume its edges and
+//! values exactly (the old test handed spans out in pieces of 1, 3 and 7
+//! pixels to the removed `Framebuffer` trait; bands of 1, 3 and 7 rows now
+//! cut every triangle the same way).
 //!
-//! Scenes: the lit sphere of the golden tests under four point lights
-//! (Blinn-Phong), Gouraud through a gamma table and Phong (linear), drawn with
-//! `draw` and with `draw_perspective` (varying `1/w`).
+//! Scene: a lit sphere under four point lights (`f32`, Blinn-Phong, the
+//! general kernels), Gouraud through a gamma table and Phong (linear),
+//! orthographic and perspective (every value perspective-correct).
 
-mod common;
+mod support;
 
-use common::render::{config_scene, prepare, LightSet, Mode, Scene, Vert};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use embedded_graphics_core::prelude::*;
-use embedded_graphics_simulator::SimulatorDisplay;
-use fixshade::color::{GammaTable, Rgb, Transfer};
-use fixshade::light::AnyLight;
-use fixshade::lighting::{BlinnPhong, Lighting};
-use fixshade::material::Material;
-use fixshade::raster::RasterOptions;
-use fixshade::shade::{Gamma, GouraudShading, Linear, PhongShading, ShadeVertex, Shader, Shading};
-use fixshade::target::{BandBuffer, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer};
-use std::ops::Range;
+use fixshade::camera::Viewport;
+use fixshade::camera::{Camera, Mat4, MeshTransform, Orthographic, Perspective, Projection};
+use fixshade::color::{GammaTable, Transfer};
+use fixshade::lighting::{
+    AmbientSource, AnyLight, BlinnPhong, LightDesc, LightKind, Lighting, Material, MaterialDesc,
+};
+use fixshade::raster::Cull;
+use fixshade::shade::{Gamma, GouraudShading, Kernel, Linear, PhongShading, Shader};
+use fixshade::standard::SPHERE;
+use support::mesh_frame;
 
 const W: u32 = 240;
 
-/// A full frame in memory that hands every span out in pieces whose lengths
-/// cycle through `sizes` (all legal: consecutive, left to right, covering the span).
-struct Pieces {
-    px: Vec<Rgb565>,
-    sizes: &'static [u32],
-    next: usize,
+type Lights = heapless::Vec<AnyLight<f32>, 4>;
+
+/// Red plastic under four point lights around the sphere (at (0, 0, −5)).
+fn lighting() -> Lighting<f32, Lights, BlinnPhong> {
+    let centre = [0.0f32, 0.0, -5.0];
+    let point = |dx: f32, dy: f32, dz: f32, k: f32| LightDesc {
+        kind: LightKind::Point {
+            position: [centre[0] + dx, centre[1] + dy, centre[2] + dz],
+            attenuation: [1.0, 0.05, 0.01],
+        },
+        ambient: [0.0; 3],
+        diffuse: [k; 3],
+        specular: [k; 3],
+    };
+    let lights: Lights = [
+        point(-2.0, 2.0, 3.0, 0.5),
+        point(2.5, 1.0, 2.0, 0.4),
+        point(0.0, -2.5, 2.5, 0.3),
+        point(-1.0, 0.0, 4.0, 0.3),
+    ]
+    .iter()
+    .map(|d| AnyLight::new(d).unwrap())
+    .collect();
+    let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.5, 32.0);
+    Lighting::new(lights, Material::new(&red).unwrap()).with_global_ambient_f32([0.1; 3])
 }
 
-impl Framebuffer for Pieces {
-    type Color = Rgb565;
-    type Error = core::convert::Infallible;
-    fn width(&self) -> u32 {
-        W
-    }
-    fn rows(&self) -> Range<i32> {
-        0..W as i32
-    }
-    fn fill_span<F: FnMut(u32, &mut [Rgb565])>(
-        &mut self,
-        x: u32,
-        y: i32,
-        len: u32,
-        mut fill: F,
-    ) -> Result<(), Self::Error> {
-        assert!(
-            y >= 0 && y < W as i32 && x + len <= W,
-            "span outside the frame"
-        );
-        let row = y as usize * W as usize;
-        let mut at = x;
-        while at < x + len {
-            let n = self.sizes[self.next % self.sizes.len()].min(x + len - at);
-            self.next += 1;
-            let a = row + at as usize;
-            fill(at, &mut self.px[a..a + n as usize]);
-            at += n;
-        }
-        Ok(())
-    }
+fn ortho() -> MeshTransform<Orthographic> {
+    fixshade::standard::transform().unwrap()
 }
 
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Draw {
-    GouraudGamma,
-    Phong,
+fn persp() -> MeshTransform<Perspective> {
+    Camera::perspective(
+        0.7,
+        1.0,
+        1.0,
+        20.0,
+        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+    )
+    .unwrap()
+    .with_view(Mat4::translate([0.3, -0.2, -3.2]))
+    .mesh_transform(&Mat4::rotate_y(0.5).mul(&Mat4::rotate_x(0.4)), SPHERE.frac)
+    .unwrap()
 }
 
-fn draw_scene<F: Framebuffer<Color = Rgb565, Error: core::fmt::Debug>>(
-    scene: &Scene,
-    tris: &[[Vert; 3]],
-    how: Draw,
-    perspective: bool,
-    fb: &mut F,
-    depth: &mut DepthBuffer<'_>,
+/// Every split of the frame, by both drawers, equals `MeshDraw`'s whole frame.
+fn assert_same<K: Kernel<Color = Rgb565> + Copy, P: Projection>(
+    what: &str,
+    t: &MeshTransform<P>,
+    k: K,
 ) {
-    let lights: heapless::Vec<AnyLight<f32>, 4> = scene
-        .lights
-        .iter()
-        .map(|d| AnyLight::new(d).unwrap())
-        .collect();
-    let obj = &scene.objects[0];
-    let lighting =
-        Lighting::<f32, _, BlinnPhong>::new(lights, Material::new(&obj.material).unwrap())
-            .with_global_ambient(Rgb::from_f32(scene.global_ambient));
-    let table = GammaTable::<1024>::new(Transfer::Srgb).unwrap();
-    // a w that varies over the sphere (perspective draws): 1/w grows 3.8-fold left to right
-    let sv = |v: &Vert| {
-        let inv_w = if perspective {
-            (1 << 14) + 12 * v.screen.x.clamp(0, (W << 4) as i32)
-        } else {
-            v.screen.inv_w
-        };
-        ShadeVertex::<f32>::new([v.screen.x, v.screen.y], v.screen.z, inv_w, v.pos, v.normal)
+    let frame = |rows: u32, front: bool| {
+        mesh_frame(
+            W,
+            W,
+            rows,
+            SPHERE.mesh(),
+            t,
+            k,
+            Cull::Back,
+            front,
+            Rgb565::BLACK,
+        )
     };
-    fn run<
-        S: Shading<f32, Color = Rgb565>,
-        F: Framebuffer<Color = Rgb565, Error: core::fmt::Debug>,
-    >(
-        s: &mut S,
-        tris: &[[ShadeVertex<f32>; 3]],
-        perspective: bool,
-        fb: &mut F,
-        depth: &mut DepthBuffer<'_>,
-    ) {
-        let o = RasterOptions::default();
-        for t in tris {
-            if perspective {
-                s.draw_perspective(fb, Some(depth), t, &o).unwrap();
-            } else {
-                s.draw(fb, Some(depth), t, &o).unwrap();
-            }
-        }
-    }
-    let tris: Vec<[ShadeVertex<f32>; 3]> = tris.iter().map(|t| t.each_ref().map(sv)).collect();
-    match how {
-        Draw::GouraudGamma => {
-            let mut s = Shader::new(GouraudShading, &lighting, Gamma(&table));
-            run(&mut s, &tris, perspective, fb, depth);
-        }
-        Draw::Phong => {
-            let mut s = Shader::new(PhongShading, &lighting, Linear);
-            run(&mut s, &tris, perspective, fb, depth);
-        }
-    }
-}
-
-/// The frame through each framebuffer; the first is the `SliceFramebuffer`'s.
-fn frames(how: Draw, perspective: bool) -> Vec<(&'static str, Vec<Rgb565>)> {
-    let mode = if how == Draw::Phong {
-        Mode::Phong
-    } else {
-        Mode::Gouraud
-    };
-    let scene = config_scene(LightSet::Point4Blinn, mode);
-    let tris = prepare(&scene).remove(0);
-    let n = (W * W) as usize;
-    let mut out = Vec::new();
-
-    let mut px = vec![Rgb565::BLACK; n];
-    let mut z = vec![u16::MAX; n];
-    {
-        let mut fb = SliceFramebuffer::new(&mut px, W, W).unwrap();
-        let mut db = DepthBuffer::new(&mut z, W).unwrap();
-        draw_scene(&scene, &tris, how, perspective, &mut fb, &mut db);
-    }
-    out.push(("SliceFramebuffer", px));
-
-    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(W, W));
-    let mut z = vec![u16::MAX; n];
-    {
-        let mut fb = DrawTargetAdapter::new(&mut display);
-        let mut db = DepthBuffer::new(&mut z, W).unwrap();
-        draw_scene(&scene, &tris, how, perspective, &mut fb, &mut db);
-    }
-    let px = (0..n)
-        .map(|i| display.get_pixel(Point::new((i as u32 % W) as i32, (i as u32 / W) as i32)))
-        .collect();
-    out.push(("DrawTargetAdapter", px));
-
-    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(W, W));
-    let mut strip = vec![Rgb565::BLACK; W as usize * 8];
-    let mut z = vec![u16::MAX; n];
-    {
-        let mut band = BandBuffer::new(&mut strip, W, W).unwrap();
-        let mut db = DepthBuffer::new(&mut z, W).unwrap();
-        band.render(&mut display, Rgb565::BLACK, |fb| {
-            draw_scene(&scene, &tris, how, perspective, fb, &mut db);
-        })
-        .unwrap();
-    }
-    let px = (0..n)
-        .map(|i| display.get_pixel(Point::new((i as u32 % W) as i32, (i as u32 / W) as i32)))
-        .collect();
-    out.push(("BandBuffer", px));
-
-    for sizes in [&[1u32][..], &[3], &[7], &[1, 3, 7, 2, 5]] {
-        let mut fb = Pieces {
-            px: vec![Rgb565::BLACK; n],
-            sizes,
-            next: 0,
-        };
-        let mut z = vec![u16::MAX; n];
-        let mut db = DepthBuffer::new(&mut z, W).unwrap();
-        draw_scene(&scene, &tris, how, perspective, &mut fb, &mut db);
-        let name: &'static str = match sizes.len() {
-            1 if sizes[0] == 1 => "1-pixel pieces",
-            1 if sizes[0] == 3 => "3-pixel pieces",
-            1 => "7-pixel pieces",
-            _ => "1,3,7,2,5-pixel pieces",
-        };
-        out.push((name, fb.px));
-    }
-    out
-}
-
-fn assert_same(how: Draw, perspective: bool) {
-    let f = frames(how, perspective);
-    let (_, base) = &f[0];
+    let base = frame(W, false);
     let lit = base.iter().filter(|p| **p != Rgb565::BLACK).count();
     assert!(
         lit > 20_000,
-        "{how:?}: the sphere is drawn ({lit} lit pixels)"
+        "{what}: the sphere is drawn ({lit} lit pixels)"
     );
-    for (name, px) in &f[1..] {
-        let diff: Vec<usize> = (0..base.len()).filter(|&i| px[i] != base[i]).collect();
-        assert!(
-            diff.is_empty(),
-            "{how:?} perspective={perspective}: {name} differs from SliceFramebuffer on {} pixels, first at ({}, {}): {:?} vs {:?}",
-            diff.len(),
-            diff[0] % W as usize,
-            diff[0] / W as usize,
-            px[diff[0]],
-            base[diff[0]]
-        );
+    for front in [false, true] {
+        for rows in [W, 1, 3, 7] {
+            if (rows, front) == (W, false) {
+                continue;
+            }
+            let px = frame(rows, front);
+            let diff: Vec<usize> = (0..base.len()).filter(|&i| px[i] != base[i]).collect();
+            let how = if front { "draw_triangle" } else { "MeshDraw" };
+            assert!(
+                diff.is_empty(),
+                "{what}: {how} in {rows}-row bands differs from MeshDraw whole on {} pixels, first at ({}, {}): {:?} vs {:?}",
+                diff.len(),
+                diff[0] % W as usize,
+                diff[0] / W as usize,
+                px[diff[0]],
+                base[diff[0]]
+            );
+        }
     }
 }
 
 #[test]
-fn gouraud_gamma_same_pixels_through_every_framebuffer() {
-    assert_same(Draw::GouraudGamma, false);
+fn gouraud_gamma_same_pixels_however_the_frame_is_split() {
+    let l = lighting();
+    let table = GammaTable::<1024>::new(Transfer::Srgb).unwrap();
+    assert_same(
+        "gouraud",
+        &ortho(),
+        Shader::new(GouraudShading, &l, Gamma(&table)),
+    );
 }
 
 #[test]
-fn phong_same_pixels_through_every_framebuffer() {
-    assert_same(Draw::Phong, false);
+fn phong_same_pixels_however_the_frame_is_split() {
+    let l = lighting();
+    assert_same("phong", &ortho(), Shader::new(PhongShading, &l, Linear));
 }
 
 #[test]
-fn perspective_same_pixels_through_every_framebuffer() {
-    assert_same(Draw::GouraudGamma, true);
-    assert_same(Draw::Phong, true);
+fn perspective_same_pixels_however_the_frame_is_split() {
+    let l = lighting();
+    let table = GammaTable::<1024>::new(Transfer::Srgb).unwrap();
+    assert_same(
+        "perspective gouraud",
+        &persp(),
+        Shader::new(GouraudShading, &l, Gamma(&table)),
+    );
+    assert_same(
+        "perspective phong",
+        &persp(),
+        Shader::new(PhongShading, &l, Linear),
+    );
 }

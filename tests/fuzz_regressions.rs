@@ -1,34 +1,68 @@
 //! Inputs the fuzz targets of `fuzz/` found crashing, kept as regression tests
 //! (overflow checks are on in this profile, as in the fuzz build).
 
-use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
-use fixshade::raster::{
-    draw_triangle, draw_triangle_perspective, RasterOptions, RasterVertex, SpanShader,
-    SUBPIXEL_BITS,
-};
-use fixshade::target::{DepthBuffer, SliceFramebuffer};
+mod support;
 
-struct White;
-impl SpanShader<0> for White {
-    type Color = Gray8;
-    fn shade_span(&mut self, _x: i32, _y: i32, _s: &[i32; 0], _d: &[i32; 0], out: &mut [Gray8]) {
-        out.fill(Gray8::WHITE);
-    }
+use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
+use fixshade::camera::{Clip, ClipSpace};
+use fixshade::raster::SUBPIXEL_BITS;
+use fixshade::render::{Corner, FullFrame};
+use support::{clip_corner, Solid, Tris};
+
+/// One triangle drawn white into a 16 × 16 frame with a depth buffer; the
+/// pixels and the depth buffer after the frame.
+fn draw(space: ClipSpace, tri: [Corner; 3]) -> (Vec<Gray8>, Vec<u16>) {
+    let mut px = vec![Gray8::BLACK; 16 * 16];
+    let mut depth = vec![0u16; 16 * 16];
+    let mut item = Tris {
+        space,
+        ..Tris::screen(Solid(Gray8::WHITE), vec![tri])
+    };
+    FullFrame::new(16, 16, &mut px, Some(&mut depth))
+        .unwrap()
+        .render(Gray8::BLACK, &mut [&mut item])
+        .unwrap();
+    (px, depth)
 }
 
 /// fuzz target `raster`, crash-f27790be: a vertex at depth `u16::MAX` (the far
 /// plane) overflowed the upper depth bound `(65535 << 15) + 2^15 − 1` in
-/// `raster::exact` ("attempt to add with overflow"; in release it wrapped twice
-/// back to the right value). Every pixel must be drawn and pass `z < 65535`
-/// where its interpolated depth is below the far plane.
+/// the removed `raster::exact` ("attempt to add with overflow"; in release it
+/// wrapped twice back to the right value). Every pixel must be drawn and pass
+/// `z < 65535` where its interpolated depth is below the far plane — in
+/// screen space and in a perspective clip space (depth `z/w` at the far
+/// plane: `z = w`), where the same triangle gives the same pixels.
 #[test]
 fn a_vertex_at_the_far_plane() {
-    let v = |x: i32, y: i32, z: u16| RasterVertex {
-        x: x << SUBPIXEL_BITS,
-        y: y << SUBPIXEL_BITS,
-        z,
-        inv_w: 1 << 16,
-        attrs: [],
+    let v = |x: i32, y: i32, z: u16| {
+        clip_corner(
+            Clip {
+                x: x << SUBPIXEL_BITS,
+                y: y << SUBPIXEL_BITS,
+                z: i32::from(z),
+                w: 1,
+            },
+            0,
+        )
+    };
+    // the same points in a perspective clip space (w = 1000, centre 0):
+    // depth 65535 at z = w, 0 at z = −w
+    let p = |c: Corner| {
+        let (w, d) = (1000, c.clip.z);
+        let z = match d {
+            65535 => w,
+            0 => -w,
+            _ => (i64::from(d) * 2 * i64::from(w) / 65535 - i64::from(w)) as i32,
+        };
+        clip_corner(
+            Clip {
+                x: c.clip.x * w,
+                y: c.clip.y * w,
+                z,
+                w,
+            },
+            0,
+        )
     };
     for z in [
         [u16::MAX; 3],
@@ -36,39 +70,22 @@ fn a_vertex_at_the_far_plane() {
         [u16::MAX, 1, 30_000],
     ] {
         let tri = [v(0, 0, z[0]), v(16, 0, z[1]), v(0, 16, z[2])];
-        let mut px = [Gray8::BLACK; 16 * 16];
-        let mut depth = [u16::MAX; 16 * 16];
-        let mut fb = SliceFramebuffer::new(&mut px, 16, 16).unwrap();
-        let mut db = DepthBuffer::new(&mut depth, 16).unwrap();
-        let s = draw_triangle(
-            &mut fb,
-            Some(&mut db),
-            &tri,
-            &RasterOptions::default(),
-            &mut White,
-        )
-        .unwrap();
-        let mut px2 = [Gray8::BLACK; 16 * 16];
-        let mut depth2 = [u16::MAX; 16 * 16];
-        let mut fb2 = SliceFramebuffer::new(&mut px2, 16, 16).unwrap();
-        let mut db2 = DepthBuffer::new(&mut depth2, 16).unwrap();
-        let p = draw_triangle_perspective(
-            &mut fb2,
-            Some(&mut db2),
-            &tri,
-            &RasterOptions::default(),
-            &mut White,
-        )
-        .unwrap();
-        assert_eq!(s, p, "{z:?}");
+        let (px, depth) = draw(ClipSpace::SCREEN, tri);
+        let (px2, depth2) = draw(ClipSpace::perspective([0, 0], 1), tri.map(p));
+        let drawn = px.iter().filter(|&&p| p == Gray8::WHITE).count();
         if z == [u16::MAX; 3] {
-            assert_eq!(s.pixels, 0, "nothing passes z < 65535 at the far plane");
+            assert_eq!(drawn, 0, "nothing passes z < 65535 at the far plane");
         } else {
-            assert!(s.pixels > 0, "{z:?}");
+            assert!(drawn > 0, "{z:?}");
         }
         // every drawn pixel stored a depth that passed the test, and only those
-        for (p, d) in px.iter().zip(depth) {
-            assert_eq!(*p == Gray8::WHITE, d < u16::MAX, "{z:?}");
+        for (px, depth) in [(&px, &depth), (&px2, &depth2)] {
+            for (p, d) in px.iter().zip(depth) {
+                assert_eq!(*p == Gray8::WHITE, *d < u16::MAX, "{z:?}");
+            }
+        }
+        if z[0] == z[1] && z[1] == z[2] {
+            assert_eq!(px, px2, "{z:?}: perspective with equal w = screen space");
         }
     }
 }
@@ -81,8 +98,7 @@ fn a_vertex_at_the_far_plane() {
 /// values, no overflow.
 #[test]
 fn orthographic_transform_rounding_at_i32_max() {
-    use fixshade::camera::Camera;
-    use fixshade::mesh::{Mat4, Viewport};
+    use fixshade::camera::{Camera, Mat4, Viewport};
     let vp = Viewport::new(0, 0, 64, 64).unwrap();
     let view = Mat4 {
         m: [

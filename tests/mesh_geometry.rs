@@ -161,6 +161,7 @@ fn face_normals_of_a_sphere_point_outwards() {
     assert_eq!(
         face_normals(&p, &t, &mut f[..10]),
         Err(MeshError::BufferTooSmall {
+            which: "out",
             needed: t.len(),
             got: 10
         })
@@ -197,11 +198,15 @@ fn cube_vertex_normals_by_angle_are_diagonals() {
         );
     }
     // to a tier
-    let mut q = [fixshade::vector::Vec3::<fixshade::num::Q14>::default(); 8];
+    let mut q = [fixshade::num::Vec3::<fixshade::num::Q14>::default(); 8];
     assert_eq!(normals_to_tier(&n, &mut q), Ok(8));
     assert!((q[7].x.to_f32() - k).abs() < 1e-4);
     assert_eq!(
         normals_to_tier(&n, &mut q[..3]),
-        Err(MeshError::BufferTooSmall { needed: 8, got: 3 })
+        Err(MeshError::BufferTooSmall {
+            which: "dst",
+            needed: 8,
+            got: 3
+        })
     );
 }

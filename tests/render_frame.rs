@@ -1,16 +1,16 @@
 //! The mesh renderer on the standard scene: banded equals full frame bit for
-//! bit, the same pixels as the per-triangle path (coverage exactly, colours to
-//! a stated bound), every shading mode.
+//! bit, every shading mode, orthographic and through the near plane (the
+//! per-triangle front equals `MeshDraw` bit for bit: `tests/one_pipeline.rs`).
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
+use fixshade::framebuffer::Checksum;
 use fixshade::prelude::*;
 use fixshade::render::{
     bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
 };
-use fixshade::shade::Kernel;
+use fixshade::shade::{GeneralPhongShading, Kernel};
 use fixshade::standard;
-use fixshade::target::Checksum;
 
 const W: u32 = standard::SIZE;
 const NV: usize = standard::COUNTS.0;
@@ -18,10 +18,7 @@ const NT: usize = standard::COUNTS.1;
 
 /// Renders the standard scene with `kernel` in bands of `band_rows` rows;
 /// returns the pixels and the checksum of the stream sent to the display.
-fn render<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> (Vec<Rgb565>, u32)
-where
-    K::Vertex: fixshade::render::Lerp,
-{
+fn render<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> (Vec<Rgb565>, u32) {
     let layout = Layout::banded(W, W, band_rows).unwrap();
     let mesh = standard::SPHERE.mesh();
     let t = standard::transform().unwrap();
@@ -85,6 +82,9 @@ fn bands_equal_full_frame_bit_for_bit() {
         let p = render(Shader::new(PhongShading, &lit, Linear), rows);
         let p_full = render(Shader::new(PhongShading, &lit, Linear), 240);
         assert_eq!(p.0, p_full.0, "phong, {rows}-row bands");
+        let q = render(Shader::new(GeneralPhongShading, &lit, Linear), rows);
+        let q_full = render(Shader::new(GeneralPhongShading, &lit, Linear), 240);
+        assert_eq!(q.0, q_full.0, "general phong, {rows}-row bands");
     }
     let (px, _) = render(Shader::new(GouraudShading, &lit, Linear), 8);
     let lit_px = px.iter().filter(|p| **p != Rgb565::BLACK).count();
@@ -94,10 +94,7 @@ fn bands_equal_full_frame_bit_for_bit() {
 
 /// The standard sphere through a perspective camera so close that the near
 /// plane cuts its front (the clip-space path), in bands of `band_rows` rows.
-fn render_near<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> Vec<Rgb565>
-where
-    K::Vertex: fixshade::render::Lerp,
-{
+fn render_near<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> Vec<Rgb565> {
     let layout = Layout::banded(W, W, band_rows).unwrap();
     let cam = Camera::perspective(
         1.2,
@@ -177,7 +174,7 @@ fn full_frame_target_matches_bands() {
     let mut color = vec![Rgb565::BLACK; (W * W) as usize];
     let mut depth = vec![0u16; (W * W) as usize];
     let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth)).unwrap();
-    frame.render(Rgb565::BLACK, &mut [&mut draw]);
+    frame.render(Rgb565::BLACK, &mut [&mut draw]).unwrap();
     assert_eq!(frame.pixels(), &banded[..]);
 }
 

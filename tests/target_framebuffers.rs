@@ -1,103 +1,119 @@
-//! Framebuffers: construction errors, DrawTarget adapter, band buffer with depth.
+//! Framebuffers: construction errors of `FullFrame`, `Bands` and `Layout`,
+//! bands flushed to a display equal the whole frame (with depth), display
+//! errors, band geometry, and a mesh refused by a frame of another layout.
 
-use core::convert::Infallible;
+mod support;
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};
 use embedded_graphics_core::Pixel;
 use embedded_graphics_simulator::SimulatorDisplay;
-use fixshade::raster::{draw_triangle, RasterOptions, RasterVertex, SpanShader, SUBPIXEL_BITS};
-use fixshade::target::{
-    BandBuffer, DepthBuffer, DrawTargetAdapter, Framebuffer, SliceFramebuffer, TargetError,
+use fixshade::error::{Error, RenderError};
+use fixshade::prelude::*;
+use fixshade::render::{
+    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
+    MAX_SIZE,
 };
+use support::{corner, full, Solid, Tris, S};
 
-struct Solid<C>(C);
-impl<C: Copy> SpanShader<0> for Solid<C> {
-    type Color = C;
-    fn shade_span(&mut self, _: i32, _: i32, _: &[i32; 0], _: &[i32; 0], out: &mut [C]) {
-        out.fill(self.0);
-    }
-}
-
-fn tri(p: [(i32, i32, u16); 3]) -> [RasterVertex<0>; 3] {
-    p.map(|(x, y, z)| RasterVertex {
-        x: x << SUBPIXEL_BITS,
-        y: y << SUBPIXEL_BITS,
-        z,
-        inv_w: 1,
-        attrs: [],
-    })
+fn tri(p: [(i32, i32, i32); 3]) -> [fixshade::render::Corner; 3] {
+    p.map(|(x, y, z)| corner(x * S, y * S, z, 0))
 }
 
 #[test]
-fn slice_framebuffer_validates_its_slice() {
+fn full_frame_and_bands_validate_their_buffers() {
     let mut buf = [Gray8::new(0); 100];
+    let mut z = [0u16; 100];
     assert_eq!(
-        SliceFramebuffer::new(&mut buf, 0, 5).unwrap_err(),
-        TargetError::ZeroSize
+        FullFrame::new(0, 5, &mut buf, None).unwrap_err(),
+        RenderError::Size
     );
     assert_eq!(
-        SliceFramebuffer::with_stride(&mut buf, 10, 5, 9).unwrap_err(),
-        TargetError::StrideTooSmall
+        FullFrame::new(MAX_SIZE + 1, 1, &mut buf, None).unwrap_err(),
+        RenderError::Size
     );
-    let err = SliceFramebuffer::new(&mut buf, 10, 11).unwrap_err();
+    let err = FullFrame::new(10, 11, &mut buf, None).unwrap_err();
     assert_eq!(
         err,
-        TargetError::BufferTooSmall {
+        RenderError::BufferTooSmall {
+            which: "frame",
             needed: 110,
             got: 100
         }
     );
     assert_eq!(
         err.to_string(),
-        "framebuffer slice too small: needs 110 elements, got 100"
+        "frame too small: 110 elements needed, 100 given"
     );
-    // Stride 12, 8 rows: 12·7 + 10 = 94 elements suffice.
-    let mut fb = SliceFramebuffer::with_stride(&mut buf, 10, 8, 12).unwrap();
-    fb.clear(Gray8::new(9));
-    fb.fill_span(8, 7, 2, |_, p| p.fill(Gray8::new(1))).unwrap();
-    fb.fill_span(9, 7, 2, |_, _| panic!("out of range span must be ignored"))
-        .unwrap();
-    fb.fill_span(0, -1, 1, |_, _| panic!("out of range span must be ignored"))
-        .unwrap();
-    assert_eq!(fb.get(9, 7), Some(Gray8::new(1)));
-    assert_eq!(fb.as_slice()[10], Gray8::new(0), "padding untouched");
+    assert_eq!(
+        FullFrame::new(10, 10, &mut buf, Some(&mut z[..99])).unwrap_err(),
+        RenderError::BufferTooSmall {
+            which: "depth buffer",
+            needed: 100,
+            got: 99
+        }
+    );
+    // longer buffers are fine: the frame uses the first width·height
+    let mut long = [Gray8::new(7); 120];
+    let mut frame = FullFrame::new(10, 10, &mut long, Some(&mut z)).unwrap();
+    frame.render(Gray8::new(1), &mut []).unwrap();
+    assert_eq!(frame.pixels().len(), 120);
+    assert!(long[..100].iter().all(|p| p.luma() == 1));
+    assert!(
+        long[100..].iter().all(|p| p.luma() == 7),
+        "beyond the frame: untouched"
+    );
+
+    let layout = Layout::banded(40, 30, 8).unwrap();
+    let mut strip = [Gray8::new(0); 40 * 8];
+    let mut short = [0u16; 40 * 8 - 1];
+    assert_eq!(
+        Bands::new(layout, &mut strip[..40 * 8 - 1], None).unwrap_err(),
+        RenderError::BufferTooSmall {
+            which: "colour strip",
+            needed: 320,
+            got: 319
+        }
+    );
+    assert_eq!(
+        Bands::new(layout, &mut strip, Some(&mut short)).unwrap_err(),
+        RenderError::BufferTooSmall {
+            which: "depth strip",
+            needed: 320,
+            got: 319
+        }
+    );
+    assert_eq!(Layout::banded(0, 30, 8), Err(RenderError::Size));
+    assert_eq!(Layout::banded(40, 30, 0), Err(RenderError::Size));
+    assert_eq!(Layout::full(40, MAX_SIZE + 1), Err(RenderError::Size));
+    // every stage error converts into the crate's error
+    let e: Error = RenderError::Size.into();
+    assert_eq!(e, Error::Render(RenderError::Size));
 }
 
 #[test]
-fn adapter_draws_on_the_simulator_like_the_slice_framebuffer() {
+fn bands_on_the_simulator_equal_the_full_frame() {
     let t = tri([(3, 2, 0), (150, 40, 0), (20, 90, 0)]);
-    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(160, 100));
-    let mut fb = DrawTargetAdapter::new(&mut display);
-    assert_eq!((fb.width(), fb.rows()), (160, 0..100));
-    let stats = draw_triangle(
-        &mut fb,
-        None,
-        &t,
-        &RasterOptions::default(),
-        &mut Solid(Rgb565::GREEN),
-    )
-    .unwrap();
-
-    let mut px = vec![Rgb565::BLACK; 160 * 100];
-    let mut slice = SliceFramebuffer::new(&mut px, 160, 100).unwrap();
-    let stats2 = draw_triangle(
-        &mut slice,
-        None,
-        &t,
-        &RasterOptions::default(),
-        &mut Solid(Rgb565::GREEN),
-    )
-    .unwrap();
-    assert_eq!(stats.pixels, stats2.pixels);
-    for y in 0..100 {
-        for x in 0..160 {
-            assert_eq!(
-                display.get_pixel(Point::new(x, y)),
-                px[(y * 160 + x) as usize],
-                "({x}, {y})"
-            );
+    let mut item = Tris::screen(Solid(Rgb565::GREEN), vec![t]);
+    let px = full(160, 100, Rgb565::BLACK, false, &mut [&mut item]);
+    assert!(px.iter().filter(|&&p| p == Rgb565::GREEN).count() > 3000);
+    for rows in [1, 7, 8, 100] {
+        let layout = Layout::banded(160, 100, rows).unwrap();
+        let mut strip = vec![Rgb565::BLACK; 160 * rows as usize];
+        let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(160, 100));
+        Bands::new(layout, &mut strip, None)
+            .unwrap()
+            .render(&mut display, Rgb565::BLACK, &mut [&mut item])
+            .unwrap();
+        for y in 0..100 {
+            for x in 0..160 {
+                assert_eq!(
+                    display.get_pixel(Point::new(x, y)),
+                    px[(y * 160 + x) as usize],
+                    "{rows}-row bands: ({x}, {y})"
+                );
+            }
         }
     }
 }
@@ -123,101 +139,90 @@ impl DrawTarget for Flaky {
 }
 
 #[test]
-fn adapter_returns_the_display_error() {
+fn bands_return_the_display_error_and_stop() {
+    // 10 rows in 2-row bands: band 0 is sent, band 1 fails and drawing stops
+    let layout = Layout::banded(200, 10, 2).unwrap();
+    let mut strip = [Gray8::new(0); 400];
     let mut display = Flaky(0);
-    let mut fb = DrawTargetAdapter::new(&mut display);
-    // 200 pixels = 4 chunks of at most 64: call 1 succeeds, call 2 fails and
-    // stops the span
-    let mut pieces = Vec::new();
-    let r = fb.fill_span(0, 3, 200, |x, p| {
-        pieces.push((x, p.len()));
-        p.fill(Gray8::new(1));
-    });
-    assert_eq!(r, Err(2));
-    assert_eq!(pieces, [(0, 64), (64, 64)]);
-    // a triangle drawn through the adapter reports the error too
     let t = tri([(0, 0, 0), (150, 2, 0), (10, 9, 0)]);
-    let r = draw_triangle(
-        &mut fb,
-        None,
-        &t,
-        &RasterOptions::default(),
-        &mut Solid(Gray8::new(3)),
+    let mut item = Tris::screen(Solid(Gray8::new(3)), vec![t]);
+    let r = Bands::new(layout, &mut strip, None).unwrap().render(
+        &mut display,
+        Gray8::new(0),
+        &mut [&mut item],
     );
-    assert_eq!(r.map(|_| ()), Err(4));
+    assert_eq!(r, Err(RenderError::Display(2)));
+    assert_eq!(display.0, 2, "no band sent after the error");
 }
 
 #[test]
 fn band_rendering_with_depth_matches_full_frame() {
     let far = tri([(2, 2, 3000), (60, 10, 3000), (10, 60, 3000)]);
     let near = tri([(5, 30, 100), (60, 20, 5000), (40, 62, 100)]);
-    let scene = [(far, Gray8::new(50)), (near, Gray8::new(200))];
-
-    let mut full = vec![Gray8::new(0); 64 * 64];
-    let mut fb = SliceFramebuffer::new(&mut full, 64, 64).unwrap();
-    let mut z = vec![u16::MAX; 64 * 64];
-    let mut depth = DepthBuffer::new(&mut z, 64).unwrap();
-    for (t, c) in &scene {
-        draw_triangle(
-            &mut fb,
-            Some(&mut depth),
-            t,
-            &RasterOptions::default(),
-            &mut Solid(*c),
-        )
-        .unwrap();
-    }
-
+    let mut a = Tris::screen(Solid(Gray8::new(50)), vec![far]);
+    let mut b = Tris::screen(Solid(Gray8::new(200)), vec![near]);
+    let whole = full(64, 64, Gray8::new(0), true, &mut [&mut a, &mut b]);
     for rows in [1u32, 3, 8, 64] {
-        let mut strip = vec![Gray8::new(0); (64 * rows) as usize];
-        let mut band = BandBuffer::new(&mut strip, 64, 64).unwrap();
-        let mut zb = vec![0u16; (64 * rows) as usize];
-        let mut depth = DepthBuffer::new(&mut zb, 64).unwrap();
-        let mut display = SimulatorDisplay::<Gray8>::new(Size::new(64, 64));
-        let result: Result<(), Infallible> = band.render_with_depth(
-            &mut display,
-            Gray8::new(0),
-            &mut depth,
-            u16::MAX,
-            |fb, depth| {
-                for (t, c) in &scene {
-                    draw_triangle(
-                        fb,
-                        Some(&mut *depth),
-                        t,
-                        &RasterOptions::default(),
-                        &mut Solid(*c),
-                    )
-                    .unwrap();
-                }
-            },
-        );
-        result.unwrap();
-        for y in 0..64 {
-            for x in 0..64 {
-                assert_eq!(
-                    display.get_pixel(Point::new(x, y)),
-                    full[(y * 64 + x) as usize],
-                    "band rows {rows} ({x}, {y})"
-                );
-            }
-        }
+        let banded = support::banded(64, 64, rows, Gray8::new(0), true, &mut [&mut a, &mut b]);
+        assert_eq!(banded, whole, "{rows}-row bands");
     }
-    assert!(full.iter().any(|p| p.luma() == 50) && full.iter().any(|p| p.luma() == 200));
+    assert!(whole.iter().any(|p| p.luma() == 50) && whole.iter().any(|p| p.luma() == 200));
+    // the near triangle is partly behind the far one (z rises to 5000)
+    let far_only = full(64, 64, Gray8::new(0), true, &mut [&mut a]);
+    assert!(whole
+        .iter()
+        .zip(&far_only)
+        .any(|(w, f)| w.luma() == 50 && f.luma() == 50));
 }
 
 #[test]
-fn band_buffer_geometry() {
-    let mut strip = [Rgb565::BLACK; 240 * 8];
-    let mut band = BandBuffer::new(&mut strip, 240, 250).unwrap();
-    assert_eq!((band.band_rows(), band.bands()), (8, 32));
-    assert!(band.set_band(31));
-    assert_eq!(band.rows(), 248..250);
-    assert!(!band.set_band(32));
-    assert_eq!(band.band(), 31);
+fn band_geometry() {
+    let layout = Layout::banded(240, 250, 8).unwrap();
+    assert_eq!((layout.band_rows(), layout.bands()), (8, 32));
+    assert_eq!(layout.rows(31), 248..250);
+    assert_eq!(layout.rows(0), 0..8);
+    // more rows per band than the frame has: one band
+    let one = Layout::banded(240, 5, 8).unwrap();
+    assert_eq!((one.band_rows(), one.bands(), one.rows(0)), (5, 1, 0..5));
     let mut tiny = [Rgb565::BLACK; 10];
     assert!(matches!(
-        BandBuffer::new(&mut tiny, 240, 10),
-        Err(TargetError::BufferTooSmall { .. })
+        Bands::new(layout, &mut tiny, None),
+        Err(RenderError::BufferTooSmall { .. })
     ));
+}
+
+#[test]
+fn a_mesh_prepared_for_another_layout_is_refused() {
+    let lighting = fixshade::standard::lambert::<Q14>().unwrap();
+    let t = fixshade::standard::transform().unwrap();
+    let (nv, nt) = fixshade::standard::COUNTS;
+    let mut cache = vec![CachedVertex::default(); nv];
+    let mut bins = vec![0u16; bins_len(nt, 30)];
+    let mut carry = vec![Carry::default(); 128];
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut carry,
+    };
+    let banded = Layout::banded(240, 240, 8).unwrap();
+    let shader = Shader::new(GouraudShading, &lighting, Linear);
+    let mut draw = MeshDraw::new(
+        banded,
+        fixshade::standard::SPHERE.mesh(),
+        &t,
+        shader,
+        memory,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let mut color = vec![Rgb565::RED; 240 * 240];
+    let mut frame = FullFrame::new(240, 240, &mut color, None).unwrap();
+    let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
+    assert_eq!(
+        frame.render(Rgb565::BLACK, items),
+        Err(RenderError::LayoutMismatch)
+    );
+    assert!(
+        frame.pixels().iter().all(|&p| p == Rgb565::RED),
+        "nothing drawn, not even cleared"
+    );
 }

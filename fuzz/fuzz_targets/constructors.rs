@@ -5,14 +5,12 @@
 //! colours in every tier.
 #![no_main]
 
-use fixshade::camera::Camera;
+use fixshade::camera::{Camera, Mat4, Viewport};
 use fixshade::color::{GammaTable, Rgb, Transfer};
-use fixshade::light::{AnyLight, Attenuation};
+use fixshade::lighting::{AnyLight, Attenuation, Material};
 use fixshade::lighting::{Full, InfiniteViewer, Lighting, LinearFog, LocalViewer};
-use fixshade::material::Material;
-use fixshade::mesh::{Mat4, Viewport};
+use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{Exponent, F32Fast, Scalar, Q14, Q30};
-use fixshade::vector::{point_from_f32, Vec3};
 use fixshade_fuzz::{check_color, Input};
 use libfuzzer_sys::fuzz_target;
 

@@ -5,13 +5,13 @@
 #![no_main]
 
 use fixshade::color::Rgb;
+use fixshade::lighting::Material;
 use fixshade::lighting::{
     BlinnPhong, FogModel, Full, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer, Model,
     NoFog, Phong, Viewer,
 };
-use fixshade::material::Material;
+use fixshade::num::{point_from_f32, Point3, Vec3};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
-use fixshade::vector::{point_from_f32, Point3, Vec3};
 use fixshade_fuzz::{check_color, Input};
 use libfuzzer_sys::fuzz_target;
 

@@ -7,8 +7,7 @@
 //! checks are on in the fuzz profile) is a crash the fuzzer reports.
 
 use fixshade::color::Rgb;
-use fixshade::light::{AnyLight, LightDesc, LightKind};
-use fixshade::material::MaterialDesc;
+use fixshade::lighting::{AnyLight, LightDesc, LightKind, MaterialDesc};
 use fixshade::num::Scalar;
 
 /// The fuzzer's bytes as a stream of parameters.
@@ -94,6 +93,8 @@ impl Input<'_> {
     }
 
     /// A material description with any values.
+    // the update keeps this compiling when the description gains a field
+    #[allow(clippy::needless_update)]
     pub fn material(&mut self) -> MaterialDesc {
         MaterialDesc {
             emission: self.f3(),
