@@ -117,10 +117,6 @@ fn runs_split_around_failing_pixels_and_passing_pixels_write_depth() {
 /// (`tests/one_pipeline.rs`), in screen space: every depth it writes lies
 /// within its corners' depths.
 #[test]
-#[ignore = "library bug: the sliver's depth plane changes by more than 2^30 units (65 536 \
-            depth units) per row, raster::setup::scale saturates it, Setup::err does not \
-            know, the run is not clamped: pixel (203, 223) gets depth 52608 (corners \
-            11073..20685, exact 17015)"]
 fn sliver_depth_within_its_corners() {
     let tri = [
         (3097, 3660, 11073),

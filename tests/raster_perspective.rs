@@ -256,9 +256,6 @@ fn perspective_values_within_their_bound_and_far_better_than_affine() {
 }
 
 #[test]
-#[ignore = "library bug: the last sub-span of a run is interpolated towards a value \
-            evaluated 8 pixels on, beyond the triangle, with clamped weights \
-            (src/render/tri.rs perspective_run): off by up to 10 % of the range"]
 fn every_pixel_linear_between_exact_ends() {
     check(true);
 }

@@ -243,8 +243,6 @@ fn sliver_with_a_saturating_gradient_stays_in_the_safe_range() {
 /// and the window and cut into a fan, it must still cover every pixel at
 /// most once.
 #[test]
-#[ignore = "library bug: two pieces of the near-clipped sliver cover pixel (17, 17): \
-            it is written twice by one triangle (whole frame and bands)"]
 fn near_clipped_sliver_writes_each_pixel_once() {
     let space = ClipSpace::perspective([280, 280], 71);
     let c = |x: i32, y: i32, z: i32, w: i32| Corner {

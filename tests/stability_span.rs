@@ -231,9 +231,6 @@ proptest! {
     }
 
     #[test]
-    #[ignore = "library bug: FlatShading's centroid (src/shade/flat.rs:52) adds two differences \
-                clamped to ±2^30: eye positions (0, 0, 0), (0, 0, 32768), (0, 0, 32768) \
-                overflow (debug panic, wrong centroid in release)"]
     fn wild_positions_never_wrap_flat(
         p in proptest::array::uniform3(proptest::array::uniform3(wild())),
         light in proptest::array::uniform3(wild()),
@@ -245,8 +242,6 @@ proptest! {
 /// The case the property test found: two vertices 32 768 units (Q16.16
 /// `i32::MAX`) from the first along z.
 #[test]
-#[ignore = "library bug: FlatShading's centroid (src/shade/flat.rs:52) adds two differences \
-            clamped to ±2^30: attempt to add with overflow"]
 fn flat_centroid_of_far_apart_positions() {
     every_tier(
         [[0.0, 0.0, 0.0], [0.0, 0.0, 32768.0], [0.0, 0.0, 32768.0]],

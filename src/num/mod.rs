@@ -38,6 +38,7 @@ mod pow;
 mod q14;
 mod q30;
 pub(crate) mod recip;
+pub(crate) use recip::div_small;
 pub(crate) mod rsqrt;
 mod vector;
 pub(crate) mod wide;

@@ -29,6 +29,27 @@ pub(crate) fn recip16(q: u32) -> u32 {
     (r0 as i32).wrapping_add(((d >> 8).wrapping_mul(r0 as i32).wrapping_add(1 << 22)) >> 23) as u32
 }
 
+/// `⌊2^16 / n⌋` for `n` in `0..=8` (0 for 0).
+const SMALL: [u32; 9] = [0, 65536, 32768, 21845, 16384, 13107, 10922, 9362, 8192];
+
+/// `d / n` rounded toward zero for `1 ≤ n ≤ 8` (0 for `n = 0`, `n` above 8
+/// taken as 8), by `⌊2^16 / n⌋` in two 16-bit halves of `|d|`: 32-bit
+/// products, no division; never larger in magnitude than the exact quotient,
+/// smaller by less than `|d|·2^−16 + 1`.
+#[inline(always)]
+pub(crate) fn div_small(d: i32, n: u32) -> i32 {
+    let r = SMALL.get(n as usize).copied().unwrap_or(8192);
+    let m = d.unsigned_abs();
+    // (m >> 16)·r ≤ 2^15·2^16 and (m & 0xFFFF)·r < 2^32
+    let q = (m >> 16) * r + (((m & 0xFFFF) * r) >> 16);
+    let q = q.min(i32::MAX as u32) as i32;
+    if d < 0 {
+        -q
+    } else {
+        q
+    }
+}
+
 /// `(v·2^m, m)` with `v·2^m` in `[2^top, 2^(top + 1))` for `v ≥ 1` and
 /// `15 ≤ top ≤ 30` (0 gives `(0, 0)`), without a count-leading-zeros call.
 #[inline(always)]
@@ -65,6 +86,29 @@ mod tests {
             let want = 2f64.powi(31) / f64::from(q);
             assert!((r - want).abs() / want < 2f64.powi(-15), "{q}: {r} {want}");
         }
+    }
+
+    #[test]
+    fn div_small_is_below_and_near_the_quotient() {
+        let mut x = 0x1234_5678u32;
+        for k in 0..200_000u32 {
+            // an LCG with the extremes mixed in
+            x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            let d = match k % 50 {
+                0 => i32::MAX,
+                1 => i32::MIN + 1,
+                2 => (k as i32) - 100,
+                _ => x as i32 >> (k % 31),
+            };
+            for n in 1..=8u32 {
+                let q = div_small(d, n);
+                let exact = f64::from(d) / f64::from(n);
+                assert!(f64::from(q).abs() <= exact.abs(), "{d} / {n} = {q}");
+                let bound = f64::from(d).abs() * 2f64.powi(-16) + 1.0;
+                assert!(exact.abs() - f64::from(q).abs() < bound, "{d} / {n} = {q}");
+            }
+        }
+        assert_eq!(div_small(5, 0), 0);
     }
 
     #[test]

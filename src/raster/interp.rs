@@ -291,6 +291,14 @@ fn inverse_w(w: [i32; 3]) -> [u32; 3] {
     q.map(|v| (v >> s).max(1))
 }
 
+/// The change per pixel between two ends `n` pixels apart (`1 ≤ n ≤ 8`;
+/// rounded toward zero, so that every pixel's value lies between the ends;
+/// within `2^−15` of the exact step's magnitude besides).
+#[inline(always)]
+pub(crate) fn step_over<V: Varyings>(a: &V, b: &V, n: u32) -> V {
+    V::from_fn(|i| crate::num::div_small(get(b, i).wrapping_sub(get(a, i)), n))
+}
+
 /// The change per pixel between two sub-span ends 8 pixels apart (rounded
 /// toward zero, so that every pixel's value lies between the ends).
 #[inline(always)]

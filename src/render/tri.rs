@@ -6,7 +6,7 @@
 use super::BandView;
 use crate::camera::{Clip, ClipSpace};
 use crate::raster::clip::{self, ClipPoint, Polygon, Screen};
-use crate::raster::interp::{self, eighth, within, Linear, Persp, Varyings};
+use crate::raster::interp::{self, eighth, step_over, within, Linear, Persp, Varyings};
 use crate::raster::setup::at3;
 use crate::raster::{Cull, Plane, Setup, Walker, ATTR_FRAC, PERSPECTIVE_SPAN, SUBPIXEL_BITS};
 use crate::shade::{depth_runs, Kernel, VertexIn};
@@ -220,12 +220,25 @@ fn perspective_run<K: Kernel>(
 ) {
     let mut x = x;
     let mut a = p.at(x);
-    for part in out.chunks_mut(PERSPECTIVE_SPAN) {
+    let mut rest = out;
+    // whole sub-spans towards the next one's first pixel; the last towards
+    // its own last pixel (a point beyond the run may lie outside the
+    // triangle, where the weights are clamped)
+    while rest.len() > PERSPECTIVE_SPAN {
+        let (part, tail) = rest.split_at_mut(PERSPECTIVE_SPAN);
         let b = p.at(x + PERSPECTIVE_SPAN as i32);
         kernel.span(t, &a, &eighth(&a, &b), x, y, part);
         a = b;
         x += PERSPECTIVE_SPAN as i32;
+        rest = tail;
     }
+    let n = rest.len() as u32;
+    let step = if n > 1 {
+        step_over(&a, &p.at(x + n as i32 - 1), n - 1)
+    } else {
+        K::Varyings::from_fn(|_| 0)
+    };
+    kernel.span(t, &a, &step, x, y, rest);
 }
 
 /// Clips the triangle of clip-space corners `c` (in the clip space `space`)
@@ -281,11 +294,32 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
         s: clip::screen::<PERSP>(space, p.c),
         v: p.v,
     };
-    if let Some(first) = vs.first() {
-        let a = screen(first);
-        for k in 1..vs.len().saturating_sub(1) {
-            if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
-                f(&[a, screen(b), screen(c)]);
+    let Some(first) = vs.first() else {
+        return;
+    };
+    let a = screen(first);
+    // the fan's triangles against the polygon's winding: rounding the cut
+    // corners to sub-pixels can fold a nearly straight corner over, and the
+    // fan triangle at it then lies inside its neighbours, turned the other
+    // way (its pixels would be written twice); it is left out (the notch it
+    // would cut is smaller than a sub-pixel rounding)
+    let area = |b: &ScreenCorner<V>, c: &ScreenCorner<V>| {
+        let (ax, ay) = (i64::from(a.s.x), i64::from(a.s.y));
+        (i64::from(b.s.x) - ax) * (i64::from(c.s.y) - ay)
+            - (i64::from(b.s.y) - ay) * (i64::from(c.s.x) - ax)
+    };
+    let fan = 1..vs.len().saturating_sub(1);
+    let mut total = 0i64;
+    for k in fan.clone() {
+        if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
+            total = total.saturating_add(area(&screen(b), &screen(c)));
+        }
+    }
+    for k in fan {
+        if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
+            let (b, c) = (screen(b), screen(c));
+            if area(&b, &c).signum() * total.signum() >= 0 {
+                f(&[a, b, c]);
             }
         }
     }

@@ -47,9 +47,14 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
             core::array::from_fn(|i| i32::from(v[0][i]) + i32::from(v[1][i]) + i32::from(v[2][i]));
         let pos = if I::NEEDS_POSITION {
             // centroid p0 + (d1 + d2)/3, the differences kept within ±2^30
+            // and divided apart (their sum may not fit 32 bits)
             core::array::from_fn(|i| {
-                let d = |k: usize| p[k][i].wrapping_sub(p[0][i]).clamp(-(1 << 30), 1 << 30);
-                p[0][i].wrapping_add(third(d(1) + d(2)))
+                let d = |k: usize| {
+                    (i64::from(p[k][i]) - i64::from(p[0][i])).clamp(-(1 << 30), 1 << 30) as i32
+                };
+                let (d1, d2) = (d(1), d(2));
+                let c = third(d1) + third(d2) + third(d1 % 3 + d2 % 3);
+                p[0][i].saturating_add(c)
             })
         } else {
             [0; 3]
