@@ -350,7 +350,7 @@ impl core::error::Error for TextureError {}
 #[non_exhaustive]
 pub enum RenderError<E = core::convert::Infallible> {
     /// The frame is empty or larger than
-    /// [`MAX_SIZE`](crate::render::MAX_SIZE), or a band has no rows.
+    /// `framebuffer::MAX_SIZE` (1024), or a band has no rows.
     Size,
     /// A caller-owned buffer is too small.
     BufferTooSmall {
@@ -397,10 +397,8 @@ impl<E> RenderError<E> {
 impl<E: fmt::Debug> fmt::Display for RenderError<E> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::Size => write!(
-                f,
-                "frame size out of range (1..={})",
-                crate::render::MAX_SIZE
+            Self::Size => f.write_str(
+                "frame size out of range (sides 1 to 1024 pixels, bands of at least one row)",
             ),
             Self::BufferTooSmall { which, needed, got } => too_small(f, which, *needed, *got),
             Self::TooManyVertices { needed } => {

@@ -4,26 +4,35 @@
 //!
 //! # The frame pipeline
 //!
-//! Data flows one way; each stage lives in one module:
+//! One pipeline draws every triangle; data flows one way, each stage in one
+//! module. Every module imports only from the modules above it in this
+//! table, except that the drawing stage writes into the framebuffer's types
+//! (the framebuffer itself imports nothing of the crate but its errors, from
+//! [`error`]); there are no import cycles:
 //!
 //! | stage | module | what it does |
 //! |---|---|---|
-//! | mesh | [`mesh`] | meshes in flash (`i16` positions, Q14 normals, `u16` triangles), built at compile time by `const fn` generators |
-//! | camera | [`camera`] | projection (a type: [`Orthographic`](camera::Orthographic) or [`Perspective`](camera::Perspective)), view, viewport; the per-mesh fixed-point transform |
-//! | vertex stage | [`render::vertex`] | every vertex transformed, projected and (flat/Gouraud) lit once per frame |
-//! | bins | [`render::bins`] | back faces culled, triangles sorted by the band they start in |
-//! | set-up | [`raster`] | 32-bit triangle set-up, exact edge walking, top-left fill rule, clipping to the guard window |
-//! | spans | [`shade`] | [`FlatShading`](shade::FlatShading), [`GouraudShading`](shade::GouraudShading), [`PhongShading`](shade::PhongShading) and [`IncrementalPhongShading`](shade::IncrementalPhongShading) kernels, depth test fused; rounding, dithering and gamma encoders |
-//! | framebuffer | [`render`], [`target`] | a band strip flushed to any `DrawTarget`, a whole frame in memory, or the per-triangle [`Framebuffer`](target::Framebuffer) |
+//! | numbers | [`num`] | the tiers ([`Q14`](num::Q14), [`Q30`](num::Q30), `f32`, [`F32Fast`](num::F32Fast)), vectors, matrices, and the one copy of each table-driven operation (reciprocal, inverse square root, powers) |
+//! | colour | [`color`] | linear RGB, output pixel formats, encoders (rounding, ordered dithering, gamma tables) |
+//! | lighting | [`lighting`] | what a point reflects: lights, material, reflection model, viewer, fog; OpenGL 1.x parameter sets in [`lighting::gl`] |
+//! | mesh | [`mesh`] | meshes in flash (`i16` positions, Q14 normals, optional Q12 texture coordinates and tangents, `u16` triangles), `const fn` generators |
+//! | texture | [`texture`] | colour textures and normal maps over borrowed texels, and their sampling |
+//! | camera | [`camera`] | projection (a type: [`Orthographic`](camera::Orthographic) or [`Perspective`](camera::Perspective)), view, viewport; [`MeshTransform`](camera::MeshTransform) takes model space to clip space in fixed point |
+//! | clip, set-up, interpolation | [`raster`] | the one clip-space clipper (near plane and set-up window), 32-bit set-up, exact edge walking with a top-left rule, screen-linear or perspective-correct values ([`raster::interp`]) |
+//! | shading | [`shade`] | the modes ([`FlatShading`](shade::FlatShading), [`GouraudShading`](shade::GouraudShading), [`PhongShading`](shade::PhongShading), `.textured(…)`, `.normal_mapped(…)`) and the one trait every span kernel implements, [`Kernel`](shade::Kernel) |
+//! | drawing | [`render`] | [`MeshDraw`](render::MeshDraw): the vertex stage (transform and light each vertex once per frame), bins by band, then per band clip, set-up, depth test and kernel; [`draw_triangle`](render::draw_triangle): the same stages for one triangle a program brings in clip or screen space |
+//! | framebuffer | [`framebuffer`] | the band strip flushed to any `DrawTarget` ([`Bands`](framebuffer::Bands)), a whole frame in memory ([`FullFrame`](framebuffer::FullFrame)), a checksum target |
+//!
+//! A mesh and a single triangle take the same clipper, set-up and kernel:
+//! `draw_triangle` gives the mesh renderer's pixels bit for bit. Under a
+//! perspective projection every value a kernel interpolates is
+//! perspective-correct; an orthographic scene pays nothing for it (the
+//! projection is a type).
 //!
 //! What a pixel reflects — the lighting equation, written once, generic over
-//! the number tier and over which terms exist — lives in [`lighting`], with
-//! [`light`](crate::lighting), [`material`](crate::lighting) and [`gl`](crate::lighting::gl) (OpenGL 1.x parameter sets). The number
-//! tiers are in [`num`]: [`Q14`](num::Q14) (16-bit products, the Cortex-M0
-//! fast path), [`Q30`](num::Q30) (64-bit products, ≤ 1 LSB), `f32` and
-//! [`F32Fast`](num::F32Fast) (FPU targets). The `f64` reference model
-//! ([`reference`], feature `reference`) evaluates the same equations plainly;
-//! the tests compare every tier with it.
+//! the number tier and over which terms exist — lives in [`lighting`]. The
+//! `f64` reference model ([`reference`], feature `reference`) evaluates the
+//! same equations plainly; the tests compare every tier with it.
 //!
 //! # Example: a lit sphere in 8-row bands
 //!
@@ -59,7 +68,7 @@
 //!
 //! # Paying only for what a scene uses
 //!
-//! Lights are typed ([`DirectionalLight`](light::DirectionalLight) has no
+//! Lights are typed ([`DirectionalLight`](lighting::DirectionalLight) has no
 //! attenuation and no cone), the material terms are a type
 //! ([`Lambert`](lighting::Lambert), [`Phong`](lighting::Phong),
 //! [`BlinnPhong`](lighting::BlinnPhong), [`Terms`](lighting::Terms)), and so are
@@ -70,8 +79,10 @@
 //! # Numbers at the extremes
 //!
 //! Constructors taking `f32` validate their input and return a
-//! [`ParamError`](error::ParamError) (a [`MeshError`](mesh::MeshError) or
-//! [`RenderError`](render::RenderError) for geometry and buffers). Evaluation
+//! [`ParamError`](error::ParamError) (a [`MeshError`](error::MeshError),
+//! [`TextureError`](error::TextureError) or
+//! [`RenderError`](error::RenderError) for geometry, texels and buffers; each
+//! converts into the crate's [`Error`](error::Error)). Evaluation
 //! never panics and never wraps: every tier saturates (see [`num`]), powers
 //! clamp their base to [0, 1], no specular term appears where `N·L ≤ 0`, and
 //! output colours clamp to [0, 1].

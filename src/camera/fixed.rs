@@ -161,7 +161,7 @@ impl Pose {
         }
     }
 
-    /// `self` after `first` (as [`Mat4::mul`](crate::mesh::Mat4::mul):
+    /// `self` after `first` (as [`Mat4::mul`](crate::num::Mat4::mul):
     /// `a.mul(&b)` applies `b` first). Saturates where an element would leave its range.
     pub fn mul(&self, first: &Pose) -> Pose {
         let mut l = [[0i32; 3]; 3];

@@ -365,3 +365,17 @@ impl<'a, C: PixelColor> FullFrame<'a, C> {
 fn fill<T: Copy>(buf: &mut [T], v: T) {
     buf.fill(v);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::MAX_SIZE;
+    use crate::error::RenderError;
+    use std::string::ToString;
+
+    /// The size error's message states this module's limit.
+    #[test]
+    fn size_message_states_the_limit() {
+        let m = RenderError::<core::convert::Infallible>::Size.to_string();
+        assert!(m.contains(&std::format!("1 to {MAX_SIZE} pixels")), "{m}");
+    }
+}

@@ -644,8 +644,9 @@ pub enum GlNormals {
 /// `modelview`: `M⁻ᵀ·n` (upper-left 3×3), then normalised or rescaled as `mode`
 /// says. A singular matrix gives the zero vector. In the fixed tiers a normal
 /// component beyond ±2 saturates; the mesh renderer always normalises (it lights
-/// as `GL_NORMALIZE` does), the per-triangle API lights
-/// [`ShadeVertex::normal`](crate::shade::ShadeVertex::normal) as given.
+/// as `GL_NORMALIZE` does), and so does the per-triangle front
+/// ([`VertexIn::normal`](crate::shade::VertexIn::normal) is normalised by
+/// every mode).
 ///
 /// ```
 /// use fixshade::lighting::gl::{eye_normal, GlNormals};

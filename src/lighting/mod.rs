@@ -737,8 +737,9 @@ impl<I: Illuminate> Illuminate for BackFaces<I> {
 /// [`LitColor::separate`] (the primary and secondary colours clamped apart, then
 /// added). Per-pixel shading ([`PhongShading`](crate::shade::PhongShading)) then
 /// matches OpenGL; with Gouraud shading OpenGL interpolates the two clamped
-/// colours separately, which [`Shader::draw_vertex_colors`](crate::shade::Shader::draw_vertex_colors)
-/// reproduces (their sum, interpolated, clamped per pixel).
+/// colours separately, which a textured Gouraud shader does
+/// ([`Textured`](crate::shade::Textured): with a white texture, exactly
+/// that).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SeparateSpecular<I>(pub I);
 

@@ -106,7 +106,7 @@ pub trait FogModel<S: Scalar>: Copy + core::fmt::Debug {
     /// `f·direct + (1 − f)·fog_colour` at viewing distance `d`.
     fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S>;
     /// `f·c` alone (for a part of the light that is faded but carries no fog
-    /// colour: the secondary colour of [`Lighting::shade_parts`]). The default is
+    /// colour: the secondary colour of [`Lighting::shade_parts`](super::Lighting::shade_parts)). The default is
     /// `apply(c) − apply(0)`.
     #[inline(always)]
     fn fade(&self, c: Rgb<S>, d: S::Geo) -> Rgb<S> {

@@ -351,6 +351,16 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     fn ramp_at(r: &Self::Ramp, d: Self::Geo) -> Self;
 }
 
+/// Keeps LLVM from unrolling the loop that calls it: an empty barrier (no
+/// instruction) that the unroller counts as a call. Runtime unrolling costs a
+/// Cortex-M0 more than it saves: the unrolled body's values no longer fit its
+/// eight low registers, and short runs (a sphere's triangles are a few pixels
+/// wide) spend their time in the remainder loop.
+#[inline(always)]
+pub(crate) fn no_unroll() {
+    core::hint::black_box(());
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

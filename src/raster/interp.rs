@@ -7,23 +7,26 @@
 //! pixels the kernel receives the values at its first pixel and their change
 //! per pixel, both with [`ATTR_FRAC`] fraction bits.
 //!
-//! - **Screen-linear** ([`Linear`]): one 32-bit plane per varying
-//!   ([`Setup::plane`]: 14-bit barycentric coefficients), evaluated once per
-//!   run. When a plane's error bound could carry values out of the range the
-//!   kernel can take ([`Setup::err`]), runs are clamped to the vertex range.
-//! - **Perspective-correct** ([`Persp`]), as OpenGL interpolates: with `βᵢ`
+//! - **Screen-linear**: one 32-bit plane per varying (14-bit barycentric
+//!   coefficients), evaluated once per run. When a plane's error bound could
+//!   carry values out of the range the kernel can take
+//!   ([`Kernel::safe`](crate::shade::Kernel::safe)), runs are clamped to the
+//!   vertex range.
+//! - **Perspective-correct**, as OpenGL interpolates: with `βᵢ`
 //!   the screen-space barycentric weights and `wᵢ` the clip `w` of the
 //!   vertices, a pixel gets `Σ βᵢ·aᵢ/wᵢ / Σ βᵢ/wᵢ`. It is evaluated exactly
 //!   (to the arithmetic below) at the ends of sub-spans of
 //!   [`PERSPECTIVE_SPAN`](super::PERSPECTIVE_SPAN) = 8 pixels and linearly in
-//!   between; the end after a run's last sub-span may lie beyond the
-//!   triangle, where the weights are clamped to `[0, 1]`. Every value is a
-//!   convex combination of the vertex values: no clamping is needed.
+//!   between; a run's last sub-span ends at the run's last pixel (inside
+//!   the triangle). Every value is a convex combination of the vertex
+//!   values (the weights are clamped to `[0, 1]`): no clamping is needed.
 //!   Arithmetic: `1/wᵢ` as the product of the other two `w` (16-bit
 //!   mantissas, no division), the weights in Q14 from one table-and-Newton
-//!   reciprocal per sub-span end ([`crate::num::recip`]), so a value is off by
-//!   about `2^−14·max|aⱼ − a₀|` plus the weights' relative error, which grows
-//!   with the ratio of the vertices' `w` (about `2^−16·w_max/w_min`).
+//!   reciprocal per sub-span end, so a value is off by about
+//!   `2^−14·max|aⱼ − a₀|` plus the weights' error: their planes' own (which
+//!   dominates on large triangles) and the reciprocal's relative error,
+//!   which grows with the ratio of the vertices' `w` (about
+//!   `2^−16·w_max/w_min`).
 //!
 //! Depth (`z/w`) is screen-linear under both projections.
 

@@ -18,7 +18,7 @@
 //!   per axis, [`WINDOW_MIN`]`..=`[`WINDOW_MAX`] (−512 to 1536 pixels), so
 //!   that every product of the set-up fits 32 bits. A triangle reaching beyond
 //!   it, or behind the near plane of a perspective projection, is clipped in
-//!   clip space first ([`clip`]: one clipper, canonical cuts, so neighbours
+//!   clip space first (one clipper, canonical cuts, so neighbours
 //!   that share an edge get the same points and stay watertight). Frames up to
 //!   1024 × 1024 pixels lie inside the window with a guard band of at least
 //!   512 pixels; columns and rows beyond 1536 are never drawn.
@@ -32,7 +32,7 @@
 //! area) and a few dozen 32 × 32 → 32-bit multiplications; edges are walked
 //! column by column without division (exact: the same integers as evaluating
 //! the edge functions at every pixel). Attribute planes carry 14-bit
-//! barycentric coefficients; [`Setup::err`] bounds their error, and runs whose
+//! barycentric coefficients; the set-up bounds their error, and runs whose
 //! values could leave a kernel's range are clamped to the vertex range
 //! ([`interp`]). Clipping uses 64-bit values built from 32-bit operations (no
 //! 64-bit multiply or divide routine is linked).

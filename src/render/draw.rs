@@ -117,7 +117,7 @@ impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize> Defau
 /// - [`Perspective`](crate::camera::Perspective): each vertex is divided by
 ///   its `w` once per frame; every value a kernel interpolates (colours,
 ///   normals, eye positions, texture coordinates) is perspective-correct, as
-///   OpenGL interpolates it (exact at every 8th pixel of a run, linear in
+///   OpenGL interpolates it (exact at every 8th pixel of a run and at its last, linear in
 ///   between: see [`interp`](crate::raster::interp)); depth (`z/w`) is affine
 ///   on the screen and interpolated exactly. A triangle with a vertex behind
 ///   the near plane or beyond the window is clipped in clip space to the near

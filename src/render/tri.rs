@@ -208,7 +208,8 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
 }
 
 /// A run of pixels from column `x` with perspective-correct values: exact at
-/// every [`PERSPECTIVE_SPAN`]-th pixel from `x`, linear in between.
+/// every [`PERSPECTIVE_SPAN`]-th pixel from `x` and at the last, linear in
+/// between.
 #[inline(always)]
 fn perspective_run<K: Kernel>(
     kernel: &K,

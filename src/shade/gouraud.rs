@@ -55,7 +55,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
             if E::POSITIONAL {
                 x += 1;
             }
-            super::no_unroll();
+            crate::num::no_unroll();
         }
     }
 }
@@ -89,6 +89,6 @@ fn fill565<C: OutputColor>(a: [i32; 3], d: [i32; 3], color: &mut [C]) {
         // the values after the last pixel are not used: wrapping is harmless
         rb = rb.wrapping_add(drb);
         g = g.wrapping_add(dg);
-        crate::shade::no_unroll();
+        crate::num::no_unroll();
     }
 }

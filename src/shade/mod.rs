@@ -304,16 +304,6 @@ pub trait Kernel {
     );
 }
 
-/// Keeps LLVM from unrolling the loop that calls it: an empty barrier (no
-/// instruction) that the unroller counts as a call. Runtime unrolling costs a
-/// Cortex-M0 more than it saves: the unrolled body's values no longer fit its
-/// eight low registers, and short runs (a sphere's triangles are a few pixels
-/// wide) spend their time in the remainder loop.
-#[inline(always)]
-pub(crate) fn no_unroll() {
-    core::hint::black_box(());
-}
-
 /// The depth test of the leading pixels of a run: pixel `k` has depth
 /// `(z + k·dz) >> 14` and passes when that is less than `depth[k]`, which then
 /// takes it. Stops at the first pixel that fails; returns how many passed.
@@ -329,7 +319,7 @@ pub(crate) fn depth_prefix(z: u32, dz: u32, depth: &mut [u16]) -> usize {
         *d = zi;
         // the value after the last pixel is not used: wrapping is harmless
         z = z.wrapping_add(dz);
-        no_unroll();
+        crate::num::no_unroll();
     }
     depth.len()
 }
@@ -343,7 +333,7 @@ fn depth_fails(z: u32, dz: u32, depth: &[u16]) -> usize {
             return k;
         }
         z = z.wrapping_add(dz);
-        no_unroll();
+        crate::num::no_unroll();
     }
     depth.len()
 }

@@ -34,7 +34,7 @@ use crate::texture::{Nearest, NormalMap, Wrap};
 ///   both divided by the length of the interpolated `L` and `H` (`1/|L|`,
 ///   `1/|H|` by one Newton step each from the previous pixel's value, `|L|²`,
 ///   `|H|²` by forward differences, exact at every span start),
-///   `(n·H)^shininess` from the power table of [`IncrementalPhongShading`],
+///   `(n·H)^shininess` from the power table of [`IncrementalPhongShading`](super::IncrementalPhongShading),
 ///   the colour accumulated in output channel units (rounded like
 ///   [`Linear`](super::Linear)). Spans whose interpolated `L` or `H` is
 ///   shorter than ½, or changes length by more than 2^-4 per pixel, take an
@@ -340,7 +340,7 @@ impl<'m> FastNormal<'m> {
                     r[j] = (r[j] * (49152 - sr2)) >> 15;
                 }
             }
-            super::no_unroll();
+            crate::num::no_unroll();
         }
     }
 }

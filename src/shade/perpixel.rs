@@ -9,14 +9,14 @@
 //! Q14; normal maps), the eye-space position (3, see [`Positions`]; when the
 //! lighting reads it).
 
-use super::textured::TextureBinding;
 use super::{eye_point, unit_q14, Encoder, Kernel, Mode, ModeState, Shader, VertexIn};
-use crate::color::OutputColor;
-use crate::lighting::Illuminate;
+use crate::color::{OutputColor, Rgb};
+use crate::lighting::{Illuminate, LitColor};
 use crate::num::{Point3, Scalar, Vec3};
 use crate::raster::interp::{Varyings, VARYING_LIMIT};
+use crate::raster::ClampTo;
 use crate::raster::ATTR_FRAC;
-use crate::texture::{NormalMap, TexCoord, Wrap, TEX_FRAC};
+use crate::texture::{Filter, NormalMap, TexCoord, Texture, Wrap, TEX_FRAC};
 
 /// Fraction bits of interpolated texture coordinates: Q12 with
 /// [`ATTR_FRAC`] bits.
@@ -226,6 +226,78 @@ pub(crate) fn safe<F: Surface>(i: usize) -> (i32, i32) {
     }
 }
 
+/// The texture and filter a [`Textured`](super::Textured) shader samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TextureBinding<'t> {
+    pub(crate) texture: Texture<'t>,
+    pub(crate) filter: Filter,
+}
+
+impl TextureBinding<'_> {
+    /// The primary (without the encoder's rounding offset) and secondary
+    /// (with it) parts of `lit` in encoder values (each below 2^15).
+    #[inline(always)]
+    pub(crate) fn parts<S: Scalar, E: Encoder<C>, C: OutputColor>(
+        encoder: &E,
+        lit: LitColor<S>,
+    ) -> ([i32; 3], [i32; 3]) {
+        let black = encoder.vertex(Rgb::<S>::BLACK);
+        let p = encoder.vertex(lit.primary);
+        let s = encoder.vertex(lit.secondary);
+        (
+            core::array::from_fn(|i| (p[i] - black[i]).clamp(0, 0x7FFF)),
+            s.map(|v| v.clamp(0, 0x7FFF)),
+        )
+    }
+
+    /// The pixel `texel × primary + secondary` at `c` of the lit colour
+    /// `lit` (a per-pixel kernel's).
+    #[inline(always)]
+    pub(crate) fn modulate<S: Scalar, E: Encoder<C>, C: OutputColor>(
+        &self,
+        encoder: &E,
+        lit: LitColor<S>,
+        c: TexCoord,
+        x: i32,
+        y: i32,
+    ) -> C {
+        let (p, s) = Self::parts(encoder, lit);
+        self.pixel(
+            encoder,
+            p.map(|v| v << ATTR_FRAC),
+            s.map(|v| v << ATTR_FRAC),
+            c,
+            x,
+            y,
+        )
+    }
+
+    /// The pixel `texel × primary + secondary` on encoder values `p`, `s`
+    /// (with [`ATTR_FRAC`] bits), clamped to the encoder's range.
+    #[inline(always)]
+    pub(crate) fn pixel<E: Encoder<C>, C: OutputColor>(
+        &self,
+        encoder: &E,
+        p: [i32; 3],
+        s: [i32; 3],
+        c: TexCoord,
+        x: i32,
+        y: i32,
+    ) -> C {
+        let t = self.texture.sample(c, self.filter);
+        let a = core::array::from_fn(|i| {
+            let t = i32::from(t[i]);
+            let w = t + (t >> 7);
+            let (lo, hi) = E::safe(i);
+            (p[i] >> 8)
+                .wrapping_mul(w)
+                .wrapping_add(s[i])
+                .clamp_to(lo, hi)
+        });
+        encoder.pixel(a, x, y)
+    }
+}
+
 /// What a surface samples: its normal map and its colour texture.
 #[derive(Clone, Copy, Debug)]
 pub struct Sources<'m, 't> {
@@ -387,7 +459,7 @@ fn run<
         for (a, d) in a.values_mut().iter_mut().zip(d.values()).take(n_used) {
             *a = a.wrapping_add(*d);
         }
-        super::no_unroll();
+        crate::num::no_unroll();
     }
 }
 
@@ -461,159 +533,6 @@ where
                 y,
                 out,
             )
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use crate::mesh::{textured_sphere_counts, TexturedMeshData};
-    use crate::prelude::*;
-    use crate::render::{CachedVertex, MeshMemory};
-    use crate::shade::GeneralPhongShading;
-    use crate::shade::Kernel;
-    use crate::texture::{Filter, NormalMap, Texels, Texture, Wrap, FLAT_NORMAL};
-    use std::vec;
-    use std::vec::Vec;
-
-    const N: (usize, usize) = textured_sphere_counts(12, 16);
-    static SPHERE: TexturedMeshData<{ N.0 }, { N.1 }> = TexturedMeshData::uv_sphere(12, 16, 14);
-    const W: u32 = 64;
-
-    /// The standard sphere (textured) drawn with `kernel` on a 64 × 64 frame.
-    fn draw<K: Kernel<Color = Rgb565>>(kernel: K) -> Vec<Rgb565> {
-        let camera = Camera::orthographic(
-            -1.2,
-            1.2,
-            -1.2,
-            1.2,
-            1.0,
-            10.0,
-            Viewport::new(0, 0, W as i32, W as i32).unwrap(),
-        )
-        .unwrap()
-        .with_view(Mat4::translate([0.0, 0.0, -5.0]));
-        let transform = camera
-            .mesh_transform(&Mat4::rotate_y(0.4), SPHERE.frac)
-            .unwrap();
-        let mut cache = vec![CachedVertex::<K::Vertex>::default(); N.0];
-        let mut bins = vec![0u16; bins_len(N.1, 8)];
-        let layout = Layout::full(W, W).unwrap();
-        let mut draw = MeshDraw::new(
-            layout,
-            SPHERE.mesh(),
-            &transform,
-            kernel,
-            MeshMemory {
-                vertices: &mut cache,
-                bins: &mut bins,
-                carry: &mut [],
-            },
-        )
-        .unwrap();
-        let mut color = vec![Rgb565::BLACK; (W * W) as usize];
-        let mut depth = vec![0u16; (W * W) as usize];
-        let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth)).unwrap();
-        frame.render(Rgb565::BLACK, &mut [&mut draw]).unwrap();
-        color
-    }
-
-    static WHITE: [u16; 16] = [0xFFFF; 16];
-    static FLAT: [[i16; 3]; 4] = [FLAT_NORMAL; 4];
-
-    /// Asserts that `a` equals `b`, saying where and by how much not.
-    fn same(a: &[Rgb565], b: &[Rgb565], what: &str) {
-        let diff: Vec<_> = a
-            .iter()
-            .zip(b)
-            .enumerate()
-            .filter(|(_, (x, y))| x != y)
-            .collect();
-        assert!(
-            diff.is_empty(),
-            "{what}: {} pixels differ, first {:?}",
-            diff.len(),
-            diff.first()
-        );
-    }
-
-    /// Asserts that `a` is within one step of `b` in every channel.
-    fn near(a: &[Rgb565], b: &[Rgb565], what: &str) {
-        for (x, y) in a.iter().zip(b) {
-            let d = [
-                x.r().abs_diff(y.r()),
-                x.g().abs_diff(y.g()),
-                x.b().abs_diff(y.b()),
-            ];
-            assert!(d.iter().all(|&d| d <= 1), "{what}: {x:?} vs {y:?}");
-        }
-    }
-
-    fn white() -> Texture<'static> {
-        Texture::new(Texels::Rgb565(&WHITE), 2, 2, Wrap::Repeat).unwrap()
-    }
-
-    fn flat() -> NormalMap<'static> {
-        NormalMap::new(&FLAT, 1, 1, Wrap::Repeat).unwrap()
-    }
-
-    /// A flat normal map gives the plain per-pixel pixels exactly; a white
-    /// texture on a surface without specular light gives them within one
-    /// step (the lighting's primary part is encoded on its own: its sum
-    /// rounds apart from the plain colour's), and exactly the same pixels
-    /// with a flat map; `PhongShading` textured takes the general kernel.
-    #[test]
-    fn neutral_maps_give_the_plain_pixels() {
-        let lighting = crate::standard::lambert::<Q14>().unwrap();
-        let plain = draw(Shader::new(GeneralPhongShading, &lighting, Linear));
-        assert!(plain.iter().filter(|&&c| c != Rgb565::BLACK).count() > 1500);
-        let tex = draw(Shader::new(
-            PhongShading.textured(white(), Filter::Nearest),
-            &lighting,
-            Linear,
-        ));
-        near(&tex, &plain, "textured");
-        let white_tex = tex;
-        let tex = draw(Shader::new(
-            GeneralPhongShading.textured(white(), Filter::Bilinear),
-            &lighting,
-            Linear,
-        ));
-        same(&tex, &white_tex, "textured bilinear");
-        let mapped = draw(Shader::new(
-            GeneralPhongShading.normal_mapped(flat()),
-            &lighting,
-            Linear,
-        ));
-        same(&mapped, &plain, "mapped");
-        let both = draw(Shader::new(
-            PhongShading
-                .normal_mapped(flat())
-                .textured(white(), Filter::Nearest),
-            &lighting,
-            Linear,
-        ));
-        same(&both, &white_tex, "both");
-    }
-
-    /// A black texture leaves the specular light alone: textured Blinn-Phong
-    /// on black is the highlight, zero outside it, and never brighter than
-    /// the plain pixels.
-    #[test]
-    fn black_texture_keeps_the_specular() {
-        static BLACK: [u16; 16] = [0; 16];
-        let black = Texture::new(Texels::Rgb565(&BLACK), 2, 2, Wrap::Repeat).unwrap();
-        let lighting = crate::standard::blinn::<Q14>().unwrap();
-        let plain = draw(Shader::new(GeneralPhongShading, &lighting, Linear));
-        let spec = draw(Shader::new(
-            PhongShading.textured(black, Filter::Nearest),
-            &lighting,
-            Linear,
-        ));
-        let lit = spec.iter().filter(|&&c| c != Rgb565::BLACK).count();
-        assert!(lit > 20 && lit < 1000, "{lit} pixels with a highlight");
-        for (s, p) in spec.iter().zip(&plain) {
-            assert!(s.r() <= p.r() && s.g() <= p.g() && s.b() <= p.b());
         }
     }
 }

@@ -461,7 +461,7 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for Q14Probe<'_, K, M> {
             }
             nl = nl.wrapping_add(dnl);
             nh = nh.wrapping_add(dnh);
-            super::no_unroll();
+            crate::num::no_unroll();
         }
     }
 }
@@ -589,7 +589,7 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for F32Probe<'_, K, M> {
             }
             nl += self.da[k][0];
             nh += self.da[k][1];
-            super::no_unroll();
+            crate::num::no_unroll();
         }
     }
 }

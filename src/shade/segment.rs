@@ -496,7 +496,7 @@ fn run_encode<E: Encoder<C>, C: OutputColor, const K: usize, const CLAMP: bool>(
         if E::POSITIONAL {
             x += 1;
         }
-        super::no_unroll();
+        crate::num::no_unroll();
     }
 }
 
@@ -659,7 +659,7 @@ fn run_lut<C: OutputColor>(out: &mut [C], d: [u32; 3], lut: &DiffuseTable) {
         d1 = d1.wrapping_add(d2);
         *p = C::from_rgb565_raw(lut[(d >> 24) as usize]);
         d = d.wrapping_add(d1);
-        super::no_unroll();
+        crate::num::no_unroll();
     }
 }
 
@@ -672,7 +672,7 @@ fn run565_g(out: &mut [u16], g: [u32; 3]) {
         dg = dg.wrapping_add(ddg);
         *p = ((g >> 23) << 5) as u16;
         g = g.wrapping_add(dg);
-        super::no_unroll();
+        crate::num::no_unroll();
     }
 }
 
@@ -687,7 +687,7 @@ fn run565_rb<C: OutputColor>(out: &mut [C], green: &[u16], rb: [u32; 3]) {
         let raw = (((rb >> 27) << 11) | ((rb << 16) >> 27)) as u16 | *g;
         *p = C::from_rgb565_raw(raw);
         rb = rb.wrapping_add(drb);
-        super::no_unroll();
+        crate::num::no_unroll();
     }
 }
 
@@ -712,7 +712,7 @@ fn run565_spec<C: OutputColor>(out: &mut [C], sp: &[u16], rb: [u32; 3], g: [u32;
         *p = C::from_rgb565_raw(((r << 11) | (gg << 5) | b) as u16);
         rb = rb.wrapping_add(drb);
         g = g.wrapping_add(dg);
-        super::no_unroll();
+        crate::num::no_unroll();
     }
 }
 
@@ -821,7 +821,7 @@ fn run_lut_clamped<C: OutputColor>(out: &mut [C], d: [i32; 3], lut: &DiffuseTabl
         d1 = d1.wrapping_add(d2);
         *p = C::from_rgb565_raw(lut[lut_index(d)]);
         d = d.wrapping_add(d1);
-        super::no_unroll();
+        crate::num::no_unroll();
     }
 }
 

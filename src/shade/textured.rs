@@ -1,13 +1,12 @@
 //! Textured Gouraud shading (see [`Textured`]).
 
 use super::normalmap::NormalMapped;
-use super::perpixel::{GeneralSurface, MappedTex, Sources, Tex};
+use super::perpixel::{GeneralSurface, MappedTex, Sources, Tex, TextureBinding};
 use super::{eye_point, unit_normal, Encoder, GouraudShading, Kernel, Mode, ModeState, Shader};
 use super::{GeneralPhongShading, PhongShading, VertexIn};
 use crate::color::{OutputColor, Rgb};
-use crate::lighting::{Illuminate, LitColor};
-use crate::num::Scalar;
-use crate::raster::{ClampTo, ATTR_FRAC};
+use crate::lighting::Illuminate;
+use crate::raster::ATTR_FRAC;
 use crate::texture::{modulate_run, Filter, Pieces, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
 
 /// A mode with a colour texture: OpenGL's `GL_MODULATE` with
@@ -120,78 +119,6 @@ textured_surface! {
     [] GeneralPhongShading => Tex, 'static, |_m| None;
     ['m] NormalMapped<'m, PhongShading> => MappedTex, 'm, |m| Some(m.map);
     ['m] NormalMapped<'m, GeneralPhongShading> => MappedTex, 'm, |m| Some(m.map);
-}
-
-/// The texture and filter a [`Textured`] shader samples.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct TextureBinding<'t> {
-    texture: Texture<'t>,
-    filter: Filter,
-}
-
-impl TextureBinding<'_> {
-    /// The primary (without the encoder's rounding offset) and secondary
-    /// (with it) parts of `lit` in encoder values (each below 2^15).
-    #[inline(always)]
-    pub(crate) fn parts<S: Scalar, E: Encoder<C>, C: OutputColor>(
-        encoder: &E,
-        lit: LitColor<S>,
-    ) -> ([i32; 3], [i32; 3]) {
-        let black = encoder.vertex(Rgb::<S>::BLACK);
-        let p = encoder.vertex(lit.primary);
-        let s = encoder.vertex(lit.secondary);
-        (
-            core::array::from_fn(|i| (p[i] - black[i]).clamp(0, 0x7FFF)),
-            s.map(|v| v.clamp(0, 0x7FFF)),
-        )
-    }
-
-    /// The pixel `texel × primary + secondary` at `c` of the lit colour
-    /// `lit` (a per-pixel kernel's).
-    #[inline(always)]
-    pub(crate) fn modulate<S: Scalar, E: Encoder<C>, C: OutputColor>(
-        &self,
-        encoder: &E,
-        lit: LitColor<S>,
-        c: TexCoord,
-        x: i32,
-        y: i32,
-    ) -> C {
-        let (p, s) = Self::parts(encoder, lit);
-        self.pixel(
-            encoder,
-            p.map(|v| v << ATTR_FRAC),
-            s.map(|v| v << ATTR_FRAC),
-            c,
-            x,
-            y,
-        )
-    }
-
-    /// The pixel `texel × primary + secondary` on encoder values `p`, `s`
-    /// (with [`ATTR_FRAC`] bits), clamped to the encoder's range.
-    #[inline(always)]
-    fn pixel<E: Encoder<C>, C: OutputColor>(
-        &self,
-        encoder: &E,
-        p: [i32; 3],
-        s: [i32; 3],
-        c: TexCoord,
-        x: i32,
-        y: i32,
-    ) -> C {
-        let t = self.texture.sample(c, self.filter);
-        let a = core::array::from_fn(|i| {
-            let t = i32::from(t[i]);
-            let w = t + (t >> 7);
-            let (lo, hi) = E::safe(i);
-            (p[i] >> 8)
-                .wrapping_mul(w)
-                .wrapping_add(s[i])
-                .clamp_to(lo, hi)
-        });
-        encoder.pixel(a, x, y)
-    }
 }
 
 impl<'t, I: Illuminate, C> ModeState<I, C> for Textured<'t, GouraudShading> {
@@ -388,7 +315,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
                 u = u.wrapping_add(du);
                 v = v.wrapping_add(dv);
                 px += 1;
-                super::no_unroll();
+                crate::num::no_unroll();
             }
             rest = tail;
         }

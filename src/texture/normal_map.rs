@@ -47,7 +47,7 @@ pub type NormalTexel = [i16; 3];
 /// The flat normal `(0, 0, 1)`: a map of it shades like no map at all.
 pub const FLAT_NORMAL: NormalTexel = [0, 0, 1 << 14];
 
-/// A tangent-space normal map over borrowed texels (see the [module docs](self)).
+/// A tangent-space normal map over borrowed texels (see the [module docs](crate::texture)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NormalMap<'a> {
     texels: &'a [NormalTexel],

@@ -189,7 +189,7 @@ fn fill_tex565<C: OutputColor>(
         uv = uv.wrapping_add(duv);
         rb = rb.wrapping_add(drb);
         g = g.wrapping_add(dg);
-        crate::shade::no_unroll();
+        crate::num::no_unroll();
     }
     (rb, g)
 }
