@@ -30,7 +30,8 @@
 //!
 //! Depth (`z/w`) is screen-linear under both projections.
 
-use super::setup::{ClampTo, Plane, Setup};
+use super::setup::{at3, bit_length, next3, ClampTo, Plane, Setup};
+use super::SUBPIXEL_BITS;
 use super::ATTR_FRAC;
 use crate::num::recip::{normalise, recip16};
 
@@ -198,8 +199,15 @@ pub(crate) fn within(s: &Setup, p: &Plane, base: i32, safe: (i32, i32)) -> bool 
 /// Perspective-correct interpolation (see the [module docs](self)).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Persp<V: Varyings> {
-    /// `β₁`, `β₂` of oriented vertices 1 and 2, Q14 with [`ATTR_FRAC`] bits.
-    beta: [Plane; 2],
+    /// The edge functions `Eᵢ` of the oriented vertices (the doubled area of
+    /// the triangle a pixel centre makes with the other two vertices, in
+    /// sub-pixels², exact) at column 0 of the current row, and their change
+    /// per column and per row. Inside the triangle `Eᵢ ≥ 0` and `ΣEᵢ = A`.
+    e_row: [i32; 3],
+    e_dx: [i32; 3],
+    e_dy: [i32; 3],
+    /// The shift that brings `A` below 2^16.
+    shift: u32,
     /// `1/wᵢ` up to a common factor, at most 2^16.
     q: [u32; 3],
     /// Vertex 0's values with [`ATTR_FRAC`] bits, and the differences
@@ -215,16 +223,26 @@ impl<V: Varyings> Persp<V> {
     /// triangle's first row.
     pub(crate) fn new(s: &Setup, v: &[V; 3], w: [i32; 3]) -> Self {
         let w = oriented(s, &w);
-        let one = 1 << 14;
-        let top = s.tmb[0];
-        let beta = [1usize, 2].map(|k| {
-            let mut e = [0; 3];
-            e[k] = one;
-            let base = super::setup::at3(&e, top) << ATTR_FRAC;
-            s.plane(e).absolute(base)
-        });
+        let p = s.xy;
+        let one = 1i32 << SUBPIXEL_BITS;
+        let half = one >> 1;
+        // the centre of pixel (0, first row), sub-pixels
+        let (px, py) = (half, (s.rows.0 << SUBPIXEL_BITS) + half);
+        let edge = |i: usize| {
+            let (j, k) = (next3(i), next3(next3(i)));
+            let (pj, pk) = (at3(&p, j), at3(&p, k));
+            // every coordinate difference below 2^15 (the window): products
+            // below 2^30
+            let e = (pj.0 - px) * (pk.1 - py) - (pj.1 - py) * (pk.0 - px);
+            (e, (pj.1 - pk.1) * one, (pk.0 - pj.0) * one)
+        };
+        let e = [edge(0), edge(1), edge(2)];
+        let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0);
         Persp {
-            beta,
+            e_row: e.map(|e| e.0),
+            e_dx: e.map(|e| e.1),
+            e_dy: e.map(|e| e.2),
+            shift: bit_length(area.max(0) as u32).saturating_sub(16),
             q: inverse_w(w),
             a0: V::from_fn(|i| corner(s, v, 0, i) << ATTR_FRAC),
             d1: V::from_fn(|i| corner(s, v, 1, i) - corner(s, v, 0, i)),
@@ -235,31 +253,32 @@ impl<V: Varyings> Persp<V> {
     /// The next row.
     #[inline(always)]
     pub(crate) fn next_row(&mut self) {
-        self.beta[0].next_row();
-        self.beta[1].next_row();
+        for i in 0..3 {
+            self.e_row[i] = self.e_row[i].wrapping_add(self.e_dy[i]);
+        }
     }
 
     /// `n` rows down.
     #[inline(always)]
     pub(crate) fn skip_rows(&mut self, n: i32) {
-        self.beta[0].skip_rows(n);
-        self.beta[1].skip_rows(n);
+        for i in 0..3 {
+            self.e_row[i] = self.e_row[i].wrapping_add(n.wrapping_mul(self.e_dy[i]));
+        }
     }
 
-    /// The values at column `x` of the current row, with [`ATTR_FRAC`] bits.
+    /// The values at column `x` of the current row (a pixel the triangle
+    /// covers), with [`ATTR_FRAC`] bits.
     #[inline]
     pub(crate) fn at(&self, x: i32) -> V {
-        let one = 1i32 << 14;
-        let b1 = (self.beta[0].at(x) >> ATTR_FRAC).clamp_to(0, one);
-        let b2 = (self.beta[1].at(x) >> ATTR_FRAC).clamp_to(0, one - b1);
-        let b0 = one - b1 - b2;
-        // tᵢ = βᵢ·qᵢ ≤ 2^30; the weights tᵢ / Σt in Q14
-        let t = [
-            b0 as u32 * self.q[0],
-            b1 as u32 * self.q[1],
-            b2 as u32 * self.q[2],
-        ];
-        let sum = t[0] + t[1] + t[2];
+        // Eᵢ at the pixel: exact in [0, A] inside the triangle, so the
+        // wrapping sum is exact; ΣEᵢ ≤ A: Σ(Eᵢ >> shift) < 2^16
+        let e = [0, 1, 2].map(|i| {
+            let e = self.e_row[i].wrapping_add(x.wrapping_mul(self.e_dx[i]));
+            (e.max(0) as u32) >> self.shift
+        });
+        // tᵢ = Eᵢ·qᵢ, Σtᵢ < 2^16·2^16; the weights tᵢ / Σt in Q14
+        let t = [e[0] * self.q[0], e[1] * self.q[1], e[2] * self.q[2]];
+        let sum = t[0].wrapping_add(t[1]).wrapping_add(t[2]);
         let (sn, m) = normalise(sum, 15);
         if sn == 0 {
             return self.a0;
