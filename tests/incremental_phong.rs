@@ -249,10 +249,10 @@ fn negative_base_colour_clamps_to_black() {
 fn phong_shading_picks_the_incremental_kernel() {
     use fixshade::render::{Bands, MeshBuffers};
     use fixshade::standard::{self, COUNTS, SIZE, SPHERE};
-    fn frame<K: Kernel>(kernel: K, rows: u32) -> Vec<K::Color>
+    fn frame<K>(kernel: K, rows: u32) -> Vec<K::Color>
     where
-        K::Color: OutputColor + core::fmt::Debug,
         K: Kernel<Vertex = [i16; 3]>,
+        K::Color: OutputColor + core::fmt::Debug,
     {
         let t = standard::transform().unwrap();
         let layout = Layout::banded(SIZE, SIZE, rows).unwrap();
