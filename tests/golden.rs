@@ -103,7 +103,6 @@ fn mesh_renderer_against_the_reference() {
 /// memory) gives the mesh renderer's pixels bit for bit on every scene and
 /// tier (what `render::draw_triangle` documents).
 #[test]
-#[ignore = "blocked on: render::draw_triangle draws nothing (front() hands classify() the height u32::MAX, which becomes -1 as i32: every triangle is rejected; its own doctest fails too)"]
 fn per_triangle_front_equals_the_mesh_renderer() {
     fn check<S: Scalar>(failures: &mut Vec<String>) {
         for scene in scenes() {
