@@ -1,7 +1,9 @@
 //! The host side of the speed/accuracy table: for every tier × shading method ×
 //! light set, the error of a 240×240 lit sphere against the f64 reference (same
 //! method, same pixels) and the host time per shaded pixel (median of repeated
-//! renders, with the ratio to `f32` Phong in the same run). Writes
+//! renders of a `MeshDraw` prepared once: set-up, rasterization and shading;
+//! the vertex stage and the bins are the per-frame geometry work, outside the
+//! timing; with the ratio to `f32` Phong in the same run). Writes
 //! `measure/out/host.json`, which `python3 measure/tradeoff.py` merges with the
 //! Cortex-M instruction counts.
 //!
@@ -12,13 +14,12 @@
 #[path = "../tests/common/render.rs"]
 mod render;
 
-use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888};
-use fixshade::light::{DirectionalLight, LightColors, LightKind};
+use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
-use fixshade::target::{DepthBuffer, SliceFramebuffer};
+use fixshade::render::{DrawBand, FullFrame, Layout};
 use render::{
-    compare, config_scene, draw_inc, draw_prepared, prepare, render_reference, LightSet, Mode,
-    LIGHT_SETS, MODES,
+    compare, config_scene, render_reference, render_tier, with_draws, with_incremental_draws,
+    LightSet, Mode, Scene, LIGHT_SETS, MODES,
 };
 use std::fmt::Write;
 use std::time::Instant;
@@ -33,98 +34,65 @@ struct Row {
     ns_per_pixel: f64,
 }
 
+/// Renders the prepared items `RUNS` times into an Rgb565 frame: the frame
+/// and the median time.
+fn time(scene: &Scene, items: &mut [&mut dyn DrawBand<Rgb565>]) -> (Vec<Rgb565>, f64) {
+    let (w, h) = (scene.width, scene.height);
+    let n = (w * h) as usize;
+    let mut rgb565 = vec![Rgb565::BLACK; n];
+    let mut depth = vec![0u16; n];
+    let mut times = Vec::with_capacity(RUNS);
+    for _ in 0..RUNS {
+        let t = Instant::now();
+        FullFrame::new(w, h, &mut rgb565, Some(&mut depth))
+            .unwrap()
+            .render(Rgb565::BLACK, items)
+            .unwrap();
+        times.push(t.elapsed().as_secs_f64());
+        std::hint::black_box(&rgb565);
+    }
+    times.sort_by(f64::total_cmp);
+    (rgb565, times[RUNS / 2])
+}
+
 fn measure<S: Scalar>(key: &'static str, rows: &mut Vec<Row>) {
     for lights in LIGHT_SETS {
         for mode in MODES {
             let scene = config_scene(lights, mode);
-            let prepared = prepare(&scene);
-            let n = (scene.width * scene.height) as usize;
+            let layout = Layout::full(scene.width, scene.height).unwrap();
             let reference = render_reference(&scene);
-            let mut rgb888 = vec![Rgb888::default(); n];
-            let mut rgb565 = vec![Rgb565::default(); n];
-            draw_prepared::<S, Rgb888>(&scene, &prepared, &mut rgb888, &mut vec![u16::MAX; n]);
-            let mut times = Vec::with_capacity(RUNS);
-            let mut shaded = 0;
-            for _ in 0..RUNS {
-                let mut depth = vec![u16::MAX; n];
-                let t = Instant::now();
-                shaded = draw_prepared::<S, Rgb565>(&scene, &prepared, &mut rgb565, &mut depth);
-                times.push(t.elapsed().as_secs_f64());
-                std::hint::black_box(&rgb565);
-            }
-            times.sort_by(f64::total_cmp);
+            let shaded = reference.iter().filter(|r| r.is_some()).count();
+            let rgb888 = render_tier::<S, Rgb888>(&scene);
+            let (rgb565, t) =
+                with_draws::<S, Rgb565, _>(&scene, layout, |items| time(&scene, items));
             rows.push(Row {
                 tier: key,
                 mode: mode.name(),
                 lights,
                 diff: compare(&rgb888, &rgb565, &reference),
-                ns_per_pixel: times[RUNS / 2] * 1e9 / shaded.max(1) as f64,
+                ns_per_pixel: t * 1e9 / shaded.max(1) as f64,
             });
         }
     }
 }
 
-/// `IncrementalPhong` (Q14, directional light sets only).
+/// `IncrementalPhongShading` (Q14, directional light sets only).
 fn measure_inc<const NW: u8>(key: &'static str, rows: &mut Vec<Row>) {
-    use fixshade::lighting::{BlinnPhong, Lambert};
     for lights in [LightSet::DirDiffuse, LightSet::DirBlinn] {
         let scene = config_scene(lights, Mode::Phong);
-        let prepared = prepare(&scene);
-        let n = (scene.width * scene.height) as usize;
+        let layout = Layout::full(scene.width, scene.height).unwrap();
         let reference = render_reference(&scene);
-        let light = match scene.lights[0].kind {
-            LightKind::Directional { towards_light } => {
-                let d = &scene.lights[0];
-                DirectionalLight::new(
-                    towards_light,
-                    LightColors::new(d.ambient, d.diffuse, d.specular).unwrap(),
-                )
-                .unwrap()
-            }
-            _ => unreachable!("directional light sets only"),
-        };
-        let draw = |pixels: &mut Vec<Rgb565>, depth: &mut Vec<u16>| {
-            let mut fb = SliceFramebuffer::new(pixels, scene.width, scene.height).unwrap();
-            let mut db = DepthBuffer::new(depth, scene.width).unwrap();
-            let obj = &scene.objects[0];
-            if lights == LightSet::DirDiffuse {
-                draw_inc::<NW, 1, Lambert, Rgb565>(
-                    &scene,
-                    obj,
-                    [light],
-                    &prepared[0],
-                    &mut fb,
-                    &mut db,
-                )
-            } else {
-                draw_inc::<NW, 1, BlinnPhong, Rgb565>(
-                    &scene,
-                    obj,
-                    [light],
-                    &prepared[0],
-                    &mut fb,
-                    &mut db,
-                )
-            }
-        };
+        let shaded = reference.iter().filter(|r| r.is_some()).count();
         let rgb888 = render::render_incremental::<NW, Rgb888>(&scene).expect("a supported scene");
-        let mut rgb565 = vec![Rgb565::default(); n];
-        let mut times = Vec::with_capacity(RUNS);
-        let mut shaded = 0;
-        for _ in 0..RUNS {
-            let mut depth = vec![u16::MAX; n];
-            let t = Instant::now();
-            shaded = draw(&mut rgb565, &mut depth);
-            times.push(t.elapsed().as_secs_f64());
-            std::hint::black_box(&rgb565);
-        }
-        times.sort_by(f64::total_cmp);
+        let (rgb565, t) =
+            with_incremental_draws::<NW, Rgb565, _>(&scene, layout, |items| time(&scene, items))
+                .expect("a supported scene");
         rows.push(Row {
             tier: key,
             mode: "phong_inc",
             lights,
             diff: compare(&rgb888, &rgb565, &reference),
-            ns_per_pixel: times[RUNS / 2] * 1e9 / shaded.max(1) as f64,
+            ns_per_pixel: t * 1e9 / shaded.max(1) as f64,
         });
     }
 }

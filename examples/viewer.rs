@@ -1,6 +1,7 @@
 //! An interactive window on the renderer (the embedded-graphics simulator
 //! with SDL2): the standard scene's sphere or the trefoil knot, turning,
-//! under flat, Gouraud or Phong shading. Needs SDL2 (`apt-get install
+//! under flat, Gouraud or Phong shading (`PhongShading` picks the incremental
+//! kernel for the standard scene's `Q14` lighting of one directional light). Needs SDL2 (`apt-get install
 //! libsdl2-dev`), so it is behind the `sdl` feature and not built by CI:
 //!
 //! ```sh
@@ -21,7 +22,7 @@ use embedded_graphics_simulator::{
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::mesh::{torus_knot_counts, TorusKnot};
 use fixshade::prelude::*;
-use fixshade::render::{CachedVertex, DrawBand, Lerp, MeshMemory};
+use fixshade::render::{CachedVertex, DrawBand, MeshMemory};
 use fixshade::shade::Kernel;
 use fixshade::standard;
 
@@ -38,7 +39,6 @@ fn render<K>(
 ) -> Result<(), Box<dyn std::error::Error>>
 where
     K: Kernel<Color = Rgb565>,
-    K::Vertex: Lerp + Default,
 {
     let layout = Layout::full(W, W)?;
     let mut cache = vec![CachedVertex::<K::Vertex>::default(); mesh.vertex_count()];
@@ -53,7 +53,7 @@ where
     let mut depth = vec![0u16; (W * W) as usize];
     let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth))?;
     let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
-    frame.render(Rgb565::BLACK, items);
+    frame.render(Rgb565::BLACK, items)?;
     frame.flush(display)?;
     Ok(())
 }

@@ -1,6 +1,8 @@
-//! `IncrementalPhong` (the Q14 fast path) against the f64 reference on the
-//! reference scenes it supports and the configuration spheres, and against the
-//! general `Phong` span shader on random spans.
+//! `IncrementalPhongShading` (the Q14 fast path) against the f64 reference on
+//! the reference scenes it supports and the configuration spheres (through the
+//! mesh renderer), and on random spans (its span kernel called directly); and
+//! `PhongShading` choosing exactly this kernel for a Q14 lighting of one
+//! directional light.
 
 mod common;
 
@@ -8,10 +10,56 @@ use common::render::{
     all_phong, compare, config_scene, render_incremental, render_reference, scenes, LightSet, Mode,
 };
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use fixshade::color::OutputColor;
+use fixshade::lighting::DirectionalLight;
 use fixshade::prelude::*;
-use fixshade::raster::SpanShader;
-use fixshade::shade::{IncrementalPhongShading, Linear, Shader};
+use fixshade::raster::ATTR_FRAC;
+use fixshade::shade::{DirectionalLighting, IncrementalPhongShading, Linear, Shader};
 use proptest::prelude::*;
+
+/// The values the pipeline hands the incremental span kernel for a vertex of
+/// normal `v` (one light): the unit normal in Q14 (as the vertex stage makes
+/// it: the normal is quantised to Q14 here, which the reference sees too:
+/// it reads the interpolated values themselves), then `N·L` and `N·H` (Q14,
+/// `⌊Σ/2^14⌋` as the kernel's triangle set-up computes them), all with
+/// `ATTR_FRAC` fraction bits.
+fn varyings<const NW: u8, M: fixshade::shade::IncrementalModel>(
+    lighting: &DirectionalLighting<NW, 1, M>,
+    v: [f32; 3],
+) -> [i32; 5] {
+    let light = &lighting.lights()[0];
+    let q14 = |c: Q14<NW>| (c.to_attr() + (1 << 11)) >> 12;
+    let q14v = |d: Vec3<Q14<NW>>| [q14(d.x), q14(d.y), q14(d.z)];
+    let (ld, hd) = (
+        q14v(light.direction()),
+        q14v(light.prepared().half.unwrap_or(light.direction())),
+    );
+    let len = v.iter().map(|c| f64::from(*c).powi(2)).sum::<f64>().sqrt();
+    let n = v.map(|c| (f64::from(c) / len * 16384.0).round() as i32);
+    let dot = |d: [i32; 3]| (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) >> 14;
+    [n[0], n[1], n[2], dot(ld), dot(hd)].map(|x| x << ATTR_FRAC)
+}
+
+/// The pixels of a span from the values `start` stepping by `step`, shaded by
+/// the incremental kernel (`Kernel::span`, as the pipeline calls it).
+fn span<const NW: u8, M: fixshade::shade::IncrementalModel>(
+    lighting: &DirectionalLighting<NW, 1, M>,
+    start: &[i32; 5],
+    step: &[i32; 5],
+    out: &mut [Rgb888],
+) where
+    for<'a> Shader<'a, IncrementalPhongShading, DirectionalLighting<NW, 1, M>, Linear, Rgb888>:
+        Kernel<Color = Rgb888, Triangle = (), Varyings = [i32; 5]>,
+{
+    Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, lighting, Linear).span(
+        &(),
+        start,
+        step,
+        0,
+        0,
+        out,
+    );
+}
 
 /// The bound the README states for `IncrementalPhong` against the reference:
 /// max 2 LSB, PSNR ≥ 55 dB on every supported scene.
@@ -84,24 +132,16 @@ proptest! {
         n in prop_oneof![Just(1.0f32), 5.0f32..64.0, Just(128.0f32)],
         l in [-1.0f32..1.0, -1.0f32..1.0, 0.1f32..1.0],
     ) {
-        use fixshade::light::{LightDesc, LightKind};
+        use fixshade::lighting::{LightDesc, LightKind};
         use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
         let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, n);
         let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
         let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap());
-        // the attributes IncrementalPhong::draw gives the rasterizer: N (Q26), N·L, N·H
-        let (ld, hd) = (light.direction(), lighting.lights()[0].prepared().half.unwrap());
-        let attrs = |v: [f32; 3]| {
-            let n = Vec3::<Q14<2>>::from_f32(v).normalize();
-            let a = [n.x.to_attr(), n.y.to_attr(), n.z.to_attr()];
-            let dot = |d: Vec3<Q14<2>>| ((a[0] as i64 * d.x.raw() as i64 + a[1] as i64 * d.y.raw() as i64 + a[2] as i64 * d.z.raw() as i64) >> 14) as i32;
-            [a[0], a[1], a[2], dot(ld), dot(hd)]
-        };
-        let (start, end) = (attrs(a), attrs(b));
+        // the values the pipeline gives the kernel: N, N·L, N·H (Q14, ATTR_FRAC bits)
+        let (start, end) = (varyings(&lighting, a), varyings(&lighting, b));
         let step: [i32; 5] = core::array::from_fn(|i| ((end[i] as i64 - start[i] as i64) / len as i64) as i32);
         let mut fast = vec![Rgb888::BLACK; len];
-        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear)
-            .shade_span(0, 0, &start, &step, &mut fast);
+        span(&lighting, &start, &step, &mut fast);
         let lights = [LightDesc { kind: LightKind::Directional { towards_light: l }, ambient: [0.0; 3], diffuse: [1.0; 3], specular: [1.0; 3] }];
         let r = Reference {
             lights: &lights,
@@ -132,28 +172,13 @@ proptest! {
 #[test]
 fn negative_base_colour_clamps_to_black() {
     use fixshade::color::Rgb;
-    use fixshade::light::{LightDesc, LightKind};
+    use fixshade::lighting::{LightDesc, LightKind};
     use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
     let l = [0.3f32, 0.4, 0.8];
     let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, 16.0);
     let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap())
         .with_global_ambient(Rgb::from_f32([-0.8, -0.8, -0.8]));
-    let (ld, hd) = (
-        light.direction(),
-        lighting.lights()[0].prepared().half.unwrap(),
-    );
-    let attrs = |v: [f32; 3]| {
-        let n = Vec3::<Q14<2>>::from_f32(v).normalize();
-        let a = [n.x.to_attr(), n.y.to_attr(), n.z.to_attr()];
-        let dot = |d: Vec3<Q14<2>>| {
-            ((a[0] as i64 * d.x.raw() as i64
-                + a[1] as i64 * d.y.raw() as i64
-                + a[2] as i64 * d.z.raw() as i64)
-                >> 14) as i32
-        };
-        [a[0], a[1], a[2], dot(ld), dot(hd)]
-    };
     let lights = [LightDesc {
         kind: LightKind::Directional { towards_light: l },
         ambient: [0.0; 3],
@@ -176,12 +201,11 @@ fn negative_base_colour_clamps_to_black() {
         ([-0.5, 0.5, 0.7], [0.9, 0.1, 0.4]),
     ] {
         let len = 96;
-        let (start, end) = (attrs(a), attrs(b));
+        let (start, end) = (varyings(&lighting, a), varyings(&lighting, b));
         let step: [i32; 5] =
             core::array::from_fn(|i| ((end[i] as i64 - start[i] as i64) / len as i64) as i32);
         let mut fast = vec![Rgb888::WHITE; len];
-        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear)
-            .shade_span(0, 0, &start, &step, &mut fast);
+        span(&lighting, &start, &step, &mut fast);
         for (k, f) in fast.iter().enumerate() {
             let nk = [0, 1, 2].map(|i| start[i] as f64 + k as f64 * step[i] as f64);
             let nl = fixshade::reference::normalize(nk)
@@ -213,4 +237,102 @@ fn negative_base_colour_clamps_to_black() {
         black >= 30 && lit >= 30,
         "black {black}, lit {lit}: the spans must cover both"
     );
+}
+
+/// `PhongShading` picks the incremental kernel for a `Q14` lighting of one
+/// `DirectionalLight` (Lambert or Blinn-Phong): the standard scene drawn with
+/// `PhongShading` and `standard::blinn::<Q14>()` (or `lambert`) gives exactly
+/// the pixels of `IncrementalPhongShading` with the equivalent one-light
+/// array lighting (`DirectionalLighting<2, 1, M>`), in `Rgb565` and `Rgb888`,
+/// in bands and whole.
+#[test]
+fn phong_shading_picks_the_incremental_kernel() {
+    use fixshade::render::{Bands, MeshBuffers};
+    use fixshade::standard::{self, COUNTS, SIZE, SPHERE};
+    fn frame<K>(kernel: K, rows: u32) -> Vec<K::Color>
+    where
+        K: Kernel<Vertex = [i16; 3]>,
+        K::Color: OutputColor + core::fmt::Debug,
+    {
+        let t = standard::transform().unwrap();
+        let layout = Layout::banded(SIZE, SIZE, rows).unwrap();
+        let mut buffers: Box<
+            MeshBuffers<[i16; 3], { COUNTS.0 }, { bins_len(COUNTS.1, 240) }, 256>,
+        > = Box::default();
+        let mut draw = MeshDraw::new(layout, SPHERE.mesh(), &t, kernel, buffers.memory()).unwrap();
+        let black = K::Color::from_channels([0; 3]);
+        let n = (SIZE * SIZE) as usize;
+        let mut px = vec![black; n];
+        let mut strip = vec![black; (SIZE * rows) as usize];
+        let mut depth = vec![0u16; (SIZE * rows) as usize];
+        let mut sink = Collect(&mut px, SIZE);
+        Bands::new(layout, &mut strip, Some(&mut depth))
+            .unwrap()
+            .render(&mut sink, black, &mut [&mut draw])
+            .unwrap();
+        px
+    }
+    fn check<M: fixshade::shade::IncrementalModel, C: OutputColor + core::fmt::Debug>(
+        picked: &Lighting<Q14, DirectionalLight<Q14>, M>,
+    ) where
+        for<'a> Shader<'a, PhongShading, Lighting<Q14, DirectionalLight<Q14>, M>, Linear, C>:
+            Kernel<Color = C, Vertex = [i16; 3]>,
+        for<'a> Shader<'a, IncrementalPhongShading, DirectionalLighting<2, 1, M>, Linear, C>:
+            Kernel<Color = C, Vertex = [i16; 3]>,
+    {
+        let array: DirectionalLighting<2, 1, M> = Lighting::new(
+            [standard::light::<Q14>().unwrap()],
+            Material::new(&standard::material()).unwrap(),
+        );
+        for rows in [240, 8] {
+            let a = frame(
+                Shader::<_, _, _, C>::new(PhongShading, picked, Linear),
+                rows,
+            );
+            let b = frame(
+                Shader::<_, _, _, C>::new(IncrementalPhongShading, &array, Linear),
+                rows,
+            );
+            let lit = a.iter().filter(|&&p| p != C::from_channels([0; 3])).count();
+            assert!(lit > 20_000, "{lit} lit pixels");
+            let differ = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+            assert_eq!(differ, 0, "{rows}-row bands: {differ} pixels differ");
+        }
+    }
+    let blinn = standard::blinn::<Q14>().unwrap();
+    let lambert = standard::lambert::<Q14>().unwrap();
+    check::<BlinnPhong, Rgb565>(&blinn);
+    check::<BlinnPhong, Rgb888>(&blinn);
+    check::<Lambert, Rgb565>(&lambert);
+    check::<Lambert, Rgb888>(&lambert);
+}
+
+/// A `DrawTarget` that keeps the pixels of a `width`-wide frame.
+struct Collect<'a, C>(&'a mut Vec<C>, u32);
+
+impl<C: embedded_graphics_core::pixelcolor::PixelColor>
+    embedded_graphics_core::geometry::OriginDimensions for Collect<'_, C>
+{
+    fn size(&self) -> Size {
+        Size::new(self.1, (self.0.len() / self.1 as usize) as u32)
+    }
+}
+
+impl<C: embedded_graphics_core::pixelcolor::PixelColor>
+    embedded_graphics_core::draw_target::DrawTarget for Collect<'_, C>
+{
+    type Color = C;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = embedded_graphics_core::Pixel<C>>,
+    {
+        for embedded_graphics_core::Pixel(p, c) in pixels {
+            let i = p.y as usize * self.1 as usize + p.x as usize;
+            if let Some(slot) = self.0.get_mut(i) {
+                *slot = c;
+            }
+        }
+        Ok(())
+    }
 }

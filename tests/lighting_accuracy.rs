@@ -202,8 +202,8 @@ fn worst_case_search_heavy() {
 #[test]
 fn phong_highlight_on_an_interpolated_normal() {
     use common::scenes::ModelKind;
-    use fixshade::light::{LightDesc, LightKind};
-    use fixshade::material::MaterialDesc;
+    use fixshade::lighting::MaterialDesc;
+    use fixshade::lighting::{LightDesc, LightKind};
     use fixshade::reference::ViewerDesc;
     let s = Sample {
         lights: vec![LightDesc {

@@ -6,15 +6,15 @@ mod common;
 
 use common::scenes::{lsb_error, reference_u8, sample, tier_u8, Band, Sample, Term};
 use fixshade::error::ParamError;
-use fixshade::light::{
+use fixshade::lighting::{
     AnyLight, Attenuation, DirectionalLight, LightColors, LightDesc, LightKind, PointLight,
     SpotLight,
 };
 use fixshade::lighting::{BlinnPhong, Full, Lighting, LocalViewer, Phong};
-use fixshade::material::{Material, MaterialDesc};
+use fixshade::lighting::{Material, MaterialDesc};
+use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use fixshade::reference::ViewerDesc;
-use fixshade::vector::{point_from_f32, Vec3};
 use proptest::prelude::*;
 
 macro_rules! for_each_tier {

@@ -12,10 +12,9 @@
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
 use fixshade::color::{GammaTable, Transfer};
-use fixshade::light::{LightColors, LightDesc, LightKind};
 use fixshade::lighting::{BlinnPhong, Lambert, Model, Phong, Specular};
+use fixshade::lighting::{LightColors, LightDesc, LightKind};
 use fixshade::prelude::*;
-use fixshade::raster::SpanShader;
 use fixshade::reference::{normalize, to_u8, ModelDesc, Reference, ViewerDesc};
 use fixshade::shade::{Dithered, Encoder, ModeState, QuadraticPhongShading, Shader};
 use proptest::prelude::*;
@@ -87,8 +86,10 @@ fn case(k: usize, band: (u32, u32)) -> impl Strategy<Value = Case> {
         })
 }
 
-/// `start`/`step` of a span (Q26 attributes as `Shading::draw` gives them): the
-/// normal, then per light `N·L` and `N·H` (`N·V` for Phong).
+/// `start`/`step` of a span in Q26 (the kernel's internal unit): the normal,
+/// then per light `N·L` and `N·H` (`N·V` for Phong). The pipeline hands the
+/// kernel these values in Q14 with `ATTR_FRAC` fraction bits (Q28): see
+/// [`run`].
 fn attrs<S: Scalar, const N: usize>(
     c: &Case,
     dirs: &[[f32; 3]],
@@ -154,7 +155,7 @@ where
     E: Encoder<C>,
     QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; K], M>, C>,
     for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; K], M>, E, C>:
-        SpanShader<N, Color = C>,
+        Kernel<Color = C, Varyings = [i32; N], Triangle = ()>,
 {
     let (lights, mat, _) = reference(c, ModelDesc::of::<M>());
     let dl: [DirectionalLight<S>; K] = core::array::from_fn(|j| {
@@ -185,8 +186,17 @@ where
         .collect();
     let (start, step) = attrs::<S, N>(c, &dirs, &seconds);
     let mut out = vec![C::default(); c.len];
-    Shader::<_, _, _, C>::new(QuadraticPhongShading, &lighting, enc)
-        .shade_span(3, 5, &start, &step, &mut out);
+    // Q26 → Q14 with ATTR_FRAC bits (Q28), what the pipeline's interpolation
+    // hands `Kernel::span` (exact: the kernel shifts them back)
+    let q28 = |v: [i32; N]| v.map(|x| x << (fixshade::raster::ATTR_FRAC - 12));
+    Shader::<_, _, _, C>::new(QuadraticPhongShading, &lighting, enc).span(
+        &(),
+        &q28(start),
+        &q28(step),
+        3,
+        5,
+        &mut out,
+    );
     let normals = (0..c.len)
         .map(|k| [0, 1, 2].map(|i| start[i] as f64 + k as f64 * step[i] as f64))
         .collect();
@@ -209,7 +219,7 @@ where
     M: Model,
     QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; K], M>, Rgb888>,
     for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; K], M>, Linear, Rgb888>:
-        SpanShader<N, Color = Rgb888>,
+        Kernel<Color = Rgb888, Varyings = [i32; N], Triangle = ()>,
 {
     let Some((px, normals)) = run::<S, K, N, M, Rgb888, Linear>(c, Linear) else {
         return Ok(());
@@ -289,16 +299,16 @@ where
     QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>
         + ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Gray8>,
     for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>:
-        SpanShader<N, Color = Rgb565>,
+        Kernel<Color = Rgb565, Varyings = [i32; N], Triangle = ()>,
     for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Dithered, Rgb565>:
-        SpanShader<N, Color = Rgb565>,
+        Kernel<Color = Rgb565, Varyings = [i32; N], Triangle = ()>,
     for<'a, 't> Shader<
         'a,
         QuadraticPhongShading,
         Lighting<S, [DirectionalLight<S>; 1], M>,
         Gamma<'t, 1024>,
         Gray8,
-    >: SpanShader<N, Color = Gray8>,
+    >: Kernel<Color = Gray8, Varyings = [i32; N], Triangle = ()>,
 {
     let (lights, mat, model) = reference(c, ModelDesc::of::<M>());
     let r = Reference {

@@ -12,9 +12,9 @@
 mod common;
 
 use common::scenes::{lsb_error, reference_u8, tier_u8, ModelKind, Rng, Sample};
-use fixshade::light::{Attenuation, LightDesc, LightKind};
 use fixshade::lighting::LinearFog;
-use fixshade::material::MaterialDesc;
+use fixshade::lighting::MaterialDesc;
+use fixshade::lighting::{Attenuation, LightDesc, LightKind};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
 use fixshade::reference::{FogDesc, ViewerDesc};
 

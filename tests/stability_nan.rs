@@ -5,14 +5,14 @@
 //! holds any `f32`; the fixed tiers' any raw value).
 
 use fixshade::color::Rgb;
-use fixshade::light::{AnyLight, LightDesc, LightKind, LightSet};
+use fixshade::lighting::{AnyLight, LightDesc, LightKind, LightSet};
 use fixshade::lighting::{
     BlinnPhong, FogModel, Full, InfiniteViewer, Lighting, LinearFog, LocalViewer, Model, Phong,
     Viewer,
 };
-use fixshade::material::{Material, MaterialDesc};
+use fixshade::lighting::{Material, MaterialDesc};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
-use fixshade::vector::{Point3, Vec3};
+use fixshade::num::{Point3, Vec3};
 use proptest::prelude::*;
 
 /// How a test builds raw points and normals of a tier, bypassing the saturating
@@ -33,7 +33,7 @@ impl<const N: u8> Raw for Q14<N> {
     }
     fn point(v: [f32; 3], bits: [u32; 3]) -> Point3<Self> {
         if bits[1] & 1 == 0 {
-            fixshade::vector::point_from_f32::<Self>(v)
+            fixshade::num::point_from_f32::<Self>(v)
         } else {
             let g = |b: u32| Geo16::from_bits(b as i32);
             Vec3::new(g(bits[0]), g(bits[1]), g(bits[2]))

@@ -6,8 +6,8 @@
 //! ±2, ±1, the smallest steps, NaN and infinities for the float tiers) and all
 //! their combinations for the vector operations, plus random raw values.
 
+use fixshade::num::Vec3;
 use fixshade::num::{F32Fast, Geo16, Scalar, F32_LIMIT, Q14, Q30};
-use fixshade::vector::Vec3;
 use proptest::prelude::*;
 
 /// A tier together with the extreme values of its representation.

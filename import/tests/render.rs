@@ -8,7 +8,7 @@ mod generated {
     include!("generated/rocket.rs");
 }
 
-use fixshade::mesh::Mat4;
+use fixshade::camera::Mat4;
 use fixshade::prelude::RgbColor;
 
 #[test]

@@ -1,25 +1,43 @@
 //! The reference scenes of the source documents (DESIGN §1), rendered by a tier
-//! through the real pipeline (mesh → lighting → shading → rasterizer → framebuffer)
-//! and by the f64 reference model on exactly the same pixel coverage.
+//! through the real pipeline (mesh → vertex stage → bins → set-up → kernel →
+//! framebuffer: one [`MeshDraw`] per object, as firmware draws) and by the f64
+//! reference model on exactly the same pixel coverage.
 //!
-//! Shared by `tests/golden.rs`, `examples/showcase.rs` and `examples/tradeoff.rs`
-//! (included with `#[path]`).
+//! Each object is a run-time [`Mesh`] (`i16` positions, Q14 normals) with its
+//! own model matrix, seen by an orthographic camera of 100 pixels per eye-space
+//! unit. The reference takes the inputs the renderer's kernels receive — the
+//! screen positions, eye-space normals (Q14) and eye-space positions (Q16.16)
+//! of the mesh transform, converted to `f64` exactly — and does everything
+//! after them in `f64`: barycentric interpolation at the pixel centres of the
+//! analytic triangle, normalisation, lighting. Quantising the input (the mesh
+//! format and the fixed-point transform) is therefore not counted as the
+//! tier's error; the interpolation, renormalisation, lighting and encoding are.
+//! Coverage (which pixel centres a triangle covers, culling, the depth test)
+//! comes from the pipeline's own set-up: the reference is drawn by a
+//! `MeshDraw` of the same mesh with a kernel of this file.
+//!
+//! Shared by `tests/golden.rs`, `tests/incremental_phong.rs`,
+//! `examples/showcase.rs` and `benches/tradeoff.rs` (included with `#[path]`).
 
 #![allow(dead_code)]
 
+use core::cell::RefCell;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use fixshade::camera::{Camera, Clip, ClipSpace, Mat4, MeshTransform, Orthographic, Viewport};
 use fixshade::color::{OutputColor, Rgb};
-use fixshade::light::{AnyLight, LightDesc, LightKind};
-use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Model, Phong as PhongSpec, Terms};
-use fixshade::material::{AmbientSource, Material, MaterialDesc};
-use fixshade::mesh::{uv_sphere, uv_sphere_counts, Mat4, ScreenTransform, ScreenVertex, Viewport};
+use fixshade::lighting::{AmbientSource, AnyLight, LightDesc, LightKind, Material, MaterialDesc};
+use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Phong as PhongSpec, Terms};
+use fixshade::mesh::{uv_sphere_counts, Mesh, MeshData};
 use fixshade::num::Scalar;
-use fixshade::raster::{draw_triangle, Cull, RasterOptions, SpanShader};
+use fixshade::raster::Cull;
 use fixshade::reference::{normalize, ModelDesc, Reference, ViewerDesc, V3};
-use fixshade::shade::{
-    FlatShading, GouraudShading, Linear, PhongShading, ShadeVertex, Shader, Shading,
+use fixshade::render::{
+    bins_len, draw_triangle, BandView, Bands, CachedVertex, Carry, Corner, DrawBand, FullFrame,
+    Layout, MeshDraw, MeshMemory, RenderError,
 };
-use fixshade::target::{DepthBuffer, Framebuffer, SliceFramebuffer};
+use fixshade::shade::{
+    FlatShading, GeneralPhongShading, GouraudShading, Kernel, Linear, Shader, VertexIn,
+};
 
 /// Pixels per eye-space unit of the orthographic camera.
 pub const PIXELS_PER_UNIT: f32 = 100.0;
@@ -292,263 +310,502 @@ pub fn scenes() -> Vec<Scene> {
     v
 }
 
-/// One vertex: its projection and its exact eye-space position and normal.
-#[derive(Clone, Copy, Debug)]
-pub struct Vert {
-    pub screen: ScreenVertex,
-    pub pos: [f32; 3],
-    pub normal: [f32; 3],
+// ------------------------------------------------------------------ objects as meshes
+
+/// Fraction bits of the big triangles' positions (eye units).
+const MESH_FRAC: u8 = 10;
+
+/// The unit sphere of the showcase spheres (scaled and moved by each object's
+/// model matrix).
+static UNIT_SPHERE: MeshData<
+    { uv_sphere_counts(STACKS, SLICES).0 },
+    { uv_sphere_counts(STACKS, SLICES).1 },
+> = MeshData::uv_sphere(STACKS, SLICES, 14);
+
+/// An object's mesh (owned arrays) and model matrix.
+pub struct ObjectMesh {
+    pub positions: Vec<[i16; 3]>,
+    pub normals: Vec<[i16; 3]>,
+    pub triangles: Vec<[u16; 3]>,
+    pub frac: u8,
+    pub model: Mat4,
 }
 
+impl ObjectMesh {
+    pub fn mesh(&self) -> Mesh<'_> {
+        Mesh::new(&self.positions, &self.normals, &self.triangles, self.frac).expect("a valid mesh")
+    }
+}
+
+/// Eye-space position of a pixel position (the scene plane at z = −5).
 fn eye(p: [f32; 2]) -> [f32; 3] {
     [p[0] / PIXELS_PER_UNIT, -p[1] / PIXELS_PER_UNIT, -5.0]
 }
 
-/// The triangles of an object, projected by the orthographic camera of a scene.
-pub fn triangles(scene: &Scene, obj: &Object) -> Vec<[Vert; 3]> {
-    let (w, h) = (
-        scene.width as f32 / PIXELS_PER_UNIT,
-        scene.height as f32 / PIXELS_PER_UNIT,
-    );
-    let proj = Mat4::orthographic(0.0, w, -h, 0.0, 1.0, 20.0).unwrap();
-    let vp = Viewport::new(0, 0, scene.width as i32, scene.height as i32).unwrap();
-    let st = ScreenTransform::new(&proj, vp, 0.5).unwrap();
-    let vert = |pos: [f32; 3], normal: [f32; 3]| Vert {
-        screen: st.project_f32(pos).unwrap(),
-        pos,
-        normal,
-    };
+/// The mesh of an object: a sphere is the unit UV sphere scaled and moved by
+/// its model matrix; a triangle has its corners (eye units, [`MESH_FRAC`]
+/// bits) and normals (Q14, normalised) in the mesh, model matrix the identity.
+pub fn object_mesh(obj: &Object) -> ObjectMesh {
     match obj.shape {
-        Shape::Sphere { centre, radius } => {
-            const N: (usize, usize) = uv_sphere_counts(STACKS, SLICES);
-            let (mut p, mut n, mut t) = (
-                vec![[0.0f32; 3]; N.0],
-                vec![[0.0f32; 3]; N.0],
-                vec![[0u16; 3]; N.1],
-            );
-            uv_sphere(
-                STACKS,
-                SLICES,
-                eye(centre),
-                radius / PIXELS_PER_UNIT,
-                &mut p,
-                &mut n,
-                &mut t,
-            )
-            .unwrap();
-            t.iter()
-                .map(|tri| tri.map(|i| vert(p[i as usize], n[i as usize])))
-                .collect()
-        }
+        Shape::Sphere { centre, radius } => ObjectMesh {
+            positions: UNIT_SPHERE.positions.to_vec(),
+            normals: UNIT_SPHERE.normals.to_vec(),
+            triangles: UNIT_SPHERE.triangles.to_vec(),
+            frac: UNIT_SPHERE.frac,
+            model: Mat4::translate(eye(centre)).mul(&Mat4::scale([radius / PIXELS_PER_UNIT; 3])),
+        },
         Shape::Triangle { corners, normals } => {
-            vec![[0, 1, 2].map(|i| vert(eye(corners[i]), normals[i]))]
+            let q = |v: f64, f: u8| (v * f64::from(1u16 << f)).round() as i16;
+            ObjectMesh {
+                positions: corners
+                    .iter()
+                    .map(|c| eye(*c).map(|v| q(f64::from(v), MESH_FRAC)))
+                    .collect(),
+                normals: normals
+                    .iter()
+                    .map(|n| normalize(n.map(f64::from)).map(|v| q(v, 14)))
+                    .collect(),
+                triangles: vec![[0, 1, 2]],
+                frac: MESH_FRAC,
+                model: Mat4::IDENTITY,
+            }
         }
     }
 }
 
-fn opts() -> RasterOptions {
-    RasterOptions {
-        cull: Cull::Back,
-        ..RasterOptions::default()
+/// The orthographic camera of a scene: 100 pixels per eye unit, the eye-space
+/// origin at the top-left corner, depth 0 at z = −1 to 65535 at z = −20.
+pub fn camera(scene: &Scene) -> Camera<Orthographic> {
+    let (w, h) = (scene.width, scene.height);
+    Camera::orthographic(
+        0.0,
+        w as f32 / PIXELS_PER_UNIT,
+        -(h as f32) / PIXELS_PER_UNIT,
+        0.0,
+        1.0,
+        20.0,
+        Viewport::new(0, 0, w as i32, h as i32).unwrap(),
+    )
+    .unwrap()
+}
+
+/// The fixed-point transform of an object's mesh.
+pub fn transform(scene: &Scene, m: &ObjectMesh) -> MeshTransform<Orthographic> {
+    camera(scene).mesh_transform(&m.model, m.frac).unwrap()
+}
+
+/// One vertex as the pipeline's kernels receive it from the vertex stage:
+/// clip coordinates (screen space: sub-pixels, depth, `w = 1`), the eye-space
+/// normal (Q14, as transformed: not normalised) and the eye-space position
+/// (Q16.16).
+#[derive(Clone, Copy, Debug)]
+pub struct Vert {
+    pub clip: Clip,
+    pub normal: [i32; 3],
+    pub eye: [i32; 3],
+}
+
+impl Vert {
+    /// The vertex of a mesh position and normal under a transform.
+    pub fn of(t: &MeshTransform<Orthographic>, p: [i16; 3], n: [i16; 3]) -> Vert {
+        Vert {
+            clip: t.clip(p),
+            normal: t.normal(n),
+            eye: t.eye(p),
+        }
+    }
+    /// The corner for [`draw_triangle`] in [`ClipSpace::SCREEN`].
+    pub fn corner(&self) -> Corner {
+        Corner {
+            clip: self.clip,
+            vertex: VertexIn::new(self.normal, self.eye),
+        }
+    }
+    /// Screen position in pixels.
+    pub fn screen(&self) -> [f64; 2] {
+        let sub = f64::from(1u32 << fixshade::raster::SUBPIXEL_BITS);
+        [f64::from(self.clip.x) / sub, f64::from(self.clip.y) / sub]
+    }
+    /// The normal in f64 (exactly the Q14 value).
+    pub fn normal_f64(&self) -> V3 {
+        self.normal.map(|c| f64::from(c) / 16384.0)
+    }
+    /// The eye-space position in f64 (exactly the Q16.16 value).
+    pub fn eye_f64(&self) -> V3 {
+        self.eye.map(|c| f64::from(c) / 65536.0)
     }
 }
 
-/// The projected triangles of every object of a scene (the per-frame geometry
-/// work, done once so that timings measure shading and rasterization only).
+/// The triangles of an object as the vertex stage hands them on (the same
+/// corners `MeshDraw` draws: `draw_triangle` with them gives its pixels bit for
+/// bit).
+pub fn triangles(scene: &Scene, obj: &Object) -> Vec<[Vert; 3]> {
+    let m = object_mesh(obj);
+    let t = transform(scene, &m);
+    m.triangles
+        .iter()
+        .map(|tri| {
+            tri.map(|i| {
+                let i = usize::from(i);
+                Vert::of(&t, m.positions[i], m.normals[i])
+            })
+        })
+        .collect()
+}
+
+/// The triangles of every object of a scene.
 pub fn prepare(scene: &Scene) -> Vec<Vec<[Vert; 3]>> {
     scene.objects.iter().map(|o| triangles(scene, o)).collect()
 }
 
-/// Renders a scene with tier `S` into colour type `C` (black background).
-pub fn render_tier<S: Scalar, C: OutputColor + Default>(scene: &Scene) -> Vec<C> {
+// ------------------------------------------------------------------ rendering
+
+/// The lightings of a scene's objects in tier `S`, one list per model type
+/// (the shaders borrow them).
+struct Lightings<S: Scalar> {
+    lam: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Lambert>>,
+    bri: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Terms<0, true, false, false>>>,
+    pho: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, PhongSpec>>,
+    bli: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, BlinnPhong>>,
+}
+
+impl<S: Scalar> Lightings<S> {
+    fn new(scene: &Scene) -> Self {
+        let lights: heapless::Vec<AnyLight<S>, 4> = scene
+            .lights
+            .iter()
+            .map(|d| AnyLight::new(d).unwrap())
+            .collect();
+        let g = Rgb::<S>::from_f32(scene.global_ambient);
+        let mut l = Lightings {
+            lam: vec![],
+            bri: vec![],
+            pho: vec![],
+            bli: vec![],
+        };
+        for o in &scene.objects {
+            let m = Material::<S>::new(&o.material).unwrap();
+            let ls = lights.clone();
+            match o.terms {
+                Terms4::Lambert => l.lam.push(Lighting::new(ls, m).with_global_ambient(g)),
+                Terms4::Brilliance => l.bri.push(Lighting::new(ls, m).with_global_ambient(g)),
+                Terms4::Phong => l.pho.push(Lighting::new(ls, m).with_global_ambient(g)),
+                Terms4::Blinn => l.bli.push(Lighting::new(ls, m).with_global_ambient(g)),
+            }
+        }
+        l
+    }
+}
+
+/// The memory of one object's `MeshDraw` (vertex caches of both payload types
+/// the harness's kernels use).
+#[derive(Default)]
+pub struct ObjectMemory {
+    cu: Vec<CachedVertex<[u16; 3]>>,
+    ci: Vec<CachedVertex<[i16; 3]>>,
+    bins: Vec<u16>,
+    carry: Vec<Carry>,
+}
+
+impl ObjectMemory {
+    fn new(m: &ObjectMesh, layout: &Layout) -> Self {
+        let (nv, nt) = (m.positions.len(), m.triangles.len());
+        ObjectMemory {
+            cu: vec![CachedVertex::default(); nv],
+            ci: vec![CachedVertex::default(); nv],
+            bins: vec![0; bins_len(nt, layout.bands() as usize)],
+            carry: vec![Carry::default(); 2 * nt],
+        }
+    }
+}
+
+/// The memory for a kernel with vertex payload `V`.
+pub trait MemoryFor<V> {
+    fn memory(&mut self) -> MeshMemory<'_, V>;
+}
+
+impl MemoryFor<[u16; 3]> for ObjectMemory {
+    fn memory(&mut self) -> MeshMemory<'_, [u16; 3]> {
+        MeshMemory {
+            vertices: &mut self.cu,
+            bins: &mut self.bins,
+            carry: &mut self.carry,
+        }
+    }
+}
+
+impl MemoryFor<[i16; 3]> for ObjectMemory {
+    fn memory(&mut self) -> MeshMemory<'_, [i16; 3]> {
+        MeshMemory {
+            vertices: &mut self.ci,
+            bins: &mut self.bins,
+            carry: &mut self.carry,
+        }
+    }
+}
+
+/// An object's `MeshDraw` with kernel `k` (back faces culled).
+fn mesh_item<'a, K: Kernel + 'a>(
+    layout: Layout,
+    mesh: Mesh<'a>,
+    t: &MeshTransform<Orthographic>,
+    k: K,
+    mem: &'a mut ObjectMemory,
+) -> Box<dyn DrawBand<K::Color> + 'a>
+where
+    ObjectMemory: MemoryFor<K::Vertex>,
+{
+    Box::new(MeshDraw::new(layout, mesh, t, k, mem.memory()).expect("buffers sized for the mesh"))
+}
+
+/// The kernel of a mode (`GeneralPhongShading` for Phong: the per-pixel
+/// kernel of every tier and light set) lighting with `$lit`, bound to `$k` in
+/// `$body`.
+macro_rules! with_kernel {
+    ($mode:expr, $lit:expr, |$k:ident| $body:expr) => {
+        match $mode {
+            Mode::Flat => {
+                let $k = Shader::new(FlatShading, $lit, Linear);
+                $body
+            }
+            Mode::Gouraud => {
+                let $k = Shader::new(GouraudShading, $lit, Linear);
+                $body
+            }
+            Mode::Phong => {
+                let $k = Shader::new(GeneralPhongShading, $lit, Linear);
+                $body
+            }
+        }
+    };
+}
+
+/// Builds one `MeshDraw` per object of `scene` in tier `S` and colour `C` for
+/// a frame of `layout` (the vertex stage and the bins: the per-frame geometry
+/// work) and hands them to `f`, which may render them any number of times.
+pub fn with_draws<S: Scalar, C: OutputColor + core::fmt::Debug, R>(
+    scene: &Scene,
+    layout: Layout,
+    f: impl FnOnce(&mut [&mut dyn DrawBand<C>]) -> R,
+) -> R {
+    let meshes: Vec<ObjectMesh> = scene.objects.iter().map(object_mesh).collect();
+    let lit = Lightings::<S>::new(scene);
+    let mut mem: Vec<ObjectMemory> = meshes
+        .iter()
+        .map(|m| ObjectMemory::new(m, &layout))
+        .collect();
+    let (mut il, mut ib, mut ip, mut iq) = (
+        lit.lam.iter(),
+        lit.bri.iter(),
+        lit.pho.iter(),
+        lit.bli.iter(),
+    );
+    let mut draws: Vec<Box<dyn DrawBand<C> + '_>> = Vec::new();
+    for ((o, m), mem) in scene.objects.iter().zip(&meshes).zip(mem.iter_mut()) {
+        let t = transform(scene, m);
+        let mesh = m.mesh();
+        draws.push(match o.terms {
+            Terms4::Lambert => {
+                with_kernel!(o.mode, il.next().unwrap(), |k| mesh_item(
+                    layout, mesh, &t, k, mem
+                ))
+            }
+            Terms4::Brilliance => {
+                with_kernel!(o.mode, ib.next().unwrap(), |k| mesh_item(
+                    layout, mesh, &t, k, mem
+                ))
+            }
+            Terms4::Phong => {
+                with_kernel!(o.mode, ip.next().unwrap(), |k| mesh_item(
+                    layout, mesh, &t, k, mem
+                ))
+            }
+            Terms4::Blinn => {
+                with_kernel!(o.mode, iq.next().unwrap(), |k| mesh_item(
+                    layout, mesh, &t, k, mem
+                ))
+            }
+        });
+    }
+    let mut items: Vec<&mut dyn DrawBand<C>> = draws
+        .iter_mut()
+        .map(|d| &mut **d as &mut dyn DrawBand<C>)
+        .collect();
+    f(&mut items)
+}
+
+/// Renders a scene with tier `S` into colour type `C` (black background, the
+/// whole frame in memory).
+pub fn render_tier<S: Scalar, C: OutputColor + core::fmt::Debug>(scene: &Scene) -> Vec<C> {
     let (w, h) = (scene.width, scene.height);
-    let mut pixels = vec![C::from_channels([0; 3]); (w * h) as usize];
-    let mut depth = vec![u16::MAX; (w * h) as usize];
-    draw_prepared::<S, C>(scene, &prepare(scene), &mut pixels, &mut depth);
+    let black = C::from_channels([0; 3]);
+    let mut pixels = vec![black; (w * h) as usize];
+    let mut depth = vec![0u16; (w * h) as usize];
+    with_draws::<S, C, _>(scene, Layout::full(w, h).unwrap(), |items| {
+        FullFrame::new(w, h, &mut pixels, Some(&mut depth))
+            .unwrap()
+            .render(black, items)
+            .expect("every item prepared for this layout")
+    });
     pixels
 }
 
-/// Draws prepared triangles into `pixels` (the depth buffer must be cleared);
-/// returns the number of shaded pixels.
-pub fn draw_prepared<S: Scalar, C: OutputColor + Default>(
+/// Renders a scene with the mesh renderer in tier `S` as firmware drives a
+/// display: 8-row bands (colour and depth strips) flushed to `display`.
+pub fn render_mesh<S: Scalar, D>(
     scene: &Scene,
-    prepared: &[Vec<[Vert; 3]>],
-    pixels: &mut [C],
-    depth: &mut [u16],
-) -> u64 {
-    let mut fb = SliceFramebuffer::new(pixels, scene.width, scene.height).unwrap();
-    draw_into::<S, C, _>(scene, prepared, &mut fb, depth)
-}
-
-/// Draws prepared triangles into any framebuffer (e.g. a `DrawTargetAdapter` over
-/// a display); `depth` must be cleared and hold `width × height` values.
-pub fn draw_into<
-    S: Scalar,
-    C: OutputColor + Default,
-    F: Framebuffer<Color = C, Error: core::fmt::Debug>,
->(
-    scene: &Scene,
-    prepared: &[Vec<[Vert; 3]>],
-    fb: &mut F,
-    depth: &mut [u16],
-) -> u64 {
-    let mut db = DepthBuffer::new(depth, scene.width).unwrap();
-    let mut shaded = 0;
-    for (obj, tris) in scene.objects.iter().zip(prepared) {
-        shaded += match obj.terms {
-            Terms4::Lambert => draw_object::<S, Lambert, C, F>(scene, obj, tris, fb, &mut db),
-            Terms4::Brilliance => {
-                draw_object::<S, Terms<0, true, false, false>, C, F>(scene, obj, tris, fb, &mut db)
-            }
-            Terms4::Phong => draw_object::<S, PhongSpec, C, F>(scene, obj, tris, fb, &mut db),
-            Terms4::Blinn => draw_object::<S, BlinnPhong, C, F>(scene, obj, tris, fb, &mut db),
-        };
-    }
-    shaded
-}
-
-fn draw_object<
-    S: Scalar,
-    M: Model,
-    C: OutputColor + Default,
-    F: Framebuffer<Color = C, Error: core::fmt::Debug>,
->(
-    scene: &Scene,
-    obj: &Object,
-    tris: &[[Vert; 3]],
-    fb: &mut F,
-    db: &mut DepthBuffer<'_>,
-) -> u64 {
-    let lights: heapless::Vec<AnyLight<S>, 4> = scene
-        .lights
-        .iter()
-        .map(|d| AnyLight::new(d).unwrap())
-        .collect();
-    let lighting = Lighting::<S, _, M>::new(lights, Material::new(&obj.material).unwrap())
-        .with_global_ambient(Rgb::from_f32(scene.global_ambient));
-    let sv = |v: &Vert| {
-        ShadeVertex::<S>::new(
-            [v.screen.x, v.screen.y],
-            v.screen.z,
-            v.screen.inv_w,
-            v.pos,
-            v.normal,
-        )
-    };
-    let o = opts();
-    let mut shaded = 0u64;
-    match obj.mode {
-        Mode::Flat => {
-            let mut s = Shader::new(FlatShading, &lighting, Linear);
-            for t in tris {
-                shaded += ok(s.draw(fb, Some(db), &t.each_ref().map(sv), &o)).pixels as u64;
-            }
-        }
-        Mode::Gouraud => {
-            let mut s = Shader::new(GouraudShading, &lighting, Linear);
-            for t in tris {
-                shaded += ok(s.draw(fb, Some(db), &t.each_ref().map(sv), &o)).pixels as u64;
-            }
-        }
-        Mode::Phong => {
-            let mut s = Shader::new(PhongShading, &lighting, Linear);
-            for t in tris {
-                shaded += ok(s.draw(fb, Some(db), &t.each_ref().map(sv), &o)).pixels as u64;
-            }
-        }
-    }
-    shaded
-}
-
-/// The value of a drawing call whose framebuffer cannot fail, or a panic
-/// naming the display error (a test failure).
-pub fn ok<T, E: core::fmt::Debug>(r: Result<T, E>) -> T {
-    r.expect("display error")
-}
-
-/// The f64 reference image: linear RGB per covered pixel, `None` for background.
-pub fn render_reference(scene: &Scene) -> Vec<Option<V3>> {
+    display: &mut D,
+) -> Result<(), RenderError<D::Error>>
+where
+    D: embedded_graphics_core::draw_target::DrawTarget<Color = Rgb888>,
+{
+    const ROWS: u32 = 8;
     let (w, h) = (scene.width, scene.height);
-    let mut out = vec![None; (w * h) as usize];
-    let mut dummy = vec![Rgb888::BLACK; (w * h) as usize];
-    let mut depth = vec![u16::MAX; (w * h) as usize];
-    let mut fb = SliceFramebuffer::new(&mut dummy, w, h).unwrap();
-    let mut db = DepthBuffer::new(&mut depth, w).unwrap();
-    for obj in &scene.objects {
-        let model = match obj.terms {
-            Terms4::Lambert => ModelDesc::of::<Lambert>(),
-            Terms4::Brilliance => ModelDesc::of::<Terms<0, true, false, false>>(),
-            Terms4::Phong => ModelDesc::of::<PhongSpec>(),
-            Terms4::Blinn => ModelDesc::of::<BlinnPhong>(),
-        };
-        let r = Reference {
-            lights: &scene.lights,
-            material: obj.material,
-            global_ambient: scene.global_ambient,
-            viewer: ViewerDesc::Infinite([0.0, 0.0, 1.0]),
-            fog: None,
-            model,
-        };
-        for t in triangles(scene, obj) {
-            let raster = t.map(|v| v.screen.to_raster([]));
-            let mut s = RefSpan {
-                r: &r,
-                tri: t,
-                mode: obj.mode,
-                out: &mut out,
-                width: w,
-            };
-            ok(draw_triangle(
-                &mut fb,
-                Some(&mut db),
-                &raster,
-                &opts(),
-                &mut s,
-            ));
-        }
-    }
-    out
+    let layout = Layout::banded(w, h, ROWS).unwrap();
+    let mut strip = vec![Rgb888::BLACK; (w * ROWS) as usize];
+    let mut depth = vec![0u16; (w * ROWS) as usize];
+    with_draws::<S, Rgb888, _>(scene, layout, |items| {
+        Bands::new(layout, &mut strip, Some(&mut depth))
+            .unwrap()
+            .render(display, Rgb888::BLACK, items)
+    })
 }
 
-/// Shades covered pixels with the reference model from f64 barycentric
-/// coordinates at the pixel centres.
-struct RefSpan<'a> {
-    r: &'a Reference<'a>,
-    tri: [Vert; 3],
+/// A list of triangles drawn through the per-triangle front
+/// ([`draw_triangle`], [`ClipSpace::SCREEN`], back faces culled).
+pub struct Triangles<'a, K> {
+    pub tris: &'a [[Vert; 3]],
+    pub kernel: K,
+}
+
+impl<K: Kernel> DrawBand<K::Color> for Triangles<'_, K> {
+    fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
+        for t in self.tris {
+            draw_triangle(
+                band,
+                &ClipSpace::SCREEN,
+                &self.kernel,
+                &t.map(|v| v.corner()),
+                Cull::Back,
+            );
+        }
+    }
+}
+
+/// A [`Triangles`] item.
+fn tri_item<'a, K: Kernel + 'a>(
+    tris: &'a [[Vert; 3]],
+    kernel: K,
+) -> Box<dyn DrawBand<K::Color> + 'a> {
+    Box::new(Triangles { tris, kernel })
+}
+
+/// Renders a scene with tier `S` into colour type `C` through the per-triangle
+/// front: every object's triangles (see [`triangles`]) drawn with
+/// [`draw_triangle`] from a `DrawBand` of this file, the whole frame in memory.
+pub fn render_triangles<S: Scalar, C: OutputColor + core::fmt::Debug>(scene: &Scene) -> Vec<C> {
+    let (w, h) = (scene.width, scene.height);
+    let prepared = prepare(scene);
+    let lit = Lightings::<S>::new(scene);
+    let (mut il, mut ib, mut ip, mut iq) = (
+        lit.lam.iter(),
+        lit.bri.iter(),
+        lit.pho.iter(),
+        lit.bli.iter(),
+    );
+    let mut draws: Vec<Box<dyn DrawBand<C> + '_>> = Vec::new();
+    for (o, tris) in scene.objects.iter().zip(&prepared) {
+        draws.push(match o.terms {
+            Terms4::Lambert => with_kernel!(o.mode, il.next().unwrap(), |k| tri_item(tris, k)),
+            Terms4::Brilliance => with_kernel!(o.mode, ib.next().unwrap(), |k| tri_item(tris, k)),
+            Terms4::Phong => with_kernel!(o.mode, ip.next().unwrap(), |k| tri_item(tris, k)),
+            Terms4::Blinn => with_kernel!(o.mode, iq.next().unwrap(), |k| tri_item(tris, k)),
+        });
+    }
+    let black = C::from_channels([0; 3]);
+    let mut pixels = vec![black; (w * h) as usize];
+    let mut depth = vec![0u16; (w * h) as usize];
+    let mut items: Vec<&mut dyn DrawBand<C>> = draws
+        .iter_mut()
+        .map(|d| &mut **d as &mut dyn DrawBand<C>)
+        .collect();
+    FullFrame::new(w, h, &mut pixels, Some(&mut depth))
+        .unwrap()
+        .render(black, &mut items)
+        .unwrap();
+    drop(items);
+    drop(draws);
+    pixels
+}
+
+// ------------------------------------------------------------------ the f64 reference
+
+/// The f64 data of a triangle: screen positions (pixels), eye-space positions
+/// and normals, exactly the renderer's inputs.
+#[derive(Clone, Copy, Debug, Default)]
+struct RefTri {
+    p: [[f64; 2]; 3],
+    pos: [V3; 3],
+    nrm: [V3; 3],
+}
+
+/// A kernel that shades the pixels the pipeline covers with the reference
+/// model, from f64 barycentric coordinates of the analytic triangle at the
+/// pixel centres (it interpolates nothing itself). Its mesh carries every
+/// vertex's index as texture coordinates, so that [`Kernel::triangle`] finds
+/// the vertex data of [`triangles`].
+struct RefKernel<'a> {
+    r: Reference<'a>,
     mode: Mode,
-    out: &'a mut Vec<Option<V3>>,
+    verts: &'a [Vert],
+    out: &'a RefCell<Vec<Option<V3>>>,
     width: u32,
 }
 
-fn f64s(v: [f32; 3]) -> V3 {
-    v.map(|x| x as f64)
-}
-
-impl SpanShader<0> for RefSpan<'_> {
+impl Kernel for RefKernel<'_> {
     type Color = Rgb888;
-    fn shade_span(&mut self, x: i32, y: i32, _s: &[i32; 0], _d: &[i32; 0], out: &mut [Rgb888]) {
-        let sub = (1 << fixshade::raster::SUBPIXEL_BITS) as f64;
-        let p = self
-            .tri
-            .map(|v| [v.screen.x as f64 / sub, v.screen.y as f64 / sub]);
+    /// The vertex index.
+    type Vertex = i32;
+    type Varyings = [i32; 0];
+    type Triangle = RefTri;
+    const NEEDS_POSITION: bool = false;
+    const NEEDS_TEXCOORD: bool = true;
+
+    fn vertex(&self, v: &VertexIn) -> i32 {
+        v.uv[0]
+    }
+
+    fn triangle(&self, v: [&i32; 3], _: &[[i32; 3]; 3]) -> (RefTri, [[i32; 0]; 3]) {
+        let t = v.map(|&i| self.verts[i as usize]);
+        let tri = RefTri {
+            p: t.map(|v| v.screen()),
+            pos: t.map(|v| v.eye_f64()),
+            nrm: t.map(|v| v.normal_f64()),
+        };
+        (tri, [[]; 3])
+    }
+
+    fn span(&self, t: &RefTri, _: &[i32; 0], _: &[i32; 0], x: i32, y: i32, out: &mut [Rgb888]) {
+        let RefTri { p, pos, nrm } = *t;
         let area =
             (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]);
         let lerp = |l: [f64; 3], a: [V3; 3]| -> V3 {
             [0, 1, 2].map(|c| l[0] * a[0][c] + l[1] * a[1][c] + l[2] * a[2][c])
         };
-        let pos = self.tri.map(|v| f64s(v.pos));
-        let nrm = self.tri.map(|v| f64s(v.normal));
         let clamp = |c: V3| c.map(|x| x.clamp(0.0, 1.0));
-        // per-triangle and per-vertex colours for flat and Gouraud
+        // flat: the normalised sum of the unit vertex normals, at the centroid
         let flat = || {
-            let n = normalize([0, 1, 2].map(|c| nrm[0][c] + nrm[1][c] + nrm[2][c]));
+            let u = nrm.map(normalize);
+            let n = normalize([0, 1, 2].map(|c| u[0][c] + u[1][c] + u[2][c]));
             let centroid = [0, 1, 2].map(|c| (pos[0][c] + pos[1][c] + pos[2][c]) / 3.0);
             self.r.shade(centroid, n)
         };
+        // Gouraud: the vertex colours (clamped), interpolated
         let vertex_colours = || [0, 1, 2].map(|i| clamp(self.r.shade(pos[i], nrm[i])));
         let flat_c = (self.mode == Mode::Flat).then(flat);
         let vc = (self.mode == Mode::Gouraud).then(vertex_colours);
-        for (k, _) in out.iter_mut().enumerate() {
+        let mut o = self.out.borrow_mut();
+        for k in 0..out.len() {
             let (cx, cy) = ((x + k as i32) as f64 + 0.5, y as f64 + 0.5);
             // barycentric coordinates of the pixel centre
             let e = |a: [f64; 2], b: [f64; 2]| {
@@ -564,10 +821,93 @@ impl SpanShader<0> for RefSpan<'_> {
                 Mode::Gouraud => lerp(l, vc.unwrap()),
                 Mode::Phong => self.r.shade(lerp(l, pos), lerp(l, nrm)),
             };
-            let idx = (y as u32 * self.width + (x as u32 + k as u32)) as usize;
-            self.out[idx] = Some(c);
+            o[(y as u32 * self.width + (x as u32 + k as u32)) as usize] = Some(c);
         }
     }
+}
+
+/// The f64 reference image: linear RGB per covered pixel, `None` for
+/// background. The coverage is the mesh renderer's: every object drawn by a
+/// `MeshDraw` of the same mesh and transform (the whole frame, depth test on,
+/// back faces culled) with the reference kernel.
+pub fn render_reference(scene: &Scene) -> Vec<Option<V3>> {
+    let (w, h) = (scene.width, scene.height);
+    let layout = Layout::full(w, h).unwrap();
+    let out = RefCell::new(vec![None; (w * h) as usize]);
+    let meshes: Vec<ObjectMesh> = scene.objects.iter().map(object_mesh).collect();
+    let verts: Vec<Vec<Vert>> = meshes
+        .iter()
+        .map(|m| {
+            let t = transform(scene, m);
+            m.positions
+                .iter()
+                .zip(&m.normals)
+                .map(|(&p, &n)| Vert::of(&t, p, n))
+                .collect()
+        })
+        .collect();
+    let index: Vec<[i16; 2]> = (0..meshes.iter().map(|m| m.positions.len()).max().unwrap_or(0))
+        .map(|i| [i as i16, 0])
+        .collect();
+    let mut caches: Vec<Vec<CachedVertex<i32>>> = meshes
+        .iter()
+        .map(|m| vec![CachedVertex::default(); m.positions.len()])
+        .collect();
+    let mut bins: Vec<Vec<u16>> = meshes
+        .iter()
+        .map(|m| vec![0; bins_len(m.triangles.len(), 1)])
+        .collect();
+    let mut draws = Vec::new();
+    for (((obj, m), (vs, cache)), bins) in scene
+        .objects
+        .iter()
+        .zip(&meshes)
+        .zip(verts.iter().zip(caches.iter_mut()))
+        .zip(bins.iter_mut())
+    {
+        let kernel = RefKernel {
+            r: Reference {
+                lights: &scene.lights,
+                material: obj.material,
+                global_ambient: scene.global_ambient,
+                viewer: ViewerDesc::Infinite([0.0, 0.0, 1.0]),
+                fog: None,
+                model: match obj.terms {
+                    Terms4::Lambert => ModelDesc::of::<Lambert>(),
+                    Terms4::Brilliance => ModelDesc::of::<Terms<0, true, false, false>>(),
+                    Terms4::Phong => ModelDesc::of::<PhongSpec>(),
+                    Terms4::Blinn => ModelDesc::of::<BlinnPhong>(),
+                },
+            },
+            mode: obj.mode,
+            verts: vs,
+            out: &out,
+            width: w,
+        };
+        let mesh = m
+            .mesh()
+            .with_texcoords(&index[..m.positions.len()])
+            .unwrap();
+        let memory = MeshMemory {
+            vertices: cache,
+            bins,
+            carry: &mut [],
+        };
+        draws.push(MeshDraw::new(layout, mesh, &transform(scene, m), kernel, memory).unwrap());
+    }
+    let mut dummy = vec![Rgb888::BLACK; (w * h) as usize];
+    let mut depth = vec![0u16; (w * h) as usize];
+    let mut items: Vec<&mut dyn DrawBand<Rgb888>> = draws
+        .iter_mut()
+        .map(|d| d as &mut dyn DrawBand<Rgb888>)
+        .collect();
+    FullFrame::new(w, h, &mut dummy, Some(&mut depth))
+        .unwrap()
+        .render(Rgb888::BLACK, &mut items)
+        .unwrap();
+    drop(items);
+    drop(draws);
+    out.into_inner()
 }
 
 /// Errors of an 8-bit tier image against the reference, over covered pixels.
@@ -743,24 +1083,12 @@ pub fn config_scene(lights: LightSet, mode: Mode) -> Scene {
     }
 }
 
-/// Renders a scene with [`fixshade::shade::IncrementalPhongShading`] in `Q14<NW>` (every
-/// object Phong-shaded), if the scene has only directional lights (one or two) and
-/// Lambert or Blinn-Phong materials; `None` otherwise.
-pub fn render_incremental<const NW: u8, C: OutputColor + Default>(scene: &Scene) -> Option<Vec<C>> {
-    use fixshade::light::DirectionalLight;
-    use fixshade::num::Q14;
-    let dirs: Vec<DirectionalLight<Q14<NW>>> = scene
-        .lights
-        .iter()
-        .map(|d| match d.kind {
-            LightKind::Directional { towards_light } => {
-                fixshade::light::LightColors::new(d.ambient, d.diffuse, d.specular)
-                    .and_then(|c| DirectionalLight::new(towards_light, c))
-                    .ok()
-            }
-            _ => None,
-        })
-        .collect::<Option<_>>()?;
+/// The directional lights of a scene in `Q14<NW>`, if it has only directional
+/// lights and every object a Lambert or Blinn-Phong material.
+fn directional<const NW: u8>(
+    scene: &Scene,
+) -> Option<Vec<fixshade::lighting::DirectionalLight<fixshade::num::Q14<NW>>>> {
+    use fixshade::lighting::{DirectionalLight, LightColors};
     if scene
         .objects
         .iter()
@@ -768,88 +1096,120 @@ pub fn render_incremental<const NW: u8, C: OutputColor + Default>(scene: &Scene)
     {
         return None;
     }
-    let (w, h) = (scene.width, scene.height);
-    let mut pixels = vec![C::from_channels([0; 3]); (w * h) as usize];
-    let mut depth = vec![u16::MAX; (w * h) as usize];
-    let prepared = prepare(scene);
-    {
-        let mut fb = SliceFramebuffer::new(&mut pixels, w, h).unwrap();
-        let mut db = DepthBuffer::new(&mut depth, w).unwrap();
-        for (obj, tris) in scene.objects.iter().zip(&prepared) {
-            match (dirs.len(), obj.terms) {
-                (1, Terms4::Lambert) => {
-                    draw_inc::<NW, 1, Lambert, C>(scene, obj, [dirs[0]], tris, &mut fb, &mut db)
-                }
-                (1, _) => {
-                    draw_inc::<NW, 1, BlinnPhong, C>(scene, obj, [dirs[0]], tris, &mut fb, &mut db)
-                }
-                (2, Terms4::Lambert) => draw_inc::<NW, 2, Lambert, C>(
-                    scene,
-                    obj,
-                    [dirs[0], dirs[1]],
-                    tris,
-                    &mut fb,
-                    &mut db,
-                ),
-                (2, _) => draw_inc::<NW, 2, BlinnPhong, C>(
-                    scene,
-                    obj,
-                    [dirs[0], dirs[1]],
-                    tris,
-                    &mut fb,
-                    &mut db,
-                ),
-                _ => return None,
-            };
-        }
-    }
-    Some(pixels)
+    scene
+        .lights
+        .iter()
+        .map(|d| match d.kind {
+            LightKind::Directional { towards_light } => {
+                LightColors::new(d.ambient, d.diffuse, d.specular)
+                    .and_then(|c| DirectionalLight::new(towards_light, c))
+                    .ok()
+            }
+            _ => None,
+        })
+        .collect()
 }
 
-/// Draws one object with incremental Phong shading; returns the shaded pixels.
-pub fn draw_inc<
-    const NW: u8,
-    const K: usize,
-    M: fixshade::shade::IncrementalModel,
-    C: OutputColor + Default,
->(
+/// Builds one `MeshDraw` per object with [`fixshade::shade::IncrementalPhongShading`]
+/// in `Q14<NW>` (every object Phong-shaded, lit by the scene's `K` directional
+/// lights as an array: `DirectionalLighting<NW, K, M>`) for a frame of
+/// `layout` and hands them to `f`; `None` unless the scene has one or two
+/// directional lights only and Lambert or Blinn-Phong materials.
+pub fn with_incremental_draws<const NW: u8, C: OutputColor, R>(
     scene: &Scene,
-    obj: &Object,
-    lights: [fixshade::light::DirectionalLight<fixshade::num::Q14<NW>>; K],
-    tris: &[[Vert; 3]],
-    fb: &mut SliceFramebuffer<'_, C>,
-    db: &mut DepthBuffer<'_>,
-) -> u64
-where
-    for<'a> Shader<
-        'a,
-        fixshade::shade::IncrementalPhongShading,
-        fixshade::shade::DirectionalLighting<NW, K, M>,
-        Linear,
-        C,
-    >: Shading<fixshade::num::Q14<NW>, Color = C>,
-    fixshade::shade::IncrementalPhongShading:
-        fixshade::shade::ModeState<fixshade::shade::DirectionalLighting<NW, K, M>, C>,
-{
+    layout: Layout,
+    f: impl FnOnce(&mut [&mut dyn DrawBand<C>]) -> R,
+) -> Option<R> {
+    use fixshade::lighting::DirectionalLight;
     use fixshade::num::Q14;
-    let lighting = Lighting::<Q14<NW>, _, M>::new(lights, Material::new(&obj.material).unwrap())
-        .with_global_ambient(Rgb::from_f32(scene.global_ambient));
-    let mut s = Shader::new(fixshade::shade::IncrementalPhongShading, &lighting, Linear);
-    let o = opts();
-    tris.iter()
-        .map(|t| {
-            let sv = t.each_ref().map(|v| {
-                ShadeVertex::<Q14<NW>>::new(
-                    [v.screen.x, v.screen.y],
-                    v.screen.z,
-                    v.screen.inv_w,
-                    v.pos,
-                    v.normal,
-                )
-            });
-            ok(s.draw(fb, Some(db), &sv, &o)).pixels as u64
-        })
-        .sum()
+    use fixshade::shade::IncrementalPhongShading as Inc;
+    type L<const NW: u8, const K: usize, M> = Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>;
+    let dirs = directional::<NW>(scene)?;
+    if !(1..=2).contains(&dirs.len()) {
+        return None;
+    }
+    let meshes: Vec<ObjectMesh> = scene.objects.iter().map(object_mesh).collect();
+    let g = Rgb::from_f32(scene.global_ambient);
+    let mat = |o: &Object| Material::new(&o.material).unwrap();
+    let (mut l1, mut b1, mut l2, mut b2) = (vec![], vec![], vec![], vec![]);
+    for o in &scene.objects {
+        match (dirs.len(), o.terms) {
+            (1, Terms4::Lambert) => {
+                l1.push(L::<NW, 1, Lambert>::new([dirs[0]], mat(o)).with_global_ambient(g))
+            }
+            (1, _) => {
+                b1.push(L::<NW, 1, BlinnPhong>::new([dirs[0]], mat(o)).with_global_ambient(g))
+            }
+            (_, Terms4::Lambert) => {
+                l2.push(L::<NW, 2, Lambert>::new([dirs[0], dirs[1]], mat(o)).with_global_ambient(g))
+            }
+            _ => b2.push(
+                L::<NW, 2, BlinnPhong>::new([dirs[0], dirs[1]], mat(o)).with_global_ambient(g),
+            ),
+        }
+    }
+    let mut mem: Vec<ObjectMemory> = meshes
+        .iter()
+        .map(|m| ObjectMemory::new(m, &layout))
+        .collect();
+    let (mut il1, mut ib1, mut il2, mut ib2) = (l1.iter(), b1.iter(), l2.iter(), b2.iter());
+    let mut draws: Vec<Box<dyn DrawBand<C> + '_>> = Vec::new();
+    for ((o, m), mem) in scene.objects.iter().zip(&meshes).zip(mem.iter_mut()) {
+        let t = transform(scene, m);
+        let mesh = m.mesh();
+        draws.push(match (dirs.len(), o.terms) {
+            (1, Terms4::Lambert) => mesh_item(
+                layout,
+                mesh,
+                &t,
+                Shader::new(Inc, il1.next().unwrap(), Linear),
+                mem,
+            ),
+            (1, _) => mesh_item(
+                layout,
+                mesh,
+                &t,
+                Shader::new(Inc, ib1.next().unwrap(), Linear),
+                mem,
+            ),
+            (_, Terms4::Lambert) => mesh_item(
+                layout,
+                mesh,
+                &t,
+                Shader::new(Inc, il2.next().unwrap(), Linear),
+                mem,
+            ),
+            _ => mesh_item(
+                layout,
+                mesh,
+                &t,
+                Shader::new(Inc, ib2.next().unwrap(), Linear),
+                mem,
+            ),
+        });
+    }
+    let mut items: Vec<&mut dyn DrawBand<C>> = draws
+        .iter_mut()
+        .map(|d| &mut **d as &mut dyn DrawBand<C>)
+        .collect();
+    Some(f(&mut items))
+}
+
+/// Renders a scene with [`fixshade::shade::IncrementalPhongShading`] in
+/// `Q14<NW>` (see [`with_incremental_draws`]); `None` for an unsupported
+/// scene.
+pub fn render_incremental<const NW: u8, C: OutputColor>(scene: &Scene) -> Option<Vec<C>> {
+    let (w, h) = (scene.width, scene.height);
+    let black = C::from_channels([0; 3]);
+    let mut pixels = vec![black; (w * h) as usize];
+    let mut depth = vec![0u16; (w * h) as usize];
+    with_incremental_draws::<NW, C, _>(scene, Layout::full(w, h).unwrap(), |items| {
+        FullFrame::new(w, h, &mut pixels, Some(&mut depth))
+            .unwrap()
+            .render(black, items)
+            .unwrap()
+    })?;
+    Some(pixels)
 }
 
 /// The same scene with every object Phong-shaded (for the incremental comparison).
@@ -857,214 +1217,6 @@ pub fn all_phong(scene: &Scene) -> Scene {
     let mut s = scene.clone();
     s.objects.iter_mut().for_each(|o| o.mode = Mode::Phong);
     s
-}
-
-// ------------------------------------------------------------------ the mesh renderer
-
-/// A scene's objects as compact meshes for the mesh renderer: positions in eye
-/// units with `MESH_FRAC` fraction bits, Q14 normals.
-const MESH_FRAC: u8 = 10;
-
-/// The unit sphere of the showcase spheres (scaled and moved by each object's
-/// model matrix).
-static UNIT_SPHERE: fixshade::mesh::MeshData<
-    { uv_sphere_counts(STACKS, SLICES).0 },
-    { uv_sphere_counts(STACKS, SLICES).1 },
-> = fixshade::mesh::MeshData::uv_sphere(STACKS, SLICES, 14);
-
-/// An object's mesh and model matrix.
-struct ObjectMesh {
-    positions: Vec<[i16; 3]>,
-    normals: Vec<[i16; 3]>,
-    triangles: Vec<[u16; 3]>,
-    frac: u8,
-    model: Mat4,
-}
-
-fn object_mesh(obj: &Object) -> ObjectMesh {
-    match obj.shape {
-        Shape::Sphere { centre, radius } => ObjectMesh {
-            positions: UNIT_SPHERE.positions.to_vec(),
-            normals: UNIT_SPHERE.normals.to_vec(),
-            triangles: UNIT_SPHERE.triangles.to_vec(),
-            frac: UNIT_SPHERE.frac,
-            model: Mat4::translate(eye(centre)).mul(&Mat4::scale([radius / PIXELS_PER_UNIT; 3])),
-        },
-        Shape::Triangle { corners, normals } => {
-            let q = |v: f32, f: u8| (v * f32::from(1u16 << f)).round() as i16;
-            ObjectMesh {
-                positions: corners
-                    .iter()
-                    .map(|c| eye(*c).map(|v| q(v, MESH_FRAC)))
-                    .collect(),
-                normals: normals
-                    .iter()
-                    .map(|n| {
-                        normalize([n[0] as f64, n[1] as f64, n[2] as f64]).map(|v| q(v as f32, 14))
-                    })
-                    .collect(),
-                triangles: vec![[0, 1, 2]],
-                frac: MESH_FRAC,
-                model: Mat4::IDENTITY,
-            }
-        }
-    }
-}
-
-/// Renders a scene with the mesh renderer in tier `S`: one `MeshDraw` per
-/// object (each with its own model matrix, material and shading mode), all
-/// drawn band by band (8-row strip and depth strip) into `display`.
-pub fn render_mesh<S: Scalar, D>(scene: &Scene, display: &mut D) -> Result<(), D::Error>
-where
-    D: embedded_graphics_core::draw_target::DrawTarget<Color = Rgb888>,
-{
-    use fixshade::camera::Camera;
-    use fixshade::render::{
-        bins_len, Bands, CachedVertex, Carry, DrawBand, Layout, MeshDraw, MeshMemory,
-    };
-    const ROWS: u32 = 8;
-    let (w, h) = (scene.width, scene.height);
-    let layout = Layout::banded(w, h, ROWS).unwrap();
-    let cam = Camera::orthographic(
-        0.0,
-        w as f32 / PIXELS_PER_UNIT,
-        -(h as f32) / PIXELS_PER_UNIT,
-        0.0,
-        1.0,
-        20.0,
-        Viewport::new(0, 0, w as i32, h as i32).unwrap(),
-    )
-    .unwrap();
-    let meshes: Vec<ObjectMesh> = scene.objects.iter().map(object_mesh).collect();
-    let lights: heapless::Vec<AnyLight<S>, 4> = scene
-        .lights
-        .iter()
-        .map(|d| AnyLight::new(d).unwrap())
-        .collect();
-    let lighting = |o: &Object| {
-        (
-            lights.clone(),
-            Material::<S>::new(&o.material).unwrap(),
-            Rgb::<S>::from_f32(scene.global_ambient),
-        )
-    };
-    // storage first (one slot per object and payload type), then the draws borrowing it
-    let mut lam: Vec<_> = Vec::new();
-    let mut bri: Vec<_> = Vec::new();
-    let mut pho: Vec<_> = Vec::new();
-    let mut bli: Vec<_> = Vec::new();
-    for o in &scene.objects {
-        let (l, m, g) = lighting(o);
-        match o.terms {
-            Terms4::Lambert => {
-                lam.push(Lighting::<S, _, Lambert>::new(l, m).with_global_ambient(g))
-            }
-            Terms4::Brilliance => bri.push(
-                Lighting::<S, _, Terms<0, true, false, false>>::new(l, m).with_global_ambient(g),
-            ),
-            Terms4::Phong => {
-                pho.push(Lighting::<S, _, PhongSpec>::new(l, m).with_global_ambient(g))
-            }
-            Terms4::Blinn => {
-                bli.push(Lighting::<S, _, BlinnPhong>::new(l, m).with_global_ambient(g))
-            }
-        }
-    }
-    let nv = |m: &ObjectMesh| m.positions.len();
-    let mut caches_u: Vec<Vec<CachedVertex<[u16; 3]>>> = meshes
-        .iter()
-        .map(|m| vec![CachedVertex::default(); nv(m)])
-        .collect();
-    let mut caches_i: Vec<Vec<CachedVertex<[i16; 3]>>> = meshes
-        .iter()
-        .map(|m| vec![CachedVertex::default(); nv(m)])
-        .collect();
-    let mut bins: Vec<Vec<u16>> = meshes
-        .iter()
-        .map(|m| vec![0; bins_len(m.triangles.len(), layout.bands() as usize)])
-        .collect();
-    let mut carry: Vec<Vec<Carry>> = meshes
-        .iter()
-        .map(|m| vec![Carry::default(); 2 * m.triangles.len()])
-        .collect();
-    let (mut il, mut ib, mut ip, mut iq) = (lam.iter(), bri.iter(), pho.iter(), bli.iter());
-    let mut draws: Vec<Box<dyn DrawBand<Rgb888> + '_>> = Vec::new();
-    for ((((o, m), (cu, ci)), b), c) in scene
-        .objects
-        .iter()
-        .zip(&meshes)
-        .zip(caches_u.iter_mut().zip(caches_i.iter_mut()))
-        .zip(bins.iter_mut())
-        .zip(carry.iter_mut())
-    {
-        let mesh =
-            fixshade::mesh::Mesh::new(&m.positions, &m.normals, &m.triangles, m.frac).unwrap();
-        let t = cam.mesh_transform(&m.model, m.frac).unwrap();
-        macro_rules! draw {
-            ($lit:expr) => {{
-                let lit = $lit;
-                match o.mode {
-                    Mode::Flat => Box::new(
-                        MeshDraw::new(
-                            layout,
-                            mesh,
-                            &t,
-                            Shader::new(FlatShading, lit, Linear),
-                            MeshMemory {
-                                vertices: ci,
-                                bins: b,
-                                carry: c,
-                            },
-                        )
-                        .unwrap(),
-                    ) as Box<dyn DrawBand<Rgb888>>,
-                    Mode::Gouraud => Box::new(
-                        MeshDraw::new(
-                            layout,
-                            mesh,
-                            &t,
-                            Shader::new(GouraudShading, lit, Linear),
-                            MeshMemory {
-                                vertices: cu,
-                                bins: b,
-                                carry: c,
-                            },
-                        )
-                        .unwrap(),
-                    ),
-                    Mode::Phong => Box::new(
-                        MeshDraw::new(
-                            layout,
-                            mesh,
-                            &t,
-                            Shader::new(PhongShading, lit, Linear),
-                            MeshMemory {
-                                vertices: ci,
-                                bins: b,
-                                carry: c,
-                            },
-                        )
-                        .unwrap(),
-                    ),
-                }
-            }};
-        }
-        draws.push(match o.terms {
-            Terms4::Lambert => draw!(il.next().unwrap()),
-            Terms4::Brilliance => draw!(ib.next().unwrap()),
-            Terms4::Phong => draw!(ip.next().unwrap()),
-            Terms4::Blinn => draw!(iq.next().unwrap()),
-        });
-    }
-    let mut strip = vec![Rgb888::BLACK; (w * ROWS) as usize];
-    let mut depth = vec![0u16; (w * ROWS) as usize];
-    let mut items: Vec<&mut dyn DrawBand<Rgb888>> = draws
-        .iter_mut()
-        .map(|d| &mut **d as &mut dyn DrawBand<Rgb888>)
-        .collect();
-    Bands::new(layout, &mut strip, Some(&mut depth))
-        .unwrap()
-        .render(display, Rgb888::BLACK, &mut items)
 }
 
 /// A `DrawTarget` over a `Vec` (the mesh renderer's output for comparisons).
@@ -1099,14 +1251,14 @@ pub fn render_mesh_pixels<S: Scalar>(scene: &Scene) -> Vec<Rgb888> {
         scene.width,
         scene.height,
     );
-    let Ok(()) = render_mesh::<S, _>(scene, &mut p);
+    render_mesh::<S, _>(scene, &mut p).expect("a display that cannot fail, items of its layout");
     p.0
 }
 
 /// The mesh renderer against the reference: the error on pixels both cover,
-/// and how many pixels only one of them covers (silhouette pixels: the
-/// renderer's vertices are rounded from its fixed-point transform, the
-/// reference's from `f32`).
+/// and how many pixels only one of them covers (the reference takes its
+/// coverage from the same vertices and set-up: none, unless the renderer drew
+/// a pixel black that the reference does not, or the reverse).
 pub fn compare_mesh(mesh: &[Rgb888], reference: &[Option<V3>]) -> (u32, f64, usize, usize) {
     let (mut max, mut sum, mut n, mut only) = (0u32, 0u64, 0usize, 0usize);
     for (t, r) in mesh.iter().zip(reference) {

@@ -7,12 +7,11 @@
 #![allow(dead_code)]
 
 use fixshade::color::Rgb;
-use fixshade::light::{AnyLight, LightDesc, LightKind};
+use fixshade::lighting::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{InfiniteViewer, Lighting, LinearFog, LocalViewer, Model};
-use fixshade::material::{Material, MaterialDesc};
-use fixshade::num::Scalar;
+use fixshade::lighting::{Material, MaterialDesc};
+use fixshade::num::{point_from_f32, Scalar, Vec3};
 use fixshade::reference::{to_u8, FogDesc, ModelDesc, Reference, ViewerDesc};
-use fixshade::vector::{point_from_f32, Vec3};
 use proptest::prelude::*;
 
 /// The lighting term a sample isolates (all others off or zero).

@@ -2,22 +2,26 @@
 //! the mesh renderer into side-by-side panels: silhouette refinement, a
 //! normal map baked from a high-poly mesh, base / bump / displacement, and
 //! texture mapping.
+//!
+//! Lit by one `DirectionalLight` in `Q14<2>` (as firmware writes it):
+//! `PhongShading` picks the incremental kernel for it, and
+//! `PhongShading.normal_mapped` the fast normal-map kernel.
 
 #![allow(dead_code)]
 
 use super::surface::{self as sf, HostMesh};
 use embedded_graphics::pixelcolor::Rgb888;
-use fixshade::camera::{Camera, MeshTransform, Perspective};
+use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Viewport};
 use fixshade::mesh::{
-    displace, textured_sphere_counts, to_compact, uv_sphere_counts, Mat4, Mesh, MeshData,
-    TexturedMeshData, Viewport, TEXCOORD_FRAC,
+    displace, textured_sphere_counts, to_compact, uv_sphere_counts, Mesh, MeshData,
+    TexturedMeshData, TEXCOORD_FRAC,
 };
-use fixshade::normal_map::{bump_to_normals, normal_texel, NormalMap, NormalTexel};
 use fixshade::prelude::*;
 use fixshade::render::{
-    bins_len, CachedVertex, Carry, FullFrame, Layout, Lerp, MeshDraw, MeshMemory, RefineBuffers,
+    bins_len, CachedVertex, Carry, FullFrame, Layout, MeshDraw, MeshMemory, RefineBuffers,
 };
-use fixshade::shade::{FastNormalMapShader, Kernel, NormalMapShader, TexturedGouraudShading};
+use fixshade::shade::{GeneralPhongShading, Kernel};
+use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, NormalTexel};
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
 
 /// Side of a panel in pixels.
@@ -67,10 +71,7 @@ fn panel<K: Kernel<Color = Rgb888>>(
     mesh: Mesh<'_>,
     t: &MeshTransform<Perspective>,
     k: K,
-) -> Vec<Rgb888>
-where
-    K::Vertex: Lerp,
-{
+) -> Vec<Rgb888> {
     let layout = Layout::full(SIDE, SIDE).unwrap();
     let mut verts = vec![CachedVertex::<K::Vertex>::default(); mesh.vertex_count()];
     let mut bins = vec![0u16; bins_len(mesh.triangle_count(), 1)];
@@ -91,7 +92,8 @@ where
     let (mut color, mut depth) = (vec![BG; n], vec![0u16; n]);
     FullFrame::new(SIDE, SIDE, &mut color, Some(&mut depth))
         .unwrap()
-        .render(BG, &mut [&mut draw]);
+        .render(BG, &mut [&mut draw])
+        .unwrap();
     color
 }
 
@@ -139,7 +141,7 @@ fn silhouette_pair(cam: &Camera<Perspective>) -> (Vec<Rgb888>, Vec<Rgb888>, Stri
     let mesh = COARSE_SPHERE.mesh();
     let t = cam.mesh_transform(&model(), COARSE_SPHERE.frac).unwrap();
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
-        [key_light()],
+        key_light(),
         Material::new(&material([0.85, 0.35, 0.25], 0.5, 40.0)).unwrap(),
     );
     let shader = || Shader::<_, _, _, Rgb888>::new(PhongShading, &lighting, Linear);
@@ -169,7 +171,8 @@ fn silhouette_pair(cam: &Camera<Perspective>) -> (Vec<Rgb888>, Vec<Rgb888>, Stri
     let (mut color, mut depth) = (vec![BG; n], vec![0u16; n]);
     FullFrame::new(SIDE, SIDE, &mut color, Some(&mut depth))
         .unwrap()
-        .render(BG, &mut [&mut draw]);
+        .render(BG, &mut [&mut draw])
+        .unwrap();
     (plain, color, format!("{stats:?}"))
 }
 
@@ -225,7 +228,7 @@ pub fn normal_map() -> Image {
     let map = NormalMap::new(&baked, 9, 8, Wrap::Repeat).unwrap();
     let cam = camera(SIDE, 3.6);
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
-        [key_light()],
+        key_light(),
         Material::new(&material([0.75, 0.72, 0.68], 0.45, 30.0)).unwrap(),
     );
     let low = LOW_SPHERE.mesh();
@@ -239,7 +242,7 @@ pub fn normal_map() -> Image {
     let b = panel(
         low,
         &t_low,
-        FastNormalMapShader::<_, _, Rgb888>::new(&lighting, map),
+        Shader::<_, _, _, Rgb888>::new(PhongShading.normal_mapped(map), &lighting, Linear),
     );
     let c = panel(
         high_c.mesh(),
@@ -254,7 +257,7 @@ pub fn normal_map() -> Image {
         height,
         pixels,
         notes: vec![format!(
-            "low-poly {} triangles, high-poly {} triangles, normal map 512 × 256 (Q14, FastNormalMapShader)",
+            "low-poly {} triangles, high-poly {} triangles, normal map 512 × 256 (Q14, PhongShading.normal_mapped: the fast kernel)",
             low.triangle_count(),
             high_c.tris.len()
         )],
@@ -293,7 +296,7 @@ pub fn bump_displacement() -> Image {
     let displaced = Mesh::new(&pos, &nrm, dmesh.triangles(), 13).unwrap();
     let cam = camera(SIDE, 3.6);
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
-        [key_light()],
+        key_light(),
         Material::new(&material([0.35, 0.55, 0.8], 0.4, 30.0)).unwrap(),
     );
     let low = LOW_SPHERE.mesh();
@@ -307,7 +310,7 @@ pub fn bump_displacement() -> Image {
     let b = panel(
         low,
         &t_low,
-        NormalMapShader::<_, _, Rgb888>::new(&lighting, map, Linear),
+        Shader::<_, _, _, Rgb888>::new(GeneralPhongShading.normal_mapped(map), &lighting, Linear),
     );
     let c = panel(
         displaced,
@@ -331,7 +334,7 @@ pub fn bump_displacement() -> Image {
 
 /// A textured, lit sphere and a textured floor in perspective.
 pub fn textured() -> Image {
-    // the shader keeps a `Texture<'static>` (textures live in flash): leak the host copy
+    // textures live in flash in firmware: leak the host copy (`'static`)
     let texels: &'static [u16] = Box::leak(
         sf::tile_texture(256, 128)
             .into_iter()
@@ -342,15 +345,13 @@ pub fn textured() -> Image {
     let tex = Texture::new(Texels::Rgb565(texels), 8, 7, Wrap::Repeat).unwrap();
     let cam = camera(SIDE, 3.6);
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
-        [key_light()],
+        key_light(),
         Material::new(&material([1.0, 1.0, 1.0], 0.6, 40.0)).unwrap(),
     );
     let low = LOW_SPHERE.mesh();
     let t = cam.mesh_transform(&model(), LOW_SPHERE.frac).unwrap();
-    let shader = |f| {
-        Shader::<_, _, _, Rgb888>::new(TexturedGouraudShading, &lighting, Linear)
-            .with_texture(tex, f)
-    };
+    let shader =
+        |f| Shader::<_, _, _, Rgb888>::new(GouraudShading.textured(tex, f), &lighting, Linear);
     let a = panel(low, &t, shader(Filter::Nearest));
     let b = panel(low, &t, shader(Filter::Bilinear));
     // a floor receding in perspective, the texture repeated 2 × 4 times
@@ -398,8 +399,11 @@ pub fn textured() -> Image {
     let c = panel(
         floor,
         &tf,
-        Shader::<_, _, _, Rgb888>::new(TexturedGouraudShading, &lighting, Linear)
-            .with_texture(floor_tex, Filter::Bilinear),
+        Shader::<_, _, _, Rgb888>::new(
+            GouraudShading.textured(floor_tex, Filter::Bilinear),
+            &lighting,
+            Linear,
+        ),
     );
     let (width, height, pixels) = frame_of(vec![a, b, c]);
     Image {

@@ -1,21 +1,21 @@
 //! The one place that calls fixshade's renderer (its API is being
 //! refactored: keep this small): a mesh, optionally textured, lit by one
-//! directional Blinn-Phong light in perspective, into a `side × side` frame.
+//! directional Blinn-Phong light in perspective, into a `side × side` frame,
+//! as firmware draws it (a `MeshDraw`, one `DirectionalLight` in `Q14<2>`).
 
-use fixshade::camera::{Camera, MeshTransform, Perspective};
-use fixshade::mesh::{Mat4, Mesh, Viewport};
+use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Viewport};
+use fixshade::mesh::Mesh;
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, CachedVertex, Carry, FullFrame, Layout, Lerp, MeshDraw, MeshMemory,
-};
-use fixshade::shade::{Kernel, TexturedGouraudShading};
+use fixshade::render::{bins_len, CachedVertex, Carry, FullFrame, Layout, MeshDraw, MeshMemory};
+use fixshade::shade::Kernel;
 use fixshade::texture::{Filter, Texture};
 
 /// The background colour.
 pub const BG: Rgb888 = Rgb888::new(20, 22, 30);
 
 /// Renders `mesh` (positions with `frac` bits) seen from 4.5 units away,
-/// turned by `model`, as RGB rows from the top.
+/// turned by `model`, as RGB rows from the top: Gouraud shading, textured
+/// (`GL_MODULATE`, bilinear) when a texture is given.
 pub fn render(
     mesh: Mesh<'static>,
     texture: Option<Texture<'static>>,
@@ -34,13 +34,16 @@ pub fn render(
     let t = camera.mesh_transform(model, mesh.frac()).unwrap();
     let light = DirectionalLight::<Q14<2>>::white([-0.4, 0.5, 0.8]).unwrap();
     let white = MaterialDesc::classic([1.0, 1.0, 1.0], AmbientSource::Object, 0.15, 0.8, 0.4, 40.0);
-    let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&white).unwrap());
+    let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(light, Material::new(&white).unwrap());
     match texture {
         Some(tex) => frame(
             mesh,
             &t,
-            Shader::<_, _, _, Rgb888>::new(TexturedGouraudShading, &lighting, Linear)
-                .with_texture(tex, Filter::Bilinear),
+            Shader::<_, _, _, Rgb888>::new(
+                GouraudShading.textured(tex, Filter::Bilinear),
+                &lighting,
+                Linear,
+            ),
             side,
         ),
         None => frame(
@@ -57,10 +60,7 @@ fn frame<K: Kernel<Color = Rgb888>>(
     t: &MeshTransform<Perspective>,
     kernel: K,
     side: u32,
-) -> Vec<Rgb888>
-where
-    K::Vertex: Lerp,
-{
+) -> Vec<Rgb888> {
     let mut verts = vec![CachedVertex::<K::Vertex>::default(); mesh.vertex_count()];
     let mut bins = vec![0u16; bins_len(mesh.triangle_count(), 1)];
     let mut carry = vec![Carry::default(); 2 * mesh.triangle_count()];
@@ -75,7 +75,8 @@ where
     let (mut color, mut depth) = (vec![BG; n], vec![0u16; n]);
     FullFrame::new(side, side, &mut color, Some(&mut depth))
         .unwrap()
-        .render(BG, &mut [&mut draw]);
+        .render(BG, &mut [&mut draw])
+        .unwrap();
     color
 }
 
