@@ -127,7 +127,7 @@ impl ConvertedTexture {
     /// # Errors
     ///
     /// Those of [`Texture::new`]; never for a texture made by [`convert`].
-    pub fn texture(&self) -> Result<Texture<'_>, fixshade::texture::TextureError> {
+    pub fn texture(&self) -> Result<Texture<'_>, fixshade::error::TextureError> {
         let texels = match &self.texels {
             TexelData::Rgb565(d) => Texels::Rgb565(d),
             TexelData::Gray8(d) => Texels::Gray8(d),

@@ -21,7 +21,7 @@
 //!   the triangle). Every value is a convex combination of the vertex
 //!   values (the weights are clamped to `[0, 1]`): no clamping is needed.
 //!   Arithmetic: `1/wᵢ` as the product of the other two `w` (16-bit
-//!   mantissas, no division), the weights in Q14 from one table-and-Newton
+//!   mantissas, no division), the weights in Q15 from one table-and-Newton
 //!   reciprocal per sub-span end, so a value is off by about
 //!   `2^−14·max|aⱼ − a₀|` plus the weights' error: their planes' own (which
 //!   dominates on large triangles) and the reciprocal's relative error,
@@ -31,8 +31,8 @@
 //! Depth (`z/w`) is screen-linear under both projections.
 
 use super::setup::{at3, bit_length, next3, ClampTo, Plane, Setup};
-use super::SUBPIXEL_BITS;
 use super::ATTR_FRAC;
+use super::SUBPIXEL_BITS;
 use crate::num::recip::{normalise, recip16};
 
 /// Varyings at the vertices are clamped to ±(2^15 − 1), so that the
@@ -206,8 +206,8 @@ pub(crate) struct Persp<V: Varyings> {
     e_row: [i32; 3],
     e_dx: [i32; 3],
     e_dy: [i32; 3],
-    /// The shift that brings `A` below 2^16.
-    shift: u32,
+    /// `bit_length(A) − 8`: `Eᵢ·qᵢ / 2^k < 2^24`.
+    k: i32,
     /// `1/wᵢ` up to a common factor, at most 2^16.
     q: [u32; 3],
     /// Vertex 0's values with [`ATTR_FRAC`] bits, and the differences
@@ -242,7 +242,7 @@ impl<V: Varyings> Persp<V> {
             e_row: e.map(|e| e.0),
             e_dx: e.map(|e| e.1),
             e_dy: e.map(|e| e.2),
-            shift: bit_length(area.max(0) as u32).saturating_sub(16),
+            k: bit_length(area.max(0) as u32) as i32 - 8,
             q: inverse_w(w),
             a0: V::from_fn(|i| corner(s, v, 0, i) << ATTR_FRAC),
             d1: V::from_fn(|i| corner(s, v, 1, i) - corner(s, v, 0, i)),
@@ -270,31 +270,46 @@ impl<V: Varyings> Persp<V> {
     /// covers), with [`ATTR_FRAC`] bits.
     #[inline]
     pub(crate) fn at(&self, x: i32) -> V {
-        // Eᵢ at the pixel: exact in [0, A] inside the triangle, so the
-        // wrapping sum is exact; ΣEᵢ ≤ A: Σ(Eᵢ >> shift) < 2^16
+        // Eᵢ at the pixel: exact in [0, A] inside the triangle (so the
+        // wrapping sum is exact)
         let e = [0, 1, 2].map(|i| {
             let e = self.e_row[i].wrapping_add(x.wrapping_mul(self.e_dx[i]));
-            (e.max(0) as u32) >> self.shift
+            e.max(0) as u32
         });
-        // tᵢ = Eᵢ·qᵢ, Σtᵢ < 2^16·2^16; the weights tᵢ / Σt in Q14
-        let t = [e[0] * self.q[0], e[1] * self.q[1], e[2] * self.q[2]];
-        let sum = t[0].wrapping_add(t[1]).wrapping_add(t[2]);
+        // tᵢ = Eᵢ·qᵢ / 2^k < 2^24 (and Σtᵢ ≤ A·max qᵢ / 2^k < 2^24), from the 16-bit
+        // halves of Eᵢ (32-bit products): Eᵢ is not rounded before it is
+        // weighed (near a far vertex a small Eᵢ meets a large qᵢ)
+        let k = self.k;
+        let t = [0, 1, 2].map(|i| {
+            let (hi, lo) = ((e[i] >> 16) * self.q[i], (e[i] & 0xFFFF) * self.q[i]);
+            let hi = if k >= 16 {
+                hi >> (k - 16)
+            } else {
+                hi << (16 - k)
+            };
+            hi + if k >= 0 { lo >> k } else { lo << -k }
+        });
+        let sum = t[0] + t[1] + t[2];
         let (sn, m) = normalise(sum, 15);
         if sn == 0 {
             return self.a0;
         }
         let r = recip16(sn);
-        // tᵢ·2^m ≤ sn < 2^16 and r ≤ 2^16: the product fits 32 bits
+        // tᵢ·2^m ≤ sn < 2^16 and r ≤ 2^16: the product (≈ 2^31·tᵢ/Σt) and
+        // its rounding half fit 32 bits; the weights in Q15, rounded
         let weight = |ti: u32| {
             let tn = if m >= 0 { ti << m } else { ti >> -m };
-            ((tn * r) >> 17).min(1 << 14) as i32
+            ((tn * r + (1 << 15)) >> 16).min(1 << 15) as i32
         };
-        let (w1, w2) = (weight(t[1]), weight(t[2]));
-        // a₀ + w₁·(a₁ − a₀) + w₂·(a₂ − a₀): a convex combination, |wⱼ·dⱼ| ≤ 2^30
+        let w1 = weight(t[1]);
+        let w2 = weight(t[2]).min((1 << 15) - w1);
+        // a₀ + w₁·(a₁ − a₀) + w₂·(a₂ − a₀) with ATTR_FRAC (14) bits: a convex
+        // combination; |wⱼ·dⱼ| ≤ 2^15·(2^16 − 2) < 2^31
         V::from_fn(|i| {
+            let p = |w: i32, d: i32| (w * d + 1) >> 1;
             get(&self.a0, i)
-                .wrapping_add(w1 * get(&self.d1, i))
-                .wrapping_add(w2 * get(&self.d2, i))
+                .wrapping_add(p(w1, get(&self.d1, i)))
+                .wrapping_add(p(w2, get(&self.d2, i)))
         })
     }
 }
