@@ -5,7 +5,8 @@
 //! model (`ref`).
 //!
 //! ```sh
-//! cargo run --release --example conformance -- [--scenes DIR] [--out DIR] [names…]
+//! cargo run --release --example conformance -- [--scenes DIR] [--out DIR] \
+//!     [--pipeline-perspective] [--mesh-as-triangles] [names…]
 //! ```
 //!
 //! Writes `<out>/fixshade/<scene>.<tier>.rgb` (raw RGB8, row 0 at the top),
@@ -47,6 +48,7 @@
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
@@ -664,11 +666,15 @@ fn draw_one<K: Kernel<Color = Rgb888, Varyings = [i32; N]>, const N: usize>(
 
 /// `--pipeline-perspective`: interpolate perspective triangles with the
 /// pipeline's own sub-spans (no [`SubSpans`]).
-static PIPELINE_PERSPECTIVE: std::sync::atomic::AtomicBool =
-    std::sync::atomic::AtomicBool::new(false);
+static PIPELINE_PERSPECTIVE: AtomicBool = AtomicBool::new(false);
+
+/// `--mesh-as-triangles`: draw mesh objects triangle by triangle (with their
+/// transform's corners and the same kernels, through [`SubSpans`] unless
+/// `--pipeline-perspective`) instead of with [`MeshDraw`].
+static MESH_AS_TRIANGLES: AtomicBool = AtomicBool::new(false);
 
 fn pipeline_perspective() -> bool {
-    PIPELINE_PERSPECTIVE.load(std::sync::atomic::Ordering::Relaxed)
+    PIPELINE_PERSPECTIVE.load(Ordering::Relaxed)
 }
 
 /// Homogeneous pixel coordinates `(x·w, y·w, w)` of the corners of triangle
@@ -967,7 +973,11 @@ fn draw_with<S: Scalar, I: Illuminate<Scalar = S> + Clone>(
 ) {
     let separate = sc.separate_specular;
     let colored = o.color_material.is_some();
-    if let Some(m) = &g.mesh {
+    if let Some(m) = g
+        .mesh
+        .as_ref()
+        .filter(|_| !MESH_AS_TRIANGLES.load(Ordering::Relaxed))
+    {
         // the mesh renderer: the library's modes as they are
         if colored || separate || !sc.normalize || o.shading == Shade::Flat {
             rep.unsupported(
@@ -1377,9 +1387,8 @@ fn main() {
         match a.as_str() {
             "--scenes" => scenes_dir = args.next().expect("--scenes DIR").into(),
             "--out" => out = args.next().expect("--out DIR").into(),
-            "--pipeline-perspective" => {
-                PIPELINE_PERSPECTIVE.store(true, std::sync::atomic::Ordering::Relaxed)
-            }
+            "--pipeline-perspective" => PIPELINE_PERSPECTIVE.store(true, Ordering::Relaxed),
+            "--mesh-as-triangles" => MESH_AS_TRIANGLES.store(true, Ordering::Relaxed),
             _ => names.push(a),
         }
     }
