@@ -16,8 +16,9 @@ Per scene and tier:
   one renderer); *unexplained* are, in scenes whose vertices are not on the
   1/16-pixel grid, those whose centre is farther than 1/16 px from every projected
   triangle edge (vertex snapping moves an edge by at most 1/32·√2 px in fixshade,
-  4 sub-pixel bits, and 1/512·√2 px in Mesa, 8 bits); in snapped scenes, all of
-  them (both renderers rasterize the same triangles there).
+  4 sub-pixel bits, and 1/512·√2 px in Mesa, 8 bits; for a triangle the near
+  plane cuts, the edges of its visible polygon); in snapped scenes, all of them
+  (both renderers rasterize the same triangles there).
 
 Targets (issue 12): ``f32``, ``q30`` and ``ref`` within 1 LSB on ≥ 99.9 % of
 interior pixels and within 2 LSB on all; ``q14`` within the bound the crate
@@ -59,21 +60,45 @@ def erode_same(ids, r=2):
     return ok
 
 
+def near_clipped(c):
+    """The polygon of clip-space triangle ``c`` (3 × 4) on the visible side of
+    OpenGL's near plane (z_c + w_c ≥ 0), Sutherland–Hodgman."""
+    out = []
+    for a, b in ((c[0], c[1]), (c[1], c[2]), (c[2], c[0])):
+        da, db = a[2] + a[3], b[2] + b[3]
+        if da >= 0:
+            out.append(a)
+        if (da >= 0) != (db >= 0):
+            out.append(a + (b - a) * (da / (da - db)))
+    return out
+
+
 def window_edges(sc):
-    """Every triangle edge in window coordinates (pixels, y down), float64."""
+    """Every triangle edge in window coordinates (pixels, y down), float64; the
+    edges of triangles the near plane cuts are those of the visible polygon."""
     proj = np.asarray(sc["camera"]["projection"])
     view = np.asarray(sc["camera"]["view"])
     w, h = sc["width"], sc["height"]
     segs = []
+
+    def win(c):
+        ndc = c[..., :3] / c[..., 3:4]
+        return np.stack([(ndc[..., 0] + 1) * w / 2, (1 - ndc[..., 1]) * h / 2], -1)
+
     for o in sc["objects"]:
         mvp = proj @ view @ np.asarray(o["model"])
         p = np.asarray(o["mesh"]["positions"], float)
         c = np.c_[p, np.ones(len(p))] @ mvp.T
-        ndc = c[:, :3] / c[:, 3:4]
-        win = np.c_[(ndc[:, 0] + 1) * w / 2, (1 - ndc[:, 1]) * h / 2]
         t = np.asarray(o["mesh"]["triangles"])
+        whole = ((c[t, 2] + c[t, 3]) >= 0).all(1)
+        wt = win(c)[t[whole]]
         for a, b in ((0, 1), (1, 2), (2, 0)):
-            segs.append(np.c_[win[t[:, a]], win[t[:, b]]])
+            segs.append(np.c_[wt[:, a], wt[:, b]])
+        for tri in t[~whole]:
+            poly = near_clipped(c[tri])
+            pw = [win(v) for v in poly]
+            for k in range(len(pw)):
+                segs.append(np.r_[pw[k], pw[(k + 1) % len(pw)]][None, :])
     return np.concatenate(segs)
 
 

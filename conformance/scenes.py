@@ -7,9 +7,11 @@ one self-contained JSON file per scene for both renderers.
 Every scene file holds everything both renderers need, exactly:
 
 - ``camera``: ``projection`` and ``view`` (4×4, row-major, applied to column
-  vectors as in OpenGL; every element a float32 value), ``near_w`` (the near plane
-  in clip space for fixshade's ``ScreenTransform``), ``perspective`` (whether
-  attributes are interpolated perspective-correctly);
+  vectors as in OpenGL; every element a float32 value), ``near_w`` (the near plane:
+  ``w_c`` at the eye-space distance ``near``), ``perspective`` (whether attributes
+  are interpolated perspective-correctly), and the parameters the projection was
+  made from (``ortho``: glOrtho's six, or ``fovy``, ``near``, ``far`` of
+  gluPerspective), from which fixshade's mesh renderer builds its ``Camera``;
 - ``width``/``height`` of the viewport (pixel (0, 0) is the top-left one);
 - ``light_model``: ``ambient`` (RGBA), ``local_viewer``, ``two_side``,
   ``color_control`` (``"single"`` or ``"separate"``);
@@ -22,13 +24,18 @@ Every scene file holds everything both renderers need, exactly:
   ``colors``, counter-clockwise ``triangles``), its ``model`` matrix (modelview =
   view·model), ``front``/``back`` materials (every ``glMaterialfv`` parameter),
   ``shading`` (``flat`` = GL_FLAT, ``gouraud`` = GL_SMOOTH, ``phong`` and
-  ``blinn`` = per-pixel GLSL), ``cull`` (back faces), ``color_material``;
+  ``blinn`` = per-pixel GLSL), ``cull`` (back faces), ``color_material``,
+  ``renderer`` (``"triangles"``: fixshade draws it triangle by triangle;
+  ``"mesh"``: through its mesh renderer, the mesh in fixshade's format: positions
+  multiples of ``2^-frac`` within ``i16``, ``mesh.frac``, normals multiples of
+  ``2^-14``);
 - ``expect_fail``: tier → reason, for the tiers the library cannot pass yet.
 
 Positions are multiples of 2^-16 (fixshade reads them as Q16.16, exactly) and,
 unless a scene sets ``snap: false``, placed so that every vertex projects onto
 the 1/16-pixel grid: fixshade (4 sub-pixel bits) and Mesa (8) then rasterize
-identical triangles, and interior pixels compare lighting only.
+identical triangles, and interior pixels compare lighting only. Mesh-renderer
+objects keep their ``i16`` positions (their scenes are not snapped).
 """
 
 import argparse
@@ -321,20 +328,26 @@ def ortho_camera(w, h, px_per_unit=40.0, eye_dist=5.0):
         "view": translate([0.0, 0.0, -eye_dist]),
         "near_w": 0.5,
         "perspective": False,
+        "ortho": [-hw, hw, -hh, hh, 1.0, 10.0],
     }
 
 
-def persp_camera(w, h, eye=(0.0, 0.0, 5.0), target=(0.0, 0.0, 0.0), fovy=40.0, near=1.0):
+def persp_camera(w, h, eye=(0.0, 0.0, 5.0), target=(0.0, 0.0, 0.0), fovy=40.0, near=1.0,
+                 far=20.0):
     return {
         "kind": "perspective",
-        "projection": perspective(fovy, w / h, near, 20.0),
+        "projection": perspective(fovy, w / h, near, far),
         "view": look_at(eye, target, [0.0, 1.0, 0.0]),
         "near_w": near,
         "perspective": True,
+        "fovy": fovy,
+        "near": near,
+        "far": far,
     }
 
 
-def obj(mesh, mat, shading, model=None, back=None, cull=True, color_material=None):
+def obj(mesh, mat, shading, model=None, back=None, cull=True, color_material=None,
+        renderer="triangles"):
     return {
         "mesh": mesh,
         "model": np.eye(4) if model is None else model,
@@ -343,7 +356,21 @@ def obj(mesh, mat, shading, model=None, back=None, cull=True, color_material=Non
         "shading": shading,
         "cull": cull,
         "color_material": color_material,
+        "renderer": renderer,
     }
+
+
+def mesh_format(mesh, frac):
+    """A mesh in fixshade's compact format, as exact floats: positions rounded to
+    multiples of 2^-frac (within i16), normals normalised and rounded to Q14."""
+    one = 2 ** frac
+    pos = [[round(c * one) / one for c in p] for p in mesh["positions"]]
+    assert all(abs(c) * one <= 32767 for p in pos for c in p), "positions beyond i16"
+    nrm = []
+    for n in mesh["normals"]:
+        n = np.asarray(n, float) / np.linalg.norm(n)
+        nrm.append([round(c * 16384) / 16384 for c in n])
+    return {**mesh, "positions": pos, "normals": nrm, "frac": frac}
 
 
 # ---------------------------------------------------------------- the scenes
@@ -739,6 +766,61 @@ def scenes():
         [sph(plastic(GREEN, 16.0), "flat", big)],
         [white(1.0, position=[-1.0, 1.0, 2.0, 1.0])],
     ))
+
+    # --- the mesh renderer (issue 18 item 2) --------------------------------
+    # Expected to fail until the pipeline's perspective sub-spans end inside the
+    # run: drawn triangle by triangle with exact sub-span ends (the example's
+    # --mesh-as-triangles) every tier of these scenes is within 1 LSB of Mesa.
+    subspans = fail(
+        "pipeline: a perspective run's last sub-span shorter than 8 px takes its step "
+        "from the values 8 px on, beyond the triangle, where the clamped weights do not "
+        "continue them (render/tri.rs perspective_run, raster/interp.rs Persp::at)",
+        ("f32", "q30", "q14"))
+    # A floor receding from below the camera (its nearest triangles cross the near
+    # plane) to 36 units away: big triangles whose depth changes a lot, where
+    # screen-affine interpolation was 8 (Gouraud) and 41 (per pixel) LSB off.
+    floor = mesh_format(quad_grid(16, 16, 2.0, 2.0), 14)
+    floor_model = (translate([0.0, 0.0, -16.0]) @ rotate(-90.0, [1.0, 0.0, 0.0])
+                   @ scale([20.0, 20.0, 1.0]))
+    floor_cam = persp_camera(128, 128, eye=(0.0, 0.7, 0.5), target=(0.0, 0.3, -8.0),
+                             fovy=55.0, near=0.3, far=60.0)
+    floor_lights = [white(1.0, position=[1.0, 1.5, -5.0, 1.0], linear_attenuation=0.08),
+                    white(0.3, position=[-0.3, 1.0, 0.4, 0.0])]
+    for sh, what in (("gouraud", "Gouraud"), ("blinn", "per-pixel Blinn-Phong")):
+        s.append(scene(
+            f"mesh_floor_{'gouraud' if sh == 'gouraud' else 'pp'}",
+            f"the mesh renderer (MeshDraw): a 40 × 40 floor of 512 triangles receding from "
+            f"across the near plane to 36 units away, a point light and a local viewer, "
+            f"{what}",
+            ["mesh renderer", "perspective", "near-plane clipping",
+             "perspective-correct interpolation", "GL_LIGHT_MODEL_LOCAL_VIEWER"],
+            [obj(floor, plastic([0.55, 0.6, 0.7], 24.0, ks=0.5), sh, floor_model,
+                 renderer="mesh")],
+            floor_lights,
+            camera=floor_cam,
+            lm=light_model(local_viewer=True),
+            snap=False,
+            expect_fail=None if sh == "gouraud" else subspans,
+        ))
+    # A sphere the near plane cuts: the eye 2 units from its surface, the near plane
+    # 2.02 units in front of the eye, the cap it cuts off a little off the centre.
+    ball = mesh_format(SPHERE_FINE, 14)
+    ball_cam = persp_camera(128, 128, eye=(0.9, 1.1, 2.6), target=(0.15, 0.1, 0.0),
+                            fovy=48.0, near=2.02)
+    ball_lights = [white(0.8, position=KEY), white(0.6, position=[-1.5, 1.0, 2.0, 1.0])]
+    for sh, what in (("gouraud", "Gouraud"), ("phong", "per-pixel Phong (R·V)^32")):
+        s.append(scene(
+            f"mesh_near_sphere_{'gouraud' if sh == 'gouraud' else 'pp'}",
+            f"the mesh renderer (MeshDraw): a sphere of 1656 triangles cut by the near "
+            f"plane of a perspective camera, a directional and a point light, {what}",
+            ["mesh renderer", "perspective", "near-plane clipping",
+             "perspective-correct interpolation"],
+            [obj(ball, plastic(GOLD, 32.0), sh, renderer="mesh")],
+            ball_lights,
+            camera=ball_cam,
+            snap=False,
+            expect_fail=subspans,
+        ))
     return s
 
 
@@ -786,7 +868,10 @@ def build(sc):
         model = mat32(o["model"])
         mesh = o["mesh"]
         pos = [quantize(p) for p in mesh["positions"]]
-        if sc["snap"]:
+        if o["renderer"] == "mesh":
+            assert not sc["snap"], f"{sc['name']}: mesh-renderer objects cannot be snapped"
+            assert pos == mesh["positions"], f"{sc['name']}: not a mesh_format mesh"
+        elif sc["snap"]:
             mv = view @ model
             pos = [quantize(p) for p in snap_positions(pos, mv, proj, sc["width"], sc["height"])]
             wc = window_coords(pos, proj @ mv, sc["width"], sc["height"])
@@ -799,6 +884,8 @@ def build(sc):
         }
         if "colors" in mesh:
             m["colors"] = [f32v(c) for c in mesh["colors"]]
+        if "frac" in mesh:
+            m["frac"] = mesh["frac"]
         objects.append({**o, "mesh": m, "model": model.tolist()})
     out = dict(sc)
     out["camera"] = {**cam, "projection": proj.tolist(), "view": view.tolist()}
@@ -841,6 +928,8 @@ def main():
             if s["known_issue"]:
                 xf += " (known issue: " + ", ".join(s["known_issue"]) + ")"
             cam = s["camera"]["kind"] + ("" if s["snap"] else ", unsnapped")
+            if any(o["renderer"] == "mesh" for o in s["objects"]):
+                cam += ", mesh renderer"
             print(f"| `{s['name']}` | {s['description']} | {'; '.join(s['features'])} | "
                   f"{shading} | {cam} | {xf} |")
         return
