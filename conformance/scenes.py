@@ -768,14 +768,6 @@ def scenes():
     ))
 
     # --- the mesh renderer (issue 18 item 2) --------------------------------
-    # Expected to fail until the pipeline's perspective sub-spans end inside the
-    # run: drawn triangle by triangle with exact sub-span ends (the example's
-    # --mesh-as-triangles) every tier of these scenes is within 1 LSB of Mesa.
-    subspans = fail(
-        "pipeline: a perspective run's last sub-span shorter than 8 px takes its step "
-        "from the values 8 px on, beyond the triangle, where the clamped weights do not "
-        "continue them (render/tri.rs perspective_run, raster/interp.rs Persp::at)",
-        ("f32", "q30", "q14"))
     # A floor receding from below the camera (its nearest triangles cross the near
     # plane) to 36 units away: big triangles whose depth changes a lot, where
     # screen-affine interpolation was 8 (Gouraud) and 41 (per pixel) LSB off.
@@ -800,7 +792,6 @@ def scenes():
             camera=floor_cam,
             lm=light_model(local_viewer=True),
             snap=False,
-            expect_fail=None if sh == "gouraud" else subspans,
         ))
     # A sphere the near plane cuts: the eye 2 units from its surface, the near plane
     # 2.02 units in front of the eye, the cap it cuts off a little off the centre.
@@ -819,7 +810,6 @@ def scenes():
             ball_lights,
             camera=ball_cam,
             snap=False,
-            expect_fail=subspans,
         ))
     return s
 

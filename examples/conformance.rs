@@ -6,7 +6,7 @@
 //!
 //! ```sh
 //! cargo run --release --example conformance -- [--scenes DIR] [--out DIR] \
-//!     [--pipeline-perspective] [--mesh-as-triangles] [names…]
+//!     [--mesh-as-triangles] [names…]
 //! ```
 //!
 //! Writes `<out>/fixshade/<scene>.<tier>.rgb` (raw RGB8, row 0 at the top),
@@ -40,10 +40,7 @@
 //! at the provoking vertex, and the object ids), [`VertexColors`]
 //! (`GL_SMOOTH` with colours the example lights per vertex:
 //! `GL_COLOR_MATERIAL`, separate specular, `GL_NORMALIZE` off) and the `f64`
-//! reference ([`RefKernel`]). Per-triangle objects under a perspective camera
-//! are drawn through [`SubSpans`], a workaround for the pipeline's
-//! perspective sub-spans (`--pipeline-perspective` leaves it out); mesh
-//! objects are not (that is what their scenes measure).
+//! reference ([`RefKernel`]).
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
@@ -630,8 +627,7 @@ fn render(w: u32, h: u32, draw: impl FnMut(&mut BandView<'_, Rgb888>)) -> Vec<Rg
     px
 }
 
-/// Every triangle of `o` with `kernel`; under a perspective projection
-/// through [`SubSpans`] (see there) unless `PIPELINE_PERSPECTIVE` is set.
+/// Every triangle of `o` with `kernel`.
 fn draw_tris<K: Kernel<Color = Rgb888, Varyings = [i32; N]>, const N: usize>(
     band: &mut BandView<'_, Rgb888>,
     o: &Object,
@@ -652,30 +648,13 @@ fn draw_one<K: Kernel<Color = Rgb888, Varyings = [i32; N]>, const N: usize>(
     kernel: &K,
     cull: Cull,
 ) {
-    let c = corners(g, t);
-    if g.space.is_perspective() && N > 0 && !pipeline_perspective() {
-        let k = SubSpans {
-            inner: kernel,
-            h: homogeneous(g, t),
-        };
-        draw_triangle(band, &g.space, &k, &c, cull);
-    } else {
-        draw_triangle(band, &g.space, kernel, &c, cull);
-    }
+    draw_triangle(band, &g.space, kernel, &corners(g, t), cull);
 }
-
-/// `--pipeline-perspective`: interpolate perspective triangles with the
-/// pipeline's own sub-spans (no [`SubSpans`]).
-static PIPELINE_PERSPECTIVE: AtomicBool = AtomicBool::new(false);
 
 /// `--mesh-as-triangles`: draw mesh objects triangle by triangle (with their
-/// transform's corners and the same kernels, through [`SubSpans`] unless
-/// `--pipeline-perspective`) instead of with [`MeshDraw`].
+/// transform's corners and the same kernels) instead of with [`MeshDraw`]
+/// (the same pixels: a check of the one pipeline).
 static MESH_AS_TRIANGLES: AtomicBool = AtomicBool::new(false);
-
-fn pipeline_perspective() -> bool {
-    PIPELINE_PERSPECTIVE.load(Ordering::Relaxed)
-}
 
 /// Homogeneous pixel coordinates `(x·w, y·w, w)` of the corners of triangle
 /// `t` (the screen position `x`, `y` in pixels; `w` the clip `w`, 1 under an
@@ -699,77 +678,6 @@ fn homogeneous(g: &Geometry, t: [usize; 3]) -> [[f64; 3]; 3] {
                 w,
             ]
         }),
-    }
-}
-
-/// A workaround for the pipeline's perspective sub-spans (see
-/// `conformance/README.md`, "Known differences"): the pipeline evaluates the
-/// perspective-correct values at the pixel 8 columns after a sub-span's start
-/// even when the run ends before it, where the barycentric weights, clamped
-/// to the triangle, no longer continue the values linearly; a short last
-/// sub-span then gets a wrong step (up to 21–38 LSB off Mesa in the
-/// perspective scenes). This kernel wraps a kernel `inner`, takes nothing
-/// from the pipeline's interpolation and hands `inner` the values it would
-/// get from exact sub-span ends inside the run, as the renderer before issue
-/// 18 did: perspective-correct at both ends of each sub-span of at most 8
-/// pixels (in `f64` from the corners `h`, see [`homogeneous`]), linear in
-/// between. One kernel per triangle.
-struct SubSpans<'k, K> {
-    inner: &'k K,
-    h: [[f64; 3]; 3],
-}
-
-impl<K: Kernel<Varyings = [i32; N]>, const N: usize> Kernel for SubSpans<'_, K> {
-    type Color = K::Color;
-    type Vertex = K::Vertex;
-    type Varyings = [i32; 0];
-    /// The inner kernel's constants and its values at the three corners.
-    type Triangle = (K::Triangle, [[i32; N]; 3]);
-    const NEEDS_POSITION: bool = K::NEEDS_POSITION;
-
-    fn vertex(&self, v: &VertexIn) -> K::Vertex {
-        self.inner.vertex(v)
-    }
-
-    fn triangle(&self, v: [&K::Vertex; 3], eye: &[[i32; 3]; 3]) -> (Self::Triangle, [[i32; 0]; 3]) {
-        (self.inner.triangle(v, eye), [[]; 3])
-    }
-
-    fn span(
-        &self,
-        t: &Self::Triangle,
-        _: &[i32; 0],
-        _: &[i32; 0],
-        x: i32,
-        y: i32,
-        out: &mut [K::Color],
-    ) {
-        // the values at pixel x (with ATTR_FRAC bits), kept in the inner kernel's range
-        let at = |x: i32| -> [i32; N] {
-            let l = barycentric(&self.h, f64::from(x) + 0.5, f64::from(y) + 0.5)
-                .map(|v| v.clamp(0.0, 1.0));
-            let s = l[0] + l[1] + l[2];
-            let one = f64::from(1u32 << fixshade::raster::ATTR_FRAC);
-            core::array::from_fn(|i| {
-                let v: f64 = (0..3).map(|k| l[k] / s * f64::from(t.1[k][i])).sum();
-                let (lo, hi) = self.inner.safe(i);
-                ((v * one).round() as i32).clamp(lo, hi)
-            })
-        };
-        let mut x0 = x;
-        for part in out.chunks_mut(fixshade::raster::PERSPECTIVE_SPAN) {
-            let n = part.len() as i32;
-            let a = at(x0);
-            let step = if n > 1 {
-                let b = at(x0 + n - 1);
-                // rounded toward zero: every pixel between the ends' values
-                core::array::from_fn(|i| (b[i] - a[i]) / (n - 1))
-            } else {
-                [0; N]
-            };
-            self.inner.span(&t.0, &a, &step, x0, y, part);
-            x0 += n;
-        }
     }
 }
 
@@ -1387,7 +1295,6 @@ fn main() {
         match a.as_str() {
             "--scenes" => scenes_dir = args.next().expect("--scenes DIR").into(),
             "--out" => out = args.next().expect("--out DIR").into(),
-            "--pipeline-perspective" => PIPELINE_PERSPECTIVE.store(true, Ordering::Relaxed),
             "--mesh-as-triangles" => MESH_AS_TRIANGLES.store(true, Ordering::Relaxed),
             _ => names.push(a),
         }
