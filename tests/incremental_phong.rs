@@ -71,7 +71,7 @@ fn bound(n: f32) -> u32 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]
+    #![proptest_config(common::seeded::config("incremental_phong", 500))]
 
     /// Random spans of normals (any directions whose interpolation stays longer than
     /// ½; others take the general path) against the f64 reference at every pixel,

@@ -100,7 +100,7 @@ fn case() -> impl Strategy<Value = (Term, Band, common::scenes::Sample)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 3000, ..ProptestConfig::default() })]
+    #![proptest_config(common::seeded::config("lighting_accuracy", 3000))]
 
     #[test]
     fn q14_two_newton_steps((term, band, s) in case()) {

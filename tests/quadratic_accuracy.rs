@@ -10,6 +10,9 @@
 //! Pixels within 10⁻³ of `N·L = 0` are skipped (there the rounding of either
 //! side decides whether a specular term exists), as in that test.
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
 use fixshade::color::{GammaTable, Transfer};
 use fixshade::light::{LightColors, LightDesc, LightKind};
@@ -244,7 +247,7 @@ where
 macro_rules! accuracy_tests {
     ($($name:ident: $S:ty, $tier:literal, $k:literal, $n:literal, $M:ty, $band:expr, $cases:literal;)*) => {$(
         proptest! {
-            #![proptest_config(ProptestConfig { cases: $cases, ..ProptestConfig::default() })]
+            #![proptest_config(seeded::config(stringify!($name), $cases))]
             #[test]
             fn $name(c in case($k, $band)) {
                 check888::<$S, $k, $n, $M>($tier, &c)?;
@@ -372,7 +375,7 @@ where
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+    #![proptest_config(seeded::config("quadratic_accuracy encoded", 300))]
 
     #[test]
     fn q14_encoded_lambert(c in case(1, LOW)) {

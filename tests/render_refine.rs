@@ -4,6 +4,9 @@
 //! for many rotations, orthographic and perspective, with and without a
 //! texture seam, within and beyond the budget), banded = whole frame.
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
 use fixshade::camera::{Camera, MeshTransform, Orthographic, Perspective, Projection};
@@ -377,7 +380,7 @@ fn rotation(a: f32, b: f32, c: f32) -> Mat4 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(96))]
+    #![proptest_config(seeded::config("render_refine", 96))]
 
     #[test]
     fn refined_spheres_are_watertight(
