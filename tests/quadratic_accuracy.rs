@@ -100,8 +100,9 @@ fn attrs<S: Scalar, const N: usize>(
     let at = |v: [f32; 3]| -> [i32; N] {
         let n = Vec3::<S>::from_f32(v).normalize();
         let a = [n.x.to_attr(), n.y.to_attr(), n.z.to_attr()];
+        // the kernel takes the tier's directions as unit vectors (Q30)
         let dot = |d: [f32; 3]| {
-            let q = d.map(|x| (x as f64 * (1u64 << 30) as f64).round() as i64);
+            let q = normalize(d.map(f64::from)).map(|x| (x * (1u64 << 30) as f64).round() as i64);
             ((a[0] as i64 * q[0] + a[1] as i64 * q[1] + a[2] as i64 * q[2]) >> 30) as i32
         };
         let mut out = [0i32; N];
