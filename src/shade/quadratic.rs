@@ -220,9 +220,8 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
         }
     };
     let q14v = |v: [f32; 3]| -> [i32; 3] { unit(v).map(|c| libm::roundf(c * 16384.0) as i32) };
-    let q30v = |v: [f32; 3]| -> [i32; 3] {
-        unit(v).map(|c| libm::roundf(c * 1_073_741_824.0) as i32)
-    };
+    let q30v =
+        |v: [f32; 3]| -> [i32; 3] { unit(v).map(|c| libm::roundf(c * 1_073_741_824.0) as i32) };
     let spec = d.specular != Specular::None;
     let phong = d.specular == Specular::Phong;
     let n = d.n;
