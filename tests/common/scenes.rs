@@ -490,9 +490,11 @@ pub fn excluded(s: &Sample) -> bool {
 }
 
 /// Whether an attenuation factor of the sample exceeds 2 (`a + b·d + c·d² < ½`):
-/// the fixed tiers' values end just below 2, so such a factor saturates there (see
-/// `Attenuation`); the generator keeps the sum above 0.6, but a search may move a
-/// light closer.
+/// beyond the fixed tiers' range, where they carry the factor as `m·2^e` and the
+/// error of every cosine is multiplied by it (the reference's sensitivity too;
+/// `tests/attenuation_unbounded.rs` covers that domain with a bound that grows
+/// with the factor); the generator keeps the sum above 0.6, but a search may
+/// move a light closer.
 pub fn beyond_range(s: &Sample) -> bool {
     let pd = s.p.map(|c| c as f64);
     s.lights.iter().any(|l| {
