@@ -140,7 +140,9 @@ pub struct Prepared<S> {
     /// `Ls ∘ kst` (transmission).
     pub transmission: Rgb<S>,
     /// The halfway vector `H = (L + V)/|L + V|` when both L and V are constant
-    /// (directional light, viewer at infinity).
+    /// (directional light, viewer at infinity), the tier's vector nearest to unit
+    /// length within a step of that direction ([`Scalar::normalize_nearest_unit`]):
+    /// the incremental kernels use it as a unit vector.
     pub half: Option<Vec3<S>>,
 }
 
@@ -155,7 +157,7 @@ impl<S: Scalar> Prepared<S> {
             specular: Rgb::from_f32(t.specular),
             transmission: Rgb::from_f32(t.transmission),
             half: match (l, v) {
-                (Some(l), Some(v)) => Some(S::normalize_precise(l.add(v))),
+                (Some(l), Some(v)) => Some(S::normalize_nearest_unit(l.add(v))),
                 _ => None,
             },
         }

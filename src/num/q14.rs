@@ -305,6 +305,32 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         Q14::<3>::normalize(Vec3::new(Q14(v.x.0), Q14(v.y.0), Q14(v.z.0))).map_tier()
     }
 
+    /// The exact direction in `f32` (`v`'s components are exact), then of the
+    /// eight floor/ceiling combinations of its Q14 components the one whose
+    /// squared length is nearest to `2^28` (32-bit integer squares).
+    fn normalize_nearest_unit(v: Vec3<Self>) -> Vec3<Self> {
+        let s = [v.x.0, v.y.0, v.z.0].map(|c| c as f32);
+        let len2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+        if !(len2 > 0.0) {
+            return Self::normalize_precise(v);
+        }
+        let k = 16384.0 / libm::sqrtf(len2);
+        let fl = s.map(|c| libm::floorf(c * k) as i32);
+        let mut best = (u32::MAX, [0i32; 3]);
+        for m in 0..8 {
+            let c: [i32; 3] =
+                core::array::from_fn(|i| (fl[i] + ((m >> i) & 1)).clamp(-16384, 16384));
+            // each square ≤ 2^28: the sum fits a u32
+            let l2: u32 = c.iter().map(|&x| (x * x) as u32).sum();
+            let e = l2.abs_diff(1 << 28);
+            if e < best.0 {
+                best = (e, c);
+            }
+        }
+        let c = best.1;
+        Vec3::new(Self(c[0]), Self(c[1]), Self(c[2]))
+    }
+
     geo16_ops!();
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
