@@ -831,14 +831,14 @@ fn nm_starts(count: usize, seed: u64) -> Vec<NmCase> {
                 worst_case::around(
                     c,
                     std::f64::consts::FRAC_PI_2 - rng.range(0.002, 0.05),
-                    rng.range(0.0, 6.28),
+                    rng.range(0.0, std::f64::consts::TAU),
                 )
             } else {
                 let m = worst_case::mirror(c, [0.0, 0.0, 1.0]);
                 worst_case::around(
                     m,
                     rng.range(0.0, 2.0) / f64::from(shininess).sqrt(),
-                    rng.range(0.0, 6.28),
+                    rng.range(0.0, std::f64::consts::TAU),
                 )
             };
             NmCase {
@@ -895,36 +895,32 @@ fn targeted_worst_case_search() {
     let runs: [(&str, Run, u32); 6] = [
         (
             "fast Q14<1> blinn",
-            |c, m, _, t, l| {
-                fast_error::<1, BlinnPhong>(c.dir, m, t, l, Wrap::Repeat, &[c.tri.clone()]).0
-            },
+            |c, m, _, t, l| fast_error::<1, BlinnPhong>(c.dir, m, t, l, Wrap::Repeat, &[c.tri]).0,
             FAST_MAX,
         ),
         (
             "fast Q14<2> blinn",
-            |c, m, _, t, l| {
-                fast_error::<2, BlinnPhong>(c.dir, m, t, l, Wrap::Clamp, &[c.tri.clone()]).0
-            },
+            |c, m, _, t, l| fast_error::<2, BlinnPhong>(c.dir, m, t, l, Wrap::Clamp, &[c.tri]).0,
             FAST_MAX,
         ),
         (
             "general Q14 blinn",
-            |c, m, d, t, l| general_error::<Q14<1>, BlinnPhong>(d, m, t, l, &[c.tri.clone()]).0,
+            |c, m, d, t, l| general_error::<Q14<1>, BlinnPhong>(d, m, t, l, &[c.tri]).0,
             GENERAL_Q14_MAX,
         ),
         (
             "general Q14 phong",
-            |c, m, d, t, l| general_error::<Q14<1>, Phong>(d, m, t, l, &[c.tri.clone()]).0,
+            |c, m, d, t, l| general_error::<Q14<1>, Phong>(d, m, t, l, &[c.tri]).0,
             GENERAL_Q14_MAX,
         ),
         (
             "general f32 blinn",
-            |c, m, d, t, l| general_error::<f32, BlinnPhong>(d, m, t, l, &[c.tri.clone()]).0,
+            |c, m, d, t, l| general_error::<f32, BlinnPhong>(d, m, t, l, &[c.tri]).0,
             GENERAL_F32_MAX,
         ),
         (
             "general f32 phong",
-            |c, m, d, t, l| general_error::<f32, Phong>(d, m, t, l, &[c.tri.clone()]).0,
+            |c, m, d, t, l| general_error::<f32, Phong>(d, m, t, l, &[c.tri]).0,
             GENERAL_F32_MAX,
         ),
     ];

@@ -442,7 +442,7 @@ fn seams_stay_closed_within_any_budget() {
     let views = [
         Mat4::IDENTITY,
         // the seam (u = 0, the +z meridian side) turned to the outline and to the viewer
-        Mat4::rotate_y(1.5708),
+        Mat4::rotate_y(core::f32::consts::FRAC_PI_2),
         Mat4::rotate_y(-1.3).mul(&Mat4::rotate_x(0.35)),
         rotation(0.7, 2.9, -0.4),
     ];

@@ -118,7 +118,6 @@ impl Input<'_> {
             transmission: self.f3(),
             transmission_exponent: self.f32(),
             refractive_index: self.f32(),
-            ..MaterialDesc::default()
         }
     }
 
@@ -154,7 +153,7 @@ impl Input<'_> {
         match self.u8() % 8 {
             0 => i16::MIN,
             1 => i16::MAX,
-            2 | 3 | 4 => i16::from(self.u8() as i8),
+            2..=4 => i16::from(self.u8() as i8),
             _ => u16::from_le_bytes([self.u8(), self.u8()]) as i16,
         }
     }

@@ -933,7 +933,11 @@ pub fn targeted_starts(term: Term, band: Band, count: usize, seed: u64) -> Vec<S
             1 => {
                 for l in &mut s.lights {
                     let g = 1.2e-3 + rng.f() * 0.019;
-                    let dir = around(n, std::f64::consts::FRAC_PI_2 - g, rng.f() * 6.283);
+                    let dir = around(
+                        n,
+                        std::f64::consts::FRAC_PI_2 - g,
+                        rng.f() * std::f64::consts::TAU,
+                    );
                     aim(l, p, dir);
                 }
             }
