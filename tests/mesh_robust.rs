@@ -1,6 +1,9 @@
 //! Arbitrary `f32` input (NaN, infinities, huge, tiny) never panics, never
 //! overflows (debug build), and outputs stay in their documented ranges.
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use fixshade::mesh::*;
 use fixshade::num::{Geo16, Q14};
 use fixshade::raster::SUBPIXEL_BITS;
@@ -48,7 +51,7 @@ fn check_screen(s: Option<ScreenVertex>) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+    #![proptest_config(seeded::config("mesh_robust", 512))]
 
     #[test]
     fn normals_never_panic(pos in prop::collection::vec(v3(), 0..12),

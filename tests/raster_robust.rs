@@ -1,6 +1,9 @@
 //! Any vertex values: no panic, no overflow, no write outside the target,
 //! shader values always inside the vertex range.
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::raster::{
     draw_triangle, draw_triangle_perspective, Cull, RasterOptions, RasterVertex, SpanShader,
@@ -114,7 +117,7 @@ fn checker(v: &[RasterVertex<2>; 3], rows: core::ops::Range<i32>) -> Check {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(3000))]
+    #![proptest_config(seeded::config("raster_robust", 3000))]
 
     #[test]
     fn any_triangle_is_safe(v in [vertex(), vertex(), vertex()], opts in options(), use_depth in any::<bool>()) {

@@ -1,6 +1,9 @@
 //! Watertightness: meshes of triangles sharing edges cover every pixel of
 //! their hull exactly once, whatever the sub-pixel jitter and winding.
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::raster::{
     draw_triangle, Cull, RasterOptions, RasterVertex, SpanShader, SUBPIXEL_BITS,
@@ -119,7 +122,7 @@ fn rect_coverage(x0: i32, y0: i32, x1: i32, y1: i32) -> Vec<u8> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(seeded::config("raster_watertight", 200))]
 
     #[test]
     fn jittered_grid_covers_its_rectangle_once(

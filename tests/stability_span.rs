@@ -8,6 +8,9 @@
 //! wrap fails these tests. Every tier, Flat/Gouraud/Phong, `draw` and
 //! `draw_perspective`, wide triangles (long runs, large steps).
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::color::Rgb;
 use fixshade::light::{AnyLight, LightDesc, LightKind};
@@ -162,7 +165,7 @@ fn wild() -> impl Strategy<Value = f32> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+    #![proptest_config(seeded::config("stability_span", 300))]
 
     #[test]
     fn wild_positions_never_wrap(

@@ -606,3 +606,165 @@ fn extremes_never_panic() {
         }
     }
 }
+
+// ---- targeted worst-case search (issue 21, item 6) -------------------------------------
+
+#[path = "common/worst_case.rs"]
+mod worst_case;
+
+/// The modulation bound (one Rgb565 step of `round(t/max · p · max)`) at
+/// targeted worst cases: primary levels hill-climbed towards the rounding
+/// boundaries of every texel value (the exhaustive test above takes seven
+/// levels; here the level is continuous, with the light tilted so that `N·L`
+/// varies too), both filters. Prints the worst.
+#[test]
+fn targeted_modulation_search() {
+    let g = grid(1, 32.0, [0.0, 0.0], [0, 0], [4096, 4096], false);
+    let mut words = Vec::new();
+    for i in 0..32u16 {
+        for j in 0..32u16 {
+            words.push((i << 11) | ((2 * j + (i & 1)) << 5) | (31 - i));
+        }
+    }
+    let tex = texture_of(words, 5, 5, Wrap::Repeat);
+    // a search point: the material level and the light's tilt
+    let starts: Vec<(f64, f64)> = (0..12)
+        .map(|k| (f64::from(k) / 11.0, if k % 2 == 0 { 0.0 } else { 0.7 }))
+        .collect();
+    for filter in [Filter::Nearest, Filter::Bilinear] {
+        let score = |&(level, tilt): &(f64, f64)| {
+            let light =
+                DirectionalLight::<Q14>::white([tilt.sin() as f32, 0.0, tilt.cos() as f32]).ok()?;
+            let m =
+                MaterialDesc::classic([level as f32; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
+            let lit: Lighting<Q14, _, Lambert> = Lighting::new(light, Material::new(&m).ok()?);
+            let px = render(tex_shader(&lit, tex, filter), &g, &ortho(), W);
+            // the primary level the lighting gives (exactly: N = (0, 0, 1))
+            let p = f64::from(level as f32) * tilt.cos();
+            let (mut lin, mut q) = (0.0f64, 0u32);
+            for y in 0..32 {
+                for x in 0..32 {
+                    let t = tex.texel(x, y);
+                    let c = px[(y as u32 * W + x as u32) as usize];
+                    for (got, t8, max) in [
+                        (c.r(), t[0], 31.0),
+                        (c.g(), t[1], 63.0),
+                        (c.b(), t[2], 31.0),
+                    ] {
+                        let w = f64::from(t8) / 255.0 * p * max;
+                        lin = lin.max((f64::from(got) - w).abs());
+                        q = q.max((f64::from(got) - w.round()).abs() as u32);
+                    }
+                }
+            }
+            Some((lin, q))
+        };
+        let w = worst_case::climb(
+            &starts,
+            40,
+            31,
+            |&(level, tilt), amount, rng| {
+                (
+                    (level + amount * rng.range(-1.0, 1.0)).clamp(0.0, 1.0),
+                    (tilt + amount * rng.range(-1.0, 1.0)).clamp(0.0, 1.4),
+                )
+            },
+            score,
+        );
+        println!(
+            "modulation {filter:?}: worst {} step (bound 1, {} frames) at {:?}",
+            w.error, w.evaluations, w.at
+        );
+        assert!(w.error <= 1, "{filter:?}: {} at {:?}", w.error, w.at);
+    }
+}
+
+/// A texture smooth everywhere, across its wrap too (`smooth_texture` jumps
+/// from 31 to 0 there, and in blue at row 16): triangle waves, neighbouring
+/// texels at most one step apart in every channel.
+fn wrap_smooth_texture(l: u8) -> Texture<'static> {
+    let n = 1u16 << l;
+    let tri = |s: u16| (s % n).min(n - s % n);
+    let d = leak(
+        (0..n * n)
+            .map(|i| {
+                let (x, y) = (i % n, i / n);
+                (tri(x) << 11) | ((tri(x + y) + 16) << 5) | (tri(y) + 8)
+            })
+            .collect(),
+    );
+    Texture::new(Texels::Rgb565(d), l, l, Wrap::Repeat).unwrap()
+}
+
+/// The mesh renderer against the per-triangle path (bound 2) at targeted
+/// worst cases: curved grids with texture coordinates hill-climbed over their
+/// range (up to ±8 textures) and offsets (texel edges under pixel centres).
+/// The bound assumes neighbouring texels one step apart: a coordinate a
+/// fraction of a texel off may pick the neighbour (on `smooth_texture`, whose
+/// channels jump at its seams, the search finds 15 steps where a pixel centre
+/// lies within that fraction of a seam).
+#[test]
+fn targeted_mesh_versus_triangle_search() {
+    let lit = lambert();
+    let tex = wrap_smooth_texture(5);
+    let t = ortho();
+    for filter in [Filter::Nearest, Filter::Bilinear] {
+        let score = |p: &[i32; 4]| {
+            let g = grid(4, 56.0, [4.0, 4.0], [p[0], p[1]], [p[2], p[3]], true);
+            let mesh = render(tex_shader(&lit, tex, filter), &g, &t, W);
+            let mut pt = vec![Rgb565::BLACK; (W * W) as usize];
+            let mut fb = SliceFramebuffer::new(&mut pt, W, W).unwrap();
+            let mut depth_mem = vec![u16::MAX; (W * W) as usize];
+            let mut depth = DepthBuffer::new(&mut depth_mem, W).unwrap();
+            let mut sh = tex_shader(&lit, tex, filter);
+            for tri in &g.tris {
+                let v = tri.map(|i| {
+                    let i = i as usize;
+                    let s = t.project(g.pos[i]);
+                    let n = g.nrm[i].map(|c| f32::from(c) / 16384.0);
+                    TexturedVertex::new(
+                        ShadeVertex::<Q14>::new([s.x, s.y], s.z, 1, [0.0; 3], n),
+                        TexCoord {
+                            u: i32::from(g.uv[i][0]) << 4,
+                            v: i32::from(g.uv[i][1]) << 4,
+                        },
+                    )
+                });
+                sh.draw_textured(
+                    &mut fb,
+                    Some(&mut depth),
+                    &v,
+                    &RasterOptions::default(),
+                    false,
+                )
+                .unwrap();
+            }
+            let d = u32::from(max_delta(&mesh, &pt));
+            Some((f64::from(d), d))
+        };
+        let starts = [
+            [-3000, 500, 9000, 6000],
+            [0, 0, 4096, 4096],
+            [-32000, -32000, 32000, 32000],
+            [100, -7000, 20000, 3],
+            [-1, 1, 1, -1],
+        ];
+        let w = worst_case::climb(
+            &starts,
+            40,
+            57,
+            |p, amount, rng| {
+                p.map(|c| {
+                    (f64::from(c) + amount * 20000.0 * rng.range(-1.0, 1.0))
+                        .clamp(-32000.0, 32000.0) as i32
+                })
+            },
+            score,
+        );
+        println!(
+            "mesh vs per-triangle {filter:?}: worst {} (bound 2, {} grids) at {:?}",
+            w.error, w.evaluations, w.at
+        );
+        assert!(w.error <= 2, "{filter:?}: {} at {:?}", w.error, w.at);
+    }
+}

@@ -244,8 +244,18 @@ impl Setup {
     /// the bounding box (`w` columns, `h` rows from the reference pixel) and
     /// with the reference value's own rounding (< 24 units) the error is below
     /// `ε·(w + h) + 24`. Computed generously, saturating.
+    ///
+    /// A plane whose per-pixel gradient saturated at ±2^30 ([`scale`]: a
+    /// sliver across which the attribute changes by more than four units of
+    /// its range per pixel) has no such bound: `u32::MAX`, so that its values
+    /// are clamped to the vertex range (fuzz target `surface`: a gradient
+    /// capped at 2^30 gave values 4.5 times the range, which overflowed the
+    /// fast normal-map kernel).
     #[inline]
     pub(crate) fn err(&self, p: &Plane) -> u32 {
+        if p.dx.unsigned_abs() >= 1 << 30 || p.dy.unsigned_abs() >= 1 << 30 {
+            return u32::MAX;
+        }
         let b = &self.bary;
         let spread3 = mul_bound(3, p.spread);
         // 1.5·2^s·spread = 3·spread·2^(s − 1), rounded up

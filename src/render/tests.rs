@@ -2,6 +2,10 @@
 //! the exact projection, for sheets crossing the near plane and reaching far
 //! beyond the screen.
 
+/// Fixed proptest seeds (shared with the integration tests).
+#[path = "../../tests/common/seeded.rs"]
+mod seeded;
+
 use super::*;
 use crate::camera::{Camera, Perspective};
 use crate::mesh::{Mat4, Mesh, Viewport};
@@ -290,7 +294,7 @@ fn floor_through_the_near_plane_is_watertight() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+    #![proptest_config(seeded::config("render::tests", 200))]
 
     /// Random sheets crossing the near plane, many reaching far beyond the
     /// screen (up to ~120 units to the side at the near plane): no pixel twice,
