@@ -317,6 +317,14 @@ pub enum TextureError {
     NotFinite(&'static str),
     /// The named vector has zero length.
     Degenerate(&'static str),
+    /// A normal map's texel is not a unit normal (`x² + y² + z²` outside
+    /// `2^28 ± 2^15`; see [`NormalMap::new`](crate::texture::NormalMap::new)).
+    NotUnit {
+        /// The texel's index (row by row).
+        index: usize,
+        /// The texel.
+        texel: [i16; 3],
+    },
 }
 
 impl fmt::Display for TextureError {
@@ -327,6 +335,10 @@ impl fmt::Display for TextureError {
             Self::PaletteTooLong => f.write_str("palette longer than 256 colours"),
             Self::NotFinite(p) => write!(f, "{p}: NaN or infinite"),
             Self::Degenerate(p) => write!(f, "{p}: zero length"),
+            Self::NotUnit { index, texel } => write!(
+                f,
+                "texel {index} {texel:?} is not a unit normal (x² + y² + z² must be 2^28 ± 2^15)"
+            ),
         }
     }
 }

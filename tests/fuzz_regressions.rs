@@ -126,3 +126,47 @@ fn orthographic_transform_rounding_at_i32_max() {
         }
     }
 }
+
+// ---- the mesh renderer and surface detail (issue 21, item 7) ---------------------------
+
+/// The fuzz targets' decoding and checks (`fuzz/src/`), so that a kept input
+/// replays here exactly as in the fuzzer.
+#[path = "../fuzz/src/lib.rs"]
+mod fuzz;
+
+/// fuzz target `surface`, crash-4a9262f7: a 1 × 1 normal map of
+/// `normalize_texels([i16::MIN; 3])` = `[−9459; 3]` (a unit normal facing
+/// into the surface) on the seamed 6 × 8 sphere turned by `f32::MAX` radians,
+/// a 12-pixel frame, through `FastNormalMapShader` (`Q14<1>`, Blinn-Phong):
+/// "attempt to multiply with overflow" in the fast path's `n·L` (normalmap.rs
+/// line 852).
+#[test]
+fn surface_fast_normal_map_on_a_turned_sphere() {
+    fuzz::surface::run(include_bytes!(
+        "../fuzz/regressions/surface/crash-4a9262f7c490278123e3aac51c48d2d7e0b7fc34"
+    ));
+}
+
+/// fuzz target `mesh`, crash-335eed3a: a small mesh of extreme positions and
+/// normals through `IncrementalPhongShading`: "attempt to multiply with
+/// overflow" squaring an interpolated normal component (incremental.rs line
+/// 194).
+#[test]
+fn mesh_incremental_phong_extreme_normals() {
+    fuzz::mesh::run(include_bytes!(
+        "../fuzz/regressions/mesh/crash-335eed3a497e6dd397f3ee982617850211fe40e6"
+    ));
+}
+
+/// fuzz target `surface`, crash-569c613a: a 1 × 1 map of
+/// `normalize_texels([0, i16::MIN, i16::MIN])` on the sphere turned by
+/// `−f32::MAX` radians, `FastNormalMapShader` (`Q14<1>`): the Newton update
+/// of `1/|H|` after a span's last pixel, from `|H|²` stepped beyond the span
+/// (wrapped, never used), overflowed ("attempt to multiply with overflow",
+/// normalmap.rs line 891); it wraps now, like the other accumulators there.
+#[test]
+fn surface_fast_normal_map_newton_after_the_last_pixel() {
+    fuzz::surface::run(include_bytes!(
+        "../fuzz/regressions/surface/crash-569c613ab464faaebbc74a3599ffa85ce416b263"
+    ));
+}

@@ -100,7 +100,7 @@ fn case() -> impl Strategy<Value = (Term, Band, common::scenes::Sample)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 3000, ..ProptestConfig::default() })]
+    #![proptest_config(common::seeded::config("lighting_accuracy", 3000))]
 
     #[test]
     fn q14_two_newton_steps((term, band, s) in case()) {
@@ -231,5 +231,45 @@ fn phong_highlight_on_an_interpolated_normal() {
     assert_eq!(reference_u8(&s), [197; 3]);
     for got in [tier_u8::<Q14<2>>(&s), tier_u8::<Q14<1>>(&s)] {
         assert!(lsb_error(got, [197; 3]) <= 1, "{got:?}");
+    }
+}
+
+/// The bounds at targeted worst cases (issue 21, item 6): for every tier, term
+/// and exponent band, hill climbs from starts placed where a tier's rounding is
+/// amplified most — the mirror direction at the band's highest exponent, grazing
+/// lights (`N·L` just outside the excluded 10⁻³), colours near saturation,
+/// attenuation at the top of the fixed tiers' range and far down it
+/// (`common::scenes::targeted_starts`, `common::worst_case::climb`). Prints the
+/// worst case per cell.
+#[test]
+fn targeted_worst_case_search() {
+    fn cell<S: Scalar>(term: Term, band: Band, bound: Bound, seed: u64) -> u32 {
+        let (e, s) = common::scenes::targeted_search::<S>(term, band, 32, 200, seed);
+        assert!(
+            e <= bound(term, band),
+            "{}: {term:?} n-band {band:?}: {e} LSB > {} at {s:?}",
+            S::NAME,
+            bound(term, band)
+        );
+        e
+    }
+    for (i, &term) in TERMS.iter().enumerate() {
+        let bands: &[Band] = if specular(term) { &BANDS } else { &[Band::Low] };
+        for &band in bands {
+            let seed = 2100 + 10 * i as u64 + band as u64;
+            println!(
+                "{term:?} {band:?}: Q14<1> {} / {} | Q14<2> {} / {} | Q30<3> {} / {} | f32 {} / {} | F32Fast<2> {} / {}",
+                cell::<Q14<1>>(term, band, q14_1, seed),
+                q14_1(term, band),
+                cell::<Q14<2>>(term, band, q14_2, seed),
+                q14_2(term, band),
+                cell::<Q30<3>>(term, band, one, seed),
+                one(term, band),
+                cell::<f32>(term, band, one, seed),
+                one(term, band),
+                cell::<F32Fast<2>>(term, band, f32_fast2, seed),
+                f32_fast2(term, band),
+            );
+        }
     }
 }

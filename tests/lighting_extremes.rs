@@ -357,7 +357,7 @@ fn any3() -> impl Strategy<Value = [f32; 3]> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+    #![proptest_config(common::seeded::config("lighting_extremes", 2000))]
 
     /// Arbitrary `f32` parameters (NaN, infinities, huge, negative): every
     /// constructor returns `Ok` or a typed error, and shading whatever was accepted

@@ -4,6 +4,8 @@
 //! transforms, and meshes drawn through any such transform (the vertex
 //! stage, the one clip-space clipper and set-up).
 
+#[path = "common/seeded.rs"]
+mod seeded;
 mod support;
 
 use embedded_graphics_core::pixelcolor::Gray8;
@@ -123,13 +125,7 @@ fn probe<P: Projection>(t: &MeshTransform<P>, p: [i16; 3]) {
 }
 
 proptest! {
-    // seeded: see tests/common/seeded.rs
-    #![proptest_config(ProptestConfig {
-        cases: 512,
-        rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED_0005),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(seeded::config("mesh_robust", 512))]
 
     #[test]
     fn normals_never_panic(pos in prop::collection::vec(v3(), 0..12),

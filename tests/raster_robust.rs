@@ -11,6 +11,9 @@ mod support;
 
 use std::cell::Cell;
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::raster::interp::VARYING_LIMIT;
@@ -182,13 +185,7 @@ fn cull() -> impl Strategy<Value = Cull> {
 }
 
 proptest! {
-    // seeded: see tests/common/seeded.rs
-    #![proptest_config(ProptestConfig {
-        cases: 3000,
-        rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED_0002),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(seeded::config("raster_robust", 3000))]
 
     #[test]
     fn any_triangle_is_safe(tri in triangle(), space in space(), cull in cull(), use_depth in any::<bool>()) {

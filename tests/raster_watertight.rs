@@ -4,6 +4,8 @@
 //! reaching far beyond the set-up window (the clipper), lifted into a
 //! perspective clip space with a different `w` per vertex, and in bands.
 
+#[path = "common/seeded.rs"]
+mod seeded;
 mod support;
 
 use embedded_graphics_core::pixelcolor::Gray8;
@@ -79,13 +81,7 @@ fn rect_coverage(x0: i32, y0: i32, x1: i32, y1: i32) -> Vec<u8> {
 }
 
 proptest! {
-    // seeded: see tests/common/seeded.rs
-    #![proptest_config(ProptestConfig {
-        cases: 200,
-        rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED_0003),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(seeded::config("raster_watertight", 200))]
 
     #[test]
     fn jittered_grid_covers_its_rectangle_once(

@@ -4,6 +4,9 @@
 //! directly: huge, infinite and NaN coordinates included (the float tiers' `Vec3`
 //! holds any `f32`; the fixed tiers' any raw value).
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use fixshade::color::Rgb;
 use fixshade::lighting::{AnyLight, LightDesc, LightKind, LightSet};
 use fixshade::lighting::{
@@ -205,7 +208,7 @@ fn tier<S: Raw>(
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 3000, ..ProptestConfig::default() })]
+    #![proptest_config(seeded::config("stability_nan", 3000))]
 
     #[test]
     fn no_nan_and_no_wrap_for_any_input(

@@ -6,6 +6,8 @@
 //! ±2, ±1, the smallest steps, NaN and infinities for the float tiers) and all
 //! their combinations for the vector operations, plus random raw values.
 
+#[path = "common/seeded.rs"]
+mod seeded;
 use fixshade::num::Vec3;
 use fixshade::num::{F32Fast, Geo16, Scalar, F32_LIMIT, Q14, Q30};
 use proptest::prelude::*;
@@ -293,7 +295,7 @@ fn q14_unary_exhaustive() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 4000, ..ProptestConfig::default() })]
+    #![proptest_config(seeded::config("stability_overflow", 4000))]
 
     /// Random raw patterns for every pairwise and vector operation.
     #[test]

@@ -16,6 +16,9 @@
 
 mod support;
 
+#[path = "common/seeded.rs"]
+mod seeded;
+
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::color::Rgb;
@@ -214,13 +217,7 @@ fn wild() -> impl Strategy<Value = f32> {
 }
 
 proptest! {
-    // seeded: see tests/common/seeded.rs
-    #![proptest_config(ProptestConfig {
-        cases: 300,
-        rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED_0006),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(seeded::config("stability_span", 300))]
 
     #[test]
     fn wild_positions_never_wrap(

@@ -1210,3 +1210,149 @@ fn extremes_never_panic() {
         }
     }
 }
+
+// ---- targeted worst-case search (issue 21, item 6) -------------------------------------
+
+#[path = "common/worst_case.rs"]
+mod worst_case;
+
+/// The modulation bound (one Rgb565 step of `round(t/max · p · max)`) at
+/// targeted worst cases: primary levels hill-climbed towards the rounding
+/// boundaries of every texel value (the exhaustive test above takes seven
+/// levels; here the level is continuous, with the light tilted so that `N·L`
+/// varies too), both filters. Prints the worst.
+#[test]
+fn targeted_modulation_search() {
+    let g = grid(1, 32.0, [0.0, 0.0], [0, 0], [4096, 4096], false);
+    let mut words = Vec::new();
+    for i in 0..32u16 {
+        for j in 0..32u16 {
+            words.push((i << 11) | ((2 * j + (i & 1)) << 5) | (31 - i));
+        }
+    }
+    let tex = texture_of(words, 5, 5, Wrap::Repeat);
+    // a search point: the material level and the light's tilt
+    let starts: Vec<(f64, f64)> = (0..12)
+        .map(|k| (f64::from(k) / 11.0, if k % 2 == 0 { 0.0 } else { 0.7 }))
+        .collect();
+    for filter in [Filter::Nearest, Filter::Bilinear] {
+        let score = |&(level, tilt): &(f64, f64)| {
+            let light =
+                DirectionalLight::<Q14>::white([tilt.sin() as f32, 0.0, tilt.cos() as f32]).ok()?;
+            let m =
+                MaterialDesc::classic([level as f32; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
+            let lit: Lighting<Q14, _, Lambert> = Lighting::new(light, Material::new(&m).ok()?);
+            let px = render(tex_shader(&lit, tex, filter), &g, &ortho(), W);
+            // the primary level the lighting gives (exactly: N = (0, 0, 1))
+            let p = f64::from(level as f32) * tilt.cos();
+            let (mut lin, mut q) = (0.0f64, 0u32);
+            for y in 0..32 {
+                for x in 0..32 {
+                    let t = tex.texel(x, y);
+                    let c = px[(y as u32 * W + x as u32) as usize];
+                    for (got, t8, max) in [
+                        (c.r(), t[0], 31.0),
+                        (c.g(), t[1], 63.0),
+                        (c.b(), t[2], 31.0),
+                    ] {
+                        let w = f64::from(t8) / 255.0 * p * max;
+                        lin = lin.max((f64::from(got) - w).abs());
+                        q = q.max((f64::from(got) - w.round()).abs() as u32);
+                    }
+                }
+            }
+            Some((lin, q))
+        };
+        let w = worst_case::climb(
+            &starts,
+            40,
+            31,
+            |&(level, tilt), amount, rng| {
+                (
+                    (level + amount * rng.range(-1.0, 1.0)).clamp(0.0, 1.0),
+                    (tilt + amount * rng.range(-1.0, 1.0)).clamp(0.0, 1.4),
+                )
+            },
+            score,
+        );
+        println!(
+            "modulation {filter:?}: worst {} step (bound 1, {} frames) at {:?}",
+            w.error, w.evaluations, w.at
+        );
+        assert!(w.error <= 1, "{filter:?}: {} at {:?}", w.error, w.at);
+    }
+}
+
+/// A texture smooth everywhere, across its wrap too (`smooth_texture` jumps
+/// from 31 to 0 there, and in blue at row 16): triangle waves, neighbouring
+/// texels at most one step apart in every channel.
+fn wrap_smooth_texture(l: u8) -> Texture<'static> {
+    let n = 1u16 << l;
+    let tri = |s: u16| (s % n).min(n - s % n);
+    let d = leak(
+        (0..n * n)
+            .map(|i| {
+                let (x, y) = (i % n, i / n);
+                (tri(x) << 11) | ((tri(x + y) + 16) << 5) | (tri(y) + 8)
+            })
+            .collect(),
+    );
+    Texture::new(Texels::Rgb565(d), l, l, Wrap::Repeat).unwrap()
+}
+
+/// The mesh renderer against the f64 method (bound 2, see
+/// `mesh_renderer_against_the_f64_method`) at targeted worst cases: curved
+/// grids with texture coordinates hill-climbed over their range (up to ±8
+/// textures) and offsets (texel edges under pixel centres). The bound assumes
+/// neighbouring texels one step apart: a coordinate a fraction of a texel off
+/// may pick the neighbour (on `smooth_texture`, whose channels jump at its
+/// seams, the search finds 15 steps where a pixel centre lies within that
+/// fraction of a seam). (Before the one pipeline it compared the mesh
+/// renderer with the per-triangle path; they give the same pixels now.)
+#[test]
+fn targeted_mesh_versus_f64_search() {
+    let lit = lambert();
+    let tex = wrap_smooth_texture(5);
+    let t = ortho();
+    for filter in [Filter::Nearest, Filter::Bilinear] {
+        let score = |p: &[i32; 4]| {
+            let g = grid(4, 56.0, [4.0, 4.0], [p[0], p[1]], [p[2], p[3]], true);
+            let mesh = render(tex_shader(&lit, tex, filter), &g, &t, W);
+            let want = f64_textured(&g, &t, &tex, filter);
+            let mut d = 0.0f64;
+            for (px, w) in mesh.iter().zip(&want) {
+                if let (false, Some(w)) = (*px == Rgb565::BLACK, w) {
+                    let got = [px.r(), px.g(), px.b()].map(f64::from);
+                    for k in 0..3 {
+                        d = d.max((got[k] - w[k].round()).abs());
+                    }
+                }
+            }
+            Some((d, d as u32))
+        };
+        let starts = [
+            [-3000, 500, 9000, 6000],
+            [0, 0, 4096, 4096],
+            [-32000, -32000, 32000, 32000],
+            [100, -7000, 20000, 3],
+            [-1, 1, 1, -1],
+        ];
+        let w = worst_case::climb(
+            &starts,
+            40,
+            57,
+            |p, amount, rng| {
+                p.map(|c| {
+                    (f64::from(c) + amount * 20000.0 * rng.range(-1.0, 1.0))
+                        .clamp(-32000.0, 32000.0) as i32
+                })
+            },
+            score,
+        );
+        println!(
+            "mesh vs f64 method {filter:?}: worst {} (bound 2, {} grids) at {:?}",
+            w.error, w.evaluations, w.at
+        );
+        assert!(w.error <= 2, "{filter:?}: {} at {:?}", w.error, w.at);
+    }
+}

@@ -104,6 +104,10 @@ pub struct ColorTerms {
     /// distance attenuation `1/(1 + b'·d + c'·d²)` or a spot cone); the ambient
     /// term then varies per point as well.
     pub varying: bool,
+    /// Whether that factor is unbounded: an attenuation without a constant term
+    /// (`1/(b·d + c·d²)`, see [`Attenuation::is_unbounded`]), which grows without
+    /// limit near the light.
+    pub unbounded: bool,
 }
 
 impl ColorTerms {
@@ -117,6 +121,7 @@ impl ColorTerms {
             specular: p(c.specular, m.specular),
             transmission: p(c.specular, m.transmission),
             varying,
+            unbounded: false,
         }
     }
 }
@@ -135,7 +140,9 @@ pub struct Prepared<S> {
     /// `Ls ∘ kst` (transmission).
     pub transmission: Rgb<S>,
     /// The halfway vector `H = (L + V)/|L + V|` when both L and V are constant
-    /// (directional light, viewer at infinity).
+    /// (directional light, viewer at infinity), the tier's vector nearest to unit
+    /// length within a step of that direction ([`Scalar::normalize_nearest_unit`]):
+    /// the incremental kernels use it as a unit vector.
     pub half: Option<Vec3<S>>,
 }
 
@@ -150,7 +157,7 @@ impl<S: Scalar> Prepared<S> {
             specular: Rgb::from_f32(t.specular),
             transmission: Rgb::from_f32(t.transmission),
             half: match (l, v) {
-                (Some(l), Some(v)) => Some(S::normalize_precise(l.add(v))),
+                (Some(l), Some(v)) => Some(S::normalize_nearest_unit(l.add(v))),
                 _ => None,
             },
         }
@@ -165,6 +172,11 @@ pub struct Incident<'a, S> {
     /// `att · spot`, the factor on the whole contribution of this light; `None`
     /// means exactly 1 (no multiplication is done).
     pub scale: Option<S>,
+    /// The factor is `scale · 2^scale_exp`: 0 but near a light whose attenuation
+    /// has no constant term, where the factor exceeds the tier's range
+    /// ([`Scalar::geo_inv_quadratic_exp`]); the light's terms are multiplied by
+    /// `scale`, then by `2^scale_exp` with saturation.
+    pub scale_exp: u32,
     /// Whether this light's ambient term is added per point. `false` for lights
     /// whose ambient is constant: it is folded into the scene's base colour.
     pub ambient_per_point: bool,
@@ -389,6 +401,7 @@ impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
         Incident {
             l: self.dir,
             scale: None,
+            scale_exp: 0,
             ambient_per_point: false,
             colors: &self.pre,
         }
@@ -422,9 +435,20 @@ impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
 /// # Extremes
 ///
 /// - `a = 0` (pure `1/d²`) cannot be folded: the factor grows without bound near
-///   the light and saturates at the tier's maximum (below 2 for the fixed tiers,
-///   where `b·d + c·d² < ½`; 10⁹ for the float tiers). [`Attenuation::factor`]
-///   saturates likewise for any `a < ½` in the fixed tiers.
+///   the light ([`Attenuation::is_unbounded`]). The fixed tiers carry it beyond
+///   their range as `m·2^e` (`m` in `[1, 2)`, [`Scalar::geo_inv_quadratic_exp`])
+///   and saturate the light's contribution only after it is formed (colours ×
+///   cosines × `m`, then `× 2^e`, saturated at ±2): the colour is right wherever
+///   that product is within the range, and where it is beyond, the output
+///   clamps to 1 as the reference does. (Before, the factor itself saturated at
+///   2: `GL_LINEAR_ATTENUATION` 10⁻³⁰ with `a = 0` gave 97 instead of 255.) What
+///   could pull a saturated contribution back below 1 is refused by
+///   [`Lighting::checked`](crate::lighting::Lighting::checked) with
+///   [`ParamError::TierRange`]: a negative colour on such a light, negative terms
+///   summing to `1 − max` or below, fog. The float tiers cap the factor at 10⁹
+///   (where `b·d + c·d² < 10⁻⁹`: every product with it above 10⁻⁹ saturates).
+///   [`Attenuation::factor`] saturates at the tier's maximum (below 2 for the
+///   fixed tiers, for any `a < ½`).
 /// - Very far lights give factors that round to 0; lengths beyond the geometry range
 ///   (32768 units for the fixed tiers) saturate there.
 /// - Negative distances (only reachable through [`Attenuation::factor`]) count as 0.
@@ -438,6 +462,8 @@ pub struct Attenuation<G: GeoScalar> {
     inv_a: f32,
     /// `b = c = 0`: the factor is the constant `1/a`, folded into the colours.
     constant: bool,
+    /// `1/a` not folded and `b` or `c` non-zero: the factor is unbounded.
+    unbounded: bool,
 }
 
 impl<G: GeoScalar> Attenuation<G> {
@@ -450,7 +476,14 @@ impl<G: GeoScalar> Attenuation<G> {
             return Err(ParamError::AttenuationAllZero);
         }
         let (inv_a, bn, cn) = (1.0 / a, b / a, c / a);
-        let (kn, inv_a) = if a > 0.0 && inv_a.is_finite() && bn.is_finite() && cn.is_finite() {
+        let constant = b == 0.0 && c == 0.0;
+        // a constant 1/a is folded even where it overflows f32 (a < 2^-128):
+        // the colour terms are then infinite, which `Lighting::checked` reports
+        // and the conversion to a tier saturates (it was dropped: the light
+        // shone with its plain colours)
+        let folded =
+            a > 0.0 && (constant || (inv_a.is_finite() && bn.is_finite() && cn.is_finite()));
+        let (kn, inv_a) = if folded {
             (G::inv_quadratic(1.0, bn, cn), inv_a)
         } else {
             (G::inv_quadratic(a, b, c), 1.0)
@@ -459,7 +492,8 @@ impl<G: GeoScalar> Attenuation<G> {
             k: G::inv_quadratic(a, b, c),
             kn,
             inv_a,
-            constant: b == 0.0 && c == 0.0,
+            constant,
+            unbounded: !folded && !constant,
         })
     }
 
@@ -471,6 +505,7 @@ impl<G: GeoScalar> Attenuation<G> {
             kn: k,
             inv_a: 1.0,
             constant: true,
+            unbounded: false,
         }
     }
 
@@ -491,11 +526,20 @@ impl<G: GeoScalar> Attenuation<G> {
         self.inv_a
     }
 
-    /// The per-point factor after folding: `1/(1 + (b/a)·d + (c/a)·d²)` (or
-    /// `1/(b·d + c·d²)` when `a = 0`).
+    /// Whether the per-point factor is unbounded: no constant term to fold
+    /// (`a = 0`, or `b/a`, `c/a` beyond `f32`) and `b` or `c` non-zero, so
+    /// `1/(b·d + c·d²)` grows without limit near the light (see the type's
+    /// docs, *Extremes*).
+    pub fn is_unbounded(&self) -> bool {
+        self.unbounded
+    }
+
+    /// The per-point factor after folding, `1/(1 + (b/a)·d + (c/a)·d²)` (or
+    /// `1/(b·d + c·d²)` when `a = 0`), as `(m, e)`: `m·2^e`
+    /// ([`Scalar::geo_inv_quadratic_exp`]).
     #[inline(always)]
-    fn varying<S: Scalar<Geo = G>>(&self, d: G) -> S {
-        S::geo_inv_quadratic(&self.kn, d)
+    fn varying<S: Scalar<Geo = G>>(&self, d: G) -> (S, u32) {
+        S::geo_inv_quadratic_exp(&self.kn, d)
     }
 
     /// The colour terms of `colors` on `m` with `1/a` folded in.
@@ -505,7 +549,10 @@ impl<G: GeoScalar> Attenuation<G> {
         m: &Material<S>,
         spot: bool,
     ) -> ColorTerms {
-        ColorTerms::new(colors, m, self.inv_a, spot || !self.constant)
+        ColorTerms {
+            unbounded: self.unbounded,
+            ..ColorTerms::new(colors, m, self.inv_a, spot || !self.constant)
+        }
     }
 }
 
@@ -561,9 +608,16 @@ impl<S: Scalar> LightSource<S> for PointLight<S> {
         // L = (P_light − P)/d
         let (l, d) = S::geo_direction(point_sub::<S>(self.pos, *p));
         let varying = !self.att.constant;
+        let (scale, scale_exp) = if varying {
+            let (k, e) = self.att.varying::<S>(d);
+            (Some(k), e)
+        } else {
+            (None, 0)
+        };
         Incident {
             l,
-            scale: varying.then(|| self.att.varying::<S>(d)),
+            scale,
+            scale_exp,
             ambient_per_point: varying,
             colors: &self.pre,
         }
@@ -647,14 +701,16 @@ impl<S: Scalar> LightSource<S> for SpotLight<S> {
         } else {
             S::ZERO
         };
-        let scale = if self.att.constant {
-            spot
+        let (scale, scale_exp) = if self.att.constant {
+            (spot, 0)
         } else {
-            spot.mul(self.att.varying::<S>(d))
+            let (k, e) = self.att.varying::<S>(d);
+            (spot.mul(k), e)
         };
         Incident {
             l,
             scale: Some(scale),
+            scale_exp,
             ambient_per_point: true,
             colors: &self.pre,
         }

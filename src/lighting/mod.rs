@@ -331,9 +331,18 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// - with a negative colour anywhere, or fog: the sum of all positive terms
     ///   (emission and global ambient included) and the sum of all negative ones.
     ///
+    /// - with a light whose attenuation has no constant term
+    ///   ([`Attenuation::is_unbounded`](crate::light::Attenuation::is_unbounded):
+    ///   its factor grows without limit near the light, and its contribution
+    ///   saturates there): no negative term on that light, the negative terms of
+    ///   every channel summing to more than `1 − max`, no fog; so a saturated
+    ///   contribution keeps the output at 1, as the reference's.
+    ///
     /// Where it passes, no intermediate value saturates unless the true sum is
-    /// beyond the tier's maximum with every term non-negative, where the output
-    /// clamps to 1 either way. The float tiers (maximum 10⁹) pass every finite scene.
+    /// beyond the tier's maximum with every term non-negative (or with negative
+    /// terms too small to pull it below 1), where the output clamps to 1 either
+    /// way. The float tiers (maximum 10⁹) pass every finite scene but the three
+    /// combinations of an unbounded attenuation above.
     ///
     /// ```
     /// use fixshade::prelude::*;
@@ -370,6 +379,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         let mut pos = constant.map(|v| v.max(0.0));
         let mut neg = constant.map(|v| v.min(0.0));
         let mut negative = neg.iter().any(|&v| v < 0.0);
+        let mut unbounded = false;
         let mut result = Ok(());
         const NAMES: [&str; 4] = [
             "light ambient × material ambient",
@@ -392,9 +402,29 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
                 pos[c] += a.max(0.0) + (d.max(0.0) + s.max(0.0)).max(tr.max(0.0));
                 neg[c] += a.min(0.0) + (d.min(0.0) + s.min(0.0)).min(tr.min(0.0));
                 negative |= terms.iter().any(|&v| v < 0.0);
+                if t.unbounded && terms.iter().any(|&v| v < 0.0) {
+                    result = Err(err(
+                        "negative colour under an attenuation without a constant term (a = 0)",
+                    ));
+                }
             }
+            unbounded |= t.unbounded;
         });
         result?;
+        if unbounded {
+            // a saturated contribution (max) must stay at or above 1 whatever
+            // is added to it
+            if F::NEEDS_DISTANCE {
+                return Err(err(
+                    "fog with an attenuation without a constant term (a = 0)",
+                ));
+            }
+            if neg.iter().any(|&v| !(v > 1.0 - max)) {
+                return Err(err(
+                    "negative terms with an attenuation without a constant term (a = 0)",
+                ));
+            }
+        }
         if negative || F::NEEDS_DISTANCE {
             for c in 0..3 {
                 if !(pos[c] < max && neg[c] > -max) {
@@ -581,15 +611,21 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
                 direct = t;
             }
         }
-        let ambient = inc.ambient_per_point.then_some(c.ambient);
-        (
-            ambient.map(|a| match k {
-                Some(k) => a.scale(k),
-                None => a,
-            }),
-            direct,
-            specular,
-        )
+        let mut ambient = inc.ambient_per_point.then_some(c.ambient).map(|a| match k {
+            Some(k) => a.scale(k),
+            None => a,
+        });
+        // a factor beyond the tier's range (an attenuation without a constant
+        // term, near the light): the rest of it, 2^e, multiplies the terms
+        // formed, so that they saturate only where the true contribution does
+        let e = inc.scale_exp;
+        if e != 0 {
+            let up = |c: Rgb<S>| Rgb::new(c.r.mul_pow2(e), c.g.mul_pow2(e), c.b.mul_pow2(e));
+            ambient = ambient.map(up);
+            direct = up(direct);
+            specular = up(specular);
+        }
+        (ambient, direct, specular)
     }
 }
 

@@ -287,6 +287,19 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
         Self::normalize(v)
     }
 
+    /// The unit vector along `v` for a precomputed direction that kernels use
+    /// as a unit vector without correcting its length (the halfway vector, whose
+    /// `x^n` amplifies a length error `n` times): among the tier's vectors within
+    /// one step of the exact direction, the one nearest to unit length. The
+    /// default is [`Scalar::normalize_precise`]; `Q14`, whose rounding of each
+    /// component leaves the length up to `5·10⁻⁵` off (5 % of a highlight of
+    /// exponent 1024), picks the floor or ceiling of each component whose squared
+    /// length is nearest to 1 (about ten times closer).
+    #[inline]
+    fn normalize_nearest_unit(v: Vec3<Self>) -> Vec3<Self> {
+        Self::normalize_precise(v)
+    }
+
     /// A renormalisation for interpolated normals, whose length stays near 1
     /// (between about 0.7 and 1 for reasonably tessellated meshes): the same
     /// result as [`Scalar::normalize`] for every input, possibly cheaper.
@@ -333,13 +346,48 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     /// The attenuation `1/(a + b·d + c·d²)` of the coefficients `k` (see
     /// [`GeoScalar::inv_quadratic`]) at distance `d`; a negative (or NaN) distance
     /// counts as 0. Saturates at [`Scalar::MAX`] where `a + b·d + c·d²` is below
-    /// `1/MAX` (0.5 for the fixed tiers, 10⁻⁹ for the float tiers).
+    /// `1/MAX` (0.5 for the fixed tiers, 10⁻⁹ for the float tiers); the lights use
+    /// [`Scalar::geo_inv_quadratic_exp`], which goes on beyond.
     ///
     /// Accuracy, for every finite non-negative `a, b, c` and every distance of the
     /// geometry range: `Q14` within 2⁻¹³ relative (16-bit mantissas) plus its final
     /// rounding (2⁻¹⁵), `Q30` and the float tiers within 10⁻⁶ relative
     /// (`tests/stability_distance.rs` sweeps every binade of both).
     fn geo_inv_quadratic(k: &<Self::Geo as GeoScalar>::InvQuadratic, d: Self::Geo) -> Self;
+
+    /// [`Scalar::geo_inv_quadratic`] beyond the tier's range: `(m, e)` with the
+    /// factor `m·2^e`. While the factor is below [`Scalar::MAX`], `e = 0` and `m` is
+    /// [`Scalar::geo_inv_quadratic`]'s value; above it (only possible without a
+    /// constant term, `a < ½`, near the light) the fixed tiers return `m` in
+    /// `[1, 2)` (the same relative accuracy) and `e ≥ 1`, and `(1, u32::MAX)` for
+    /// an infinite factor (`a + b·d + c·d² = 0`), so that a product with the factor
+    /// can saturate only after it is formed ([`Scalar::mul_pow2`]). The float tiers
+    /// keep the saturated value (`e = 0`; their maximum, 10⁹, saturates every
+    /// product of the factor above 10⁻⁹).
+    #[inline]
+    fn geo_inv_quadratic_exp(
+        k: &<Self::Geo as GeoScalar>::InvQuadratic,
+        d: Self::Geo,
+    ) -> (Self, u32) {
+        (Self::geo_inv_quadratic(k, d), 0)
+    }
+
+    /// `self · 2^e`, saturated at `±MAX` (`e = 0` returns `self`; any `e` is
+    /// allowed, `u32::MAX` saturates every non-zero value). The default doubles
+    /// with [`Scalar::add`] (saturating in the fixed tiers) until the value stops
+    /// changing; the fixed tiers shift.
+    #[inline]
+    fn mul_pow2(self, e: u32) -> Self {
+        let mut v = self;
+        for _ in 0..e.min(160) {
+            let w = v.add(v);
+            if w == v {
+                break;
+            }
+            v = w;
+        }
+        v
+    }
 
     /// The ramp `clamp((end − d)/(end − start), 0, 1)` for finite `start < end`
     /// (validated by the caller). Either end may lie beyond the geometry range, and

@@ -118,6 +118,23 @@ const fn clamp_raw(raw: i32) -> i32 {
     }
 }
 
+/// `a + b·d + c·d²` in Q16.16 (saturated) for the Q16.16 distance `d`, within
+/// 32-bit products: the distance is normalised to 16 bits, `Dn = (D ≪ z) ≫ 15`
+/// with `z` its leading zeros less one (`d = Dn·2^(−1−z)`), each term is one
+/// product of 16-bit values (`mb·Dn`, `mc·(Dn² ≫ 16)`) shifted by its exponent
+/// (rounded, saturated). Negative distances count as 0.
+#[inline(always)]
+fn inv_quadratic_sum(k: &InvQuadratic16, d: Geo16) -> u32 {
+    let d = d.to_bits().max(0) as u32;
+    // z = 0..=30 for d > 0 (d < 2^31); z = 31 and dn = 0 for d = 0
+    let z = d.leading_zeros().wrapping_sub(1) & 31;
+    let dn = (d << z) >> 15;
+    let z = z as i32;
+    let b = shift_u32(k.m16[0] * dn, k.k16[0] - z);
+    let c = shift_u32(k.m16[1] * ((dn * dn) >> 16), k.k16[1] - 2 * z);
+    k.a16.saturating_add(b).saturating_add(c)
+}
+
 /// The linear fog ramp of the `Q14` tier (see [`Scalar::ramp`]): `f = 0` beyond the
 /// raw distance `d0`, else `min(1, g0 + ((d0 − D) ≫ r)·mi ≫ sh)`, with `d0 − D`
 /// shifted to 16 bits so that the product with the 16-bit mantissa `mi` of the slope
@@ -289,6 +306,32 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         Q14::<3>::normalize(Vec3::new(Q14(v.x.0), Q14(v.y.0), Q14(v.z.0))).map_tier()
     }
 
+    /// The exact direction in `f32` (`v`'s components are exact), then of the
+    /// eight floor/ceiling combinations of its Q14 components the one whose
+    /// squared length is nearest to `2^28` (32-bit integer squares).
+    fn normalize_nearest_unit(v: Vec3<Self>) -> Vec3<Self> {
+        let s = [v.x.0, v.y.0, v.z.0].map(|c| c as f32);
+        let len2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+        if !(len2 > 0.0) {
+            return Self::normalize_precise(v);
+        }
+        let k = 16384.0 / libm::sqrtf(len2);
+        let fl = s.map(|c| libm::floorf(c * k) as i32);
+        let mut best = (u32::MAX, [0i32; 3]);
+        for m in 0..8 {
+            let c: [i32; 3] =
+                core::array::from_fn(|i| (fl[i] + ((m >> i) & 1)).clamp(-16384, 16384));
+            // each square ≤ 2^28: the sum fits a u32
+            let l2: u32 = c.iter().map(|&x| (x * x) as u32).sum();
+            let e = l2.abs_diff(1 << 28);
+            if e < best.0 {
+                best = (e, c);
+            }
+        }
+        let c = best.1;
+        Vec3::new(Self(c[0]), Self(c[1]), Self(c[2]))
+    }
+
     geo16_ops!();
     #[inline]
     fn geo_to_unit(g: Geo16) -> Self {
@@ -304,20 +347,54 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
     /// Q16.16 adds 2⁻¹⁷ absolute, 2⁻¹⁶ relative where the factor is below 2.
     #[inline]
     fn geo_inv_quadratic(k: &InvQuadratic16, d: Geo16) -> Self {
-        let d = d.to_bits().max(0) as u32;
-        // z = 0..=30 for d > 0 (d < 2^31); z = 31 and dn = 0 for d = 0
-        let z = d.leading_zeros().wrapping_sub(1) & 31;
-        let dn = (d << z) >> 15;
-        let z = z as i32;
-        let b = shift_u32(k.m16[0] * dn, k.k16[0] - z);
-        let c = shift_u32(k.m16[1] * ((dn * dn) >> 16), k.k16[1] - 2 * z);
-        let q = k.a16.saturating_add(b).saturating_add(c);
+        let q = inv_quadratic_sum(k, d);
         if q <= 1 << 15 {
             // a + b·d + c·d² ≤ ½: the factor is at least 2, beyond the range
             return Self::MAX;
         }
         // 1/q in Q14 = 2^30 / q (Q16.16), rounded: below 2^15
         Self::from_raw((((1u32 << 30) + (q >> 1)) / q) as i32)
+    }
+
+    /// As [`Scalar::geo_inv_quadratic`]; beyond the range, `q = a + b·d + c·d²`
+    /// (Q16.16, in `[1, 2^15]`) is shifted to `q' = q·2^s` in `[2^15, 2^16)` and
+    /// the factor is `(2^30/q')·2^s` (the same 32-bit division).
+    #[inline]
+    fn geo_inv_quadratic_exp(k: &InvQuadratic16, d: Geo16) -> (Self, u32) {
+        let q = inv_quadratic_sum(k, d);
+        if q > 1 << 15 {
+            return (Self::from_raw((((1u32 << 30) + (q >> 1)) / q) as i32), 0);
+        }
+        if q == 0 {
+            return (Self::ONE, u32::MAX);
+        }
+        // q ≤ 2^15: 16 ≤ leading zeros ≤ 31
+        let s = q.leading_zeros() - 16;
+        let q = q << s;
+        // 2^30/q' in [2^14, 2^15]
+        let m = ((1u32 << 30) + (q >> 1)) / q;
+        if m >= 1 << 15 {
+            (Self::ONE, s + 1)
+        } else {
+            (Self::from_raw(m as i32), s)
+        }
+    }
+
+    /// A saturating shift of the raw value.
+    #[inline]
+    fn mul_pow2(self, e: u32) -> Self {
+        if e == 0 || self.0 == 0 {
+            self
+        } else if e >= 16 {
+            if self.0 > 0 {
+                Self::MAX
+            } else {
+                Self(RAW_MIN)
+            }
+        } else {
+            // |raw| ≤ 2^15, e ≤ 15: the shift stays below 2^30
+            Self(clamp_raw(self.0 << e))
+        }
     }
 
     fn ramp(start: f32, end: f32) -> RampQ14 {

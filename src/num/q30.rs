@@ -46,6 +46,23 @@ impl<const NEWTON: u8> Q30<NEWTON> {
     }
 }
 
+/// `a + b·d + c·d²` in Q32.32 (saturated) for the Q16.16 distance `d`, in 64-bit
+/// arithmetic: the distance normalised to 31 bits, `Dn = D ≪ z`
+/// (`d = Dn·2^(−16−z)`), the terms the products of the exact 24-bit mantissas
+/// with `Dn` and `Dn² ≫ 31` shifted into Q32.32 (rounded, saturated). Negative
+/// distances count as 0.
+#[inline(always)]
+fn inv_quadratic_sum(k: &InvQuadratic16, d: Geo16) -> u64 {
+    let d = d.to_bits().max(0) as u32;
+    let z = d.leading_zeros().wrapping_sub(1) & 31;
+    let dn = (d << z) as u64; // [2^30, 2^31), or 0
+    let z = z as i32;
+    let b = shift_u64(k.m24[0] as u64 * dn, k.k30[0] - z);
+    let d2 = (dn * dn + (1 << 30)) >> 31; // ≤ 2^31
+    let c = shift_u64(k.m24[1] as u64 * d2, k.k30[1] - 2 * z);
+    k.a32.saturating_add(b).saturating_add(c)
+}
+
 /// The linear fog ramp of the `Q30` tier (see [`Scalar::ramp`]): `f = 0` beyond the
 /// raw distance `d0`, else `min(1, g0 + (d0 − D)·mi ≫ sh)` with a 64-bit product and
 /// a 32-bit mantissa `mi` of the slope, and `f = 1` without a product beyond `full`.
@@ -181,19 +198,53 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     /// below 2⁻³⁰.
     #[inline]
     fn geo_inv_quadratic(k: &InvQuadratic16, d: Geo16) -> Self {
-        let d = d.to_bits().max(0) as u32;
-        let z = d.leading_zeros().wrapping_sub(1) & 31;
-        let dn = (d << z) as u64; // [2^30, 2^31), or 0
-        let z = z as i32;
-        let b = shift_u64(k.m24[0] as u64 * dn, k.k30[0] - z);
-        let d2 = (dn * dn + (1 << 30)) >> 31; // ≤ 2^31
-        let c = shift_u64(k.m24[1] as u64 * d2, k.k30[1] - 2 * z);
-        let q = k.a32.saturating_add(b).saturating_add(c);
+        let q = inv_quadratic_sum(k, d);
         if q <= 1 << 31 {
             return Self::MAX;
         }
         // 1/q in Q30 = 2^62 / q (Q32.32), rounded
         Self::from_wide((((1u64 << 62) + (q >> 1)) / q) as i64)
+    }
+
+    /// As [`Scalar::geo_inv_quadratic`]; beyond the range, `q = a + b·d + c·d²`
+    /// (Q32.32, in `[1, 2^31]`) is shifted to `q' = q·2^s` in `[2^31, 2^32)` and
+    /// the factor is `(2^62/q')·2^s` (the same 64-bit division).
+    #[inline]
+    fn geo_inv_quadratic_exp(k: &InvQuadratic16, d: Geo16) -> (Self, u32) {
+        let q = inv_quadratic_sum(k, d);
+        if q > 1 << 31 {
+            return (Self::from_wide((((1u64 << 62) + (q >> 1)) / q) as i64), 0);
+        }
+        if q == 0 {
+            return (Self::ONE, u32::MAX);
+        }
+        // q ≤ 2^31: 32 ≤ leading zeros ≤ 63
+        let s = q.leading_zeros() - 32;
+        let q = q << s;
+        // 2^62/q' in [2^30, 2^31]
+        let m = ((1u64 << 62) + (q >> 1)) / q;
+        if m >= 1 << 31 {
+            (Self::ONE, s + 1)
+        } else {
+            (Self(m as i32), s)
+        }
+    }
+
+    /// A saturating shift of the raw value.
+    #[inline]
+    fn mul_pow2(self, e: u32) -> Self {
+        let r = self.0;
+        if e == 0 || r == 0 {
+            self
+        } else if e >= 31 || r.unsigned_abs() > (i32::MAX as u32) >> e {
+            if r > 0 {
+                Self::MAX
+            } else {
+                Self(i32::MIN)
+            }
+        } else {
+            Self(r << e)
+        }
     }
 
     fn ramp(start: f32, end: f32) -> RampQ30 {

@@ -237,9 +237,11 @@ impl Setup {
     /// `ε·(w + h) + 24`. Computed generously, saturating.
     ///
     /// A plane whose per-pixel gradient saturated at ±2^30 ([`scale`]: a
-    /// sliver across which the value changes by more than 2^16 units per
-    /// pixel) has no such bound: `u32::MAX`, so that its values are clamped
-    /// to the vertex range.
+    /// sliver across which the attribute changes by more than four units of
+    /// its range per pixel) has no such bound: `u32::MAX`, so that its values
+    /// are clamped to the vertex range (fuzz target `surface`: a gradient
+    /// capped at 2^30 gave values 4.5 times the range, which overflowed the
+    /// fast normal-map kernel).
     #[inline]
     pub(crate) fn err(&self, p: &Plane) -> u32 {
         if p.dx.unsigned_abs() >= 1 << 30 || p.dy.unsigned_abs() >= 1 << 30 {

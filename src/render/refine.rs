@@ -18,12 +18,21 @@
 //!    back one leaves the silhouette and is not split (a vertex exactly on
 //!    the silhouette would otherwise split every edge around it);
 //! 3. a silhouette edge is split at its midpoint, in the order the triangles
-//!    of the mesh meet it, while the budget lasts: the first triangle that
-//!    meets it creates its vertex, the second finds it again (a short list per
-//!    vertex), so an edge is either split for both its triangles or for
-//!    neither. Once the budget of new vertices is spent, the remaining
-//!    silhouette edges stay whole and their triangles are drawn flat, as
-//!    without refinement: still crack-free, just less round.
+//!    of the mesh meet it, while the budget lasts, and the decision is made
+//!    per **geometric edge**: an edge is known by its two endpoint
+//!    *positions* (a hash of the lower one picks its list of split edges), so
+//!    the copies of one edge (the two sides of a texture seam, where the
+//!    vertices are duplicated with other texture coordinates) decide together.
+//!    The first triangle that meets a copy creates its vertex, the second
+//!    finds it again; another copy of the same geometric edge gets a vertex of
+//!    its own (its texture coordinates and tangent) at exactly the same
+//!    position. Once the budget of new vertices is spent, a copy that finds
+//!    no room marks its geometric edge dead, and no copy of it is split (a
+//!    second pass writes the replacing triangles from the live edges only;
+//!    the vertices already made for the dead ones go unused). So an edge is
+//!    split for all its triangles or for none: within any budget the output
+//!    is crack-free, silhouette edges beyond the budget stay whole and their
+//!    triangles are drawn flat, as without refinement, just less round.
 //!
 //! A triangle with 1, 2 or 3 split edges becomes 2, 3 or 4 triangles (one
 //! level of subdivision); each is culled, binned and drawn like a mesh
@@ -64,6 +73,10 @@
 //!   there).
 //! - The replacing triangles are drawn after the mesh's own within each band
 //!   (the order matters only without a depth buffer).
+//! - Vertices that share a position should share their normal (a seam, not a
+//!   crease): each copy is classified by its own normal, and a crease whose
+//!   copies fall in different classes can be split on one side only (a
+//!   T-junction there).
 
 use super::vertex::{self, CachedVertex};
 use crate::camera::{MeshTransform, Projection};
@@ -91,9 +104,11 @@ pub const MAX_NEW_VERTICES: usize = NONE as usize;
 /// | `triangles` | triangle budget (`4·E` never runs out on a closed mesh) | 8 |
 #[derive(Debug)]
 pub struct RefineMemory<'a, V> {
-    /// One word per mesh vertex: its class and the head of its edge list.
+    /// One word per mesh vertex: its class and the head of one list of split
+    /// edges (the edges whose lower endpoint position hashes to this index).
     pub vertex_words: &'a mut [u16],
-    /// The split edges `[i, j, next]` (`i < j`), one per new vertex.
+    /// The split edges `[i, j, next]` (`i` the endpoint with the lower
+    /// position), one per new vertex.
     pub edges: &'a mut [[u16; 3]],
     /// New vertices: raw positions (the mesh's fraction bits).
     pub positions: &'a mut [[i16; 3]],
@@ -196,13 +211,15 @@ impl<V: Copy + Default, const NV: usize, const E: usize, const T: usize> Default
 /// What one frame's refinement produced.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct RefineStats {
-    /// Edges split (new vertices).
+    /// New vertices made: the split edge copies, and those of a geometric
+    /// edge abandoned because another copy of it found the budget spent.
     pub vertices: usize,
     /// Mesh triangles replaced.
     pub refined: usize,
     /// Triangles replacing them.
     pub triangles: usize,
-    /// Silhouette edges left whole because the budget ran out.
+    /// Silhouette edges (counted per triangle side) left whole because the
+    /// budget ran out.
     pub skipped: usize,
 }
 
@@ -397,9 +414,71 @@ fn midpoint(
     Some((pos, normal, uv, tangent))
 }
 
-/// Runs the refinement of one frame: classifies the vertices, splits the
-/// silhouette edges within the budget, runs the vertex stage on the new
-/// vertices and writes the replacing triangles.
+/// The flag of a split-edge record (in its `next` word) whose geometric edge
+/// is not split after all: another copy of it found the budget spent.
+const DEAD: u16 = 0x4000;
+
+/// The bucket (`0..n`) of the edges whose lower endpoint is at position `p`:
+/// a multiplicative hash, scaled without a division (`n < 2^16`).
+#[inline]
+fn bucket(p: [i16; 3], n: usize) -> usize {
+    let c = p.map(|v| u32::from(v as u16));
+    let h = c[0]
+        .wrapping_mul(0x9E37_79B1)
+        .wrapping_add(c[1].wrapping_mul(0x85EB_CA77))
+        .wrapping_add(c[2].wrapping_mul(0xC2B2_AE3D));
+    let h = h ^ (h >> 15);
+    // (h ≫ 16) < 2^16 and n < 2^16: the product fits
+    (((h >> 16) * (n.min(0xFFFF) as u32)) >> 16) as usize
+}
+
+/// A mesh edge as the refinement keys it: its endpoints ordered by position
+/// (so every copy of a geometric edge, e.g. the two sides of a texture seam,
+/// orders them alike), with the lower position. `None` for an edge whose
+/// endpoints share a position (nothing to split).
+#[inline]
+fn edge_key(mesh: &Mesh<'_>, a: usize, b: usize) -> Option<(usize, usize, [i16; 3], [i16; 3])> {
+    let (pa, pb) = (*mesh.positions().get(a)?, *mesh.positions().get(b)?);
+    match pa.cmp(&pb) {
+        core::cmp::Ordering::Less => Some((a, b, pa, pb)),
+        core::cmp::Ordering::Greater => Some((b, a, pb, pa)),
+        core::cmp::Ordering::Equal => None,
+    }
+}
+
+/// What the bucket list holds of edge `lo`–`hi` (positions `plo`, `phi`):
+/// the record of this copy, and a record of another copy of the same
+/// geometric edge (same endpoint positions).
+fn find(
+    mesh: &Mesh<'_>,
+    head: u16,
+    edges: &[[u16; 3]],
+    (lo, hi, plo, phi): (usize, usize, [i16; 3], [i16; 3]),
+) -> (Option<usize>, Option<usize>) {
+    let (mut copy, mut twin) = (None, None);
+    let mut e = head & NONE;
+    while e != NONE {
+        let Some(r) = edges.get(usize::from(e)) else {
+            break;
+        };
+        let (i, j) = (usize::from(r[0]), usize::from(r[1]));
+        if i == lo && j == hi {
+            copy = Some(usize::from(e));
+        } else if twin.is_none()
+            && mesh.positions().get(i) == Some(&plo)
+            && mesh.positions().get(j) == Some(&phi)
+        {
+            twin = Some(usize::from(e));
+        }
+        e = r[2] & NONE;
+    }
+    (copy, twin)
+}
+
+/// Runs the refinement of one frame: classifies the vertices, decides which
+/// silhouette edges to split within the budget (per geometric edge: every copy
+/// of it or none), runs the vertex stage on the new vertices and writes the
+/// replacing triangles.
 pub(crate) fn build<'a, K: Kernel, P: Projection>(
     mesh: &Mesh<'_>,
     t: &MeshTransform<P>,
@@ -433,6 +512,8 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
     if !mesh.tangents().is_empty() {
         budget = budget.min(m.tangents.len());
     }
+    // one word per mesh vertex: its class (top bits) and the head of bucket
+    // i's list of split edges (low bits)
     let words = m.vertex_words.get_mut(..nv).unwrap_or(&mut []);
     for (i, w) in words.iter_mut().enumerate() {
         let (p, n) = (
@@ -442,63 +523,104 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
         let e = if P::PERSPECTIVE { t.eye(p) } else { [0; 3] };
         *w = (class::<P>(t.normal(n), e, tau) << CLASS_SHIFT) | NONE;
     }
+    let class_of = |words: &[u16], i: usize| words.get(i).map_or(0, |w| w >> CLASS_SHIFT);
     let mut stats = RefineStats::default();
+    // pass 1: which edges are split. A copy of an edge met for the first time
+    // gets a new vertex while the budget lasts (at the position of another
+    // copy's new vertex, if there is one: the same bits on both sides of a
+    // seam); when the budget is spent, every copy of its geometric edge is
+    // marked dead, so that none is split
+    let mut used = 0usize;
+    for tri in mesh.triangles() {
+        let idx = tri.map(usize::from);
+        let cls = idx.map(|i| class_of(words, i));
+        for k in 0..3 {
+            if !silhouette(cls[k], cls[(k + 1) % 3]) {
+                continue;
+            }
+            let Some(key) = edge_key(mesh, idx[k], idx[(k + 1) % 3]) else {
+                continue;
+            };
+            let b = bucket(key.2, nv);
+            let head = words.get(b).map_or(NONE, |w| w & NONE);
+            let (copy, twin) = find(mesh, head, m.edges.get(..used).unwrap_or(&[]), key);
+            if copy.is_some() {
+                continue;
+            }
+            let twin_dead = twin
+                .and_then(|e| m.edges.get(e))
+                .is_some_and(|r| r[2] & DEAD != 0);
+            if twin_dead {
+                continue;
+            }
+            if used >= budget {
+                // no room for this copy: its geometric edge stays whole
+                let mut e = head;
+                while e & NONE != NONE {
+                    let Some(r) = m.edges.get_mut(usize::from(e & NONE)) else {
+                        break;
+                    };
+                    let (i, j) = (usize::from(r[0]), usize::from(r[1]));
+                    if mesh.positions().get(i) == Some(&key.2)
+                        && mesh.positions().get(j) == Some(&key.3)
+                    {
+                        r[2] |= DEAD;
+                    }
+                    e = r[2];
+                }
+                continue;
+            }
+            let (lo, hi) = (key.0, key.1);
+            let Some((mut p, n, uv, tg)) = midpoint(mesh, lo, hi) else {
+                continue;
+            };
+            if let Some(tp) = twin.and_then(|e| m.positions.get(e)) {
+                p = *tp;
+            }
+            let (Some(w), Some(r)) = (words.get_mut(b), m.edges.get_mut(used)) else {
+                continue;
+            };
+            // lo, hi < nv ≤ 65535; used < budget < NONE
+            *r = [lo as u16, hi as u16, *w & NONE];
+            *w = (*w & !NONE) | used as u16;
+            if let Some(s) = m.positions.get_mut(used) {
+                *s = p;
+            }
+            if let Some(s) = m.normals.get_mut(used) {
+                *s = n;
+            }
+            if let Some(s) = m.texcoords.get_mut(used) {
+                *s = uv;
+            }
+            if let Some(s) = m.tangents.get_mut(used) {
+                *s = tg;
+            }
+            used += 1;
+        }
+    }
+    stats.vertices = used;
+    // pass 2: the replacing triangles, from the live split edges
     let mut nt = 0usize;
     for (ti, tri) in mesh.triangles().iter().enumerate() {
         let idx = tri.map(usize::from);
-        let cls = idx.map(|i| words.get(i).map_or(0, |w| w >> CLASS_SHIFT));
-        if !(silhouette(cls[0], cls[1]) || silhouette(cls[1], cls[2]) || silhouette(cls[2], cls[0]))
-        {
-            continue;
-        }
+        let cls = idx.map(|i| class_of(words, i));
         // the new vertex of each edge k = (idx[k], idx[k+1]), if split
         let mut mid: [Option<u16>; 3] = [None; 3];
         for k in 0..3 {
-            let (a, b) = (idx[k], idx[(k + 1) % 3]);
-            if !silhouette(cls[k], cls[(k + 1) % 3]) || a == b {
+            if !silhouette(cls[k], cls[(k + 1) % 3]) {
                 continue;
             }
-            let (lo, hi) = (a.min(b), a.max(b));
-            // look the edge up in lo's list
-            let mut e = words.get(lo).map_or(NONE, |w| w & NONE);
-            while e != NONE {
-                match m.edges.get(usize::from(e)) {
-                    Some(r) if usize::from(r[1]) == hi => break,
-                    Some(r) => e = r[2],
-                    None => e = NONE,
+            let Some(key) = edge_key(mesh, idx[k], idx[(k + 1) % 3]) else {
+                continue;
+            };
+            let head = words.get(bucket(key.2, nv)).map_or(NONE, |w| w & NONE);
+            match find(mesh, head, m.edges.get(..used).unwrap_or(&[]), key).0 {
+                Some(e) if m.edges.get(e).is_some_and(|r| r[2] & DEAD == 0) => {
+                    // e < used < NONE, nv + e ≤ 65535
+                    mid[k] = Some((nv + e) as u16);
                 }
+                _ => stats.skipped += 1,
             }
-            if e == NONE {
-                if stats.vertices >= budget {
-                    stats.skipped += 1;
-                    continue;
-                }
-                let Some((p, n, uv, tg)) = midpoint(mesh, lo, hi) else {
-                    continue;
-                };
-                let k_new = stats.vertices;
-                let (Some(w), Some(r)) = (words.get_mut(lo), m.edges.get_mut(k_new)) else {
-                    continue;
-                };
-                // lo, hi < nv ≤ 65535; k_new < budget < NONE
-                *r = [lo as u16, hi as u16, *w & NONE];
-                *w = (*w & !NONE) | k_new as u16;
-                if let Some(s) = m.positions.get_mut(k_new) {
-                    *s = p;
-                }
-                if let Some(s) = m.normals.get_mut(k_new) {
-                    *s = n;
-                }
-                if let Some(s) = m.texcoords.get_mut(k_new) {
-                    *s = uv;
-                }
-                if let Some(s) = m.tangents.get_mut(k_new) {
-                    *s = tg;
-                }
-                e = k_new as u16;
-                stats.vertices += 1;
-            }
-            mid[k] = Some((nv + usize::from(e)) as u16);
         }
         let splits = mid.iter().filter(|m| m.is_some()).count();
         if splits == 0 {
@@ -550,7 +672,7 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
         stats.refined += 1;
     }
     stats.triangles = nt;
-    let nnew = stats.vertices;
+    let nnew = used;
     let positions: &'a [[i16; 3]] = m.positions;
     let normals: &'a [[i16; 3]] = m.normals;
     let texcoords: &'a [[i16; 2]] = m.texcoords;

@@ -2,6 +2,10 @@
 //! the exact projection, for sheets crossing the near plane and reaching far
 //! beyond the screen.
 
+/// Fixed proptest seeds (shared with the integration tests).
+#[path = "../../tests/common/seeded.rs"]
+mod seeded;
+
 use super::*;
 use crate::camera::{Camera, Mat4, Perspective, Viewport};
 use crate::mesh::Mesh;
@@ -288,13 +292,7 @@ fn floor_through_the_near_plane_is_watertight() {
 }
 
 proptest! {
-    // seeded: see tests/common/seeded.rs
-    #![proptest_config(ProptestConfig {
-        cases: 200,
-        rng_algorithm: proptest::test_runner::RngAlgorithm::ChaCha,
-        rng_seed: proptest::test_runner::RngSeed::Fixed(0x5EED_0001),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(seeded::config("render::tests", 200))]
 
     /// Random sheets crossing the near plane, many reaching far beyond the
     /// screen (up to ~120 units to the side at the near plane): no pixel twice,

@@ -334,10 +334,12 @@ impl<'m> FastNormal<'m> {
                     r[j] = inv_len_q14(s[j]);
                 }
                 for _ in 0..NEWTON {
-                    // r ← r·(3 − s·r²)/2, seeded with the previous pixel's r
-                    let r2 = (r[j] * r[j]) >> 14;
-                    let sr2 = ((s[j] >> 14) * r2) >> 14;
-                    r[j] = (r[j] * (49152 - sr2)) >> 15;
+                    // r ← r·(3 − s·r²)/2, seeded with the previous pixel's r;
+                    // in range over the span (`newton_steps`), wrapping after
+                    // its last pixel, where `s` leaves it and `r` is not used
+                    let r2 = r[j].wrapping_mul(r[j]) >> 14;
+                    let sr2 = (s[j] >> 14).wrapping_mul(r2) >> 14;
+                    r[j] = r[j].wrapping_mul(49152i32.wrapping_sub(sr2)) >> 15;
                 }
             }
             crate::num::no_unroll();

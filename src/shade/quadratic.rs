@@ -200,7 +200,20 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
     let q14 = |c: [f32; 3]| -> [i32; 3] {
         map(c).map(|v| libm::roundf(v * 16384.0).clamp(-65536.0, 65536.0) as i32)
     };
-    let q14v = |v: [f32; 3]| -> [i32; 3] { v.map(|c| libm::roundf(c * 16384.0) as i32) };
+    // the directions as unit vectors: the tier's `L` and `H` are rounded per
+    // component (Q14: up to 5·10⁻⁵ off unit length), which the general path's
+    // cosines correct and x^n amplifies (n = 840: 4 %); the kernels use them
+    // as unit vectors
+    // (in f32, 6·10⁻⁸ relative: no f64 linked into a firmware)
+    let unit = |v: [f32; 3]| -> [f32; 3] {
+        let len = libm::sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if len > 0.0 {
+            v.map(|c| c / len)
+        } else {
+            v
+        }
+    };
+    let q14v = |v: [f32; 3]| -> [i32; 3] { unit(v).map(|c| libm::roundf(c * 16384.0) as i32) };
     let spec = d.specular != Specular::None;
     let phong = d.specular == Specular::Phong;
     let n = d.n;
@@ -237,7 +250,8 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
             .map(|c| (0..K).map(|k| libm::fabsf(map(d.kd[k])[c])).sum::<f32>())
             .fold(0.0, f32::max);
     let lv = core::array::from_fn(|k| {
-        libm::roundf((0..3).map(|i| d.l[k][i] * d.v[i]).sum::<f32>() * 32768.0) as i32
+        let l = unit(d.l[k]);
+        libm::roundf((0..3).map(|i| l[i] * d.v[i]).sum::<f32>() * 32768.0) as i32
     });
     let mut st = QuadraticState {
         pow: PowTable::new(n, x0),
@@ -262,7 +276,10 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
         fl: FloatConsts {
             base: map(d.base),
             kd: core::array::from_fn(|k| map(d.kd[k])),
-            lv: core::array::from_fn(|k| (0..3).map(|i| d.l[k][i] * d.v[i]).sum::<f32>()),
+            lv: core::array::from_fn(|k| {
+                let l = unit(d.l[k]);
+                (0..3).map(|i| l[i] * d.v[i]).sum::<f32>()
+            }),
             x0,
             u_scale: U_ONE as f32 / width,
         },

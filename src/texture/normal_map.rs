@@ -15,6 +15,16 @@
 //! a texel as a unit normal without renormalising it (an 8-bit format would be
 //! off by up to 0.7 % in length, 25 % of a highlight of exponent 32).
 //!
+//! **Validation.** [`NormalMap::new`] checks that every texel is such a unit
+//! normal (`|x² + y² + z² − 2^28| ≤ 2^15`, a length within
+//! `1 ± 6.1·10⁻⁵`; every texel of [`normal_texel`] and [`bump_to_normals`]
+//! passes) and returns [`TextureError::NotUnit`] naming the first one that
+//! is not. So a map from flash is checked once, at start-up, and the per-pixel
+//! kernels can rely on it: a texel such as `[i16::MAX; 3]` (length 3.46)
+//! would overflow the fast path's 32-bit dot products and light 3.5 times too
+//! brightly. Texels from another source (an 8-bit map scaled up, a tool that
+//! truncates) are made unit in place by [`normalize_texels`].
+//!
 //! **Sampling.** Nearest texel ([`NormalMap::sample`], [`TexCoord`] in Q16, the
 //! texel containing the point, as [`crate::texture`]); [`Wrap::Repeat`] takes
 //! coordinates modulo the map, [`Wrap::Clamp`] clamps to the edge texels.
@@ -47,6 +57,20 @@ pub type NormalTexel = [i16; 3];
 /// The flat normal `(0, 0, 1)`: a map of it shades like no map at all.
 pub const FLAT_NORMAL: NormalTexel = [0, 0, 1 << 14];
 
+/// The largest `|x² + y² + z² − 2^28|` of a texel [`NormalMap::new`] accepts
+/// (`2^15`: a length within `1 ± 6.1·10⁻⁵`). Rounding each component of a
+/// unit vector to the nearest Q14 step moves the squared length by at most
+/// `2^14·√3 + ¾ < 28 379`, so every texel of [`normal_texel`] is accepted.
+const UNIT_TOLERANCE: u32 = 1 << 15;
+
+/// Whether `t` is a unit normal within [`UNIT_TOLERANCE`] (exact, in 64-bit
+/// integers).
+pub(crate) const fn is_unit_texel(t: NormalTexel) -> bool {
+    let (x, y, z) = (t[0] as i64, t[1] as i64, t[2] as i64);
+    let d = x * x + y * y + z * z - (1 << 28);
+    d.unsigned_abs() <= UNIT_TOLERANCE as u64
+}
+
 /// A tangent-space normal map over borrowed texels (see the [module docs](crate::texture)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NormalMap<'a> {
@@ -73,13 +97,23 @@ impl<'a> NormalMap<'a> {
 
     /// A map of `2^w_log2 × 2^h_log2` texels, row by row from the top-left
     /// (`v = 0`) texel. Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], fewer texels
-    /// than the size (extra texels are ignored).
+    /// than the size (extra texels are ignored), a texel that is not a unit
+    /// normal (`x² + y² + z²` within `2^28 ± 2^15`: [`TextureError::NotUnit`],
+    /// the first one; [`normalize_texels`] repairs a map). Checking the
+    /// texels costs one pass over them (three 32-bit squares each), once.
     ///
     /// ```
+    /// use fixshade::error::TextureError;
     /// use fixshade::texture::{NormalMap, Wrap, FLAT_NORMAL};
     /// static FLAT: [[i16; 3]; 1] = [FLAT_NORMAL];
     /// let map = NormalMap::new(&FLAT, 0, 0, Wrap::Repeat).unwrap();
     /// assert_eq!((map.width(), map.height()), (1, 1));
+    /// // not unit length: a typed error, not an overflow in the kernel
+    /// let long = [FLAT_NORMAL, [i16::MAX; 3]];
+    /// assert_eq!(
+    ///     NormalMap::new(&long, 1, 0, Wrap::Repeat),
+    ///     Err(TextureError::NotUnit { index: 1, texel: [i16::MAX; 3] })
+    /// );
     /// ```
     pub fn new(
         texels: &'a [NormalTexel],
@@ -95,8 +129,15 @@ impl<'a> NormalMap<'a> {
                 got: texels.len(),
             });
         }
+        let texels = texels.get(..needed).unwrap_or(texels);
+        if let Some(index) = texels.iter().position(|&t| !is_unit_texel(t)) {
+            return Err(TextureError::NotUnit {
+                index,
+                texel: texels[index],
+            });
+        }
         Ok(Self {
-            texels: texels.get(..needed).unwrap_or(texels),
+            texels,
             w_log2,
             h_log2,
             wrap,
@@ -220,6 +261,35 @@ pub fn normal_texel(n: [f32; 3]) -> Result<NormalTexel, TextureError> {
     Ok(d.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16))
 }
 
+/// Makes every texel of `texels` a unit normal in place: each is replaced by
+/// [`normal_texel`] of its direction (so the result passes
+/// [`NormalMap::new`]); unit texels are kept as they are. For maps from
+/// another source, e.g. an 8-bit map scaled to Q14 (`(c − 128)·16384/127`),
+/// once at load time, in `f64`.
+///
+/// Errors: a zero texel ([`TextureError::Degenerate`]`("texel")`, which has
+/// no direction); nothing is written then.
+///
+/// ```
+/// use fixshade::texture::{normalize_texels, NormalMap, Wrap};
+/// // an 8-bit normal map's texels scaled up: 0.7 % too short
+/// let mut texels = [[0i16, 0, 16256], [11494, 0, 11494]];
+/// assert!(NormalMap::new(&texels, 1, 0, Wrap::Repeat).is_err());
+/// normalize_texels(&mut texels)?;
+/// assert_eq!(texels, [[0, 0, 16384], [11585, 0, 11585]]);
+/// assert!(NormalMap::new(&texels, 1, 0, Wrap::Repeat).is_ok());
+/// # Ok::<(), fixshade::error::TextureError>(())
+/// ```
+pub fn normalize_texels(texels: &mut [NormalTexel]) -> Result<(), TextureError> {
+    if texels.contains(&[0; 3]) {
+        return Err(TextureError::Degenerate("texel"));
+    }
+    for t in texels.iter_mut().filter(|t| !is_unit_texel(**t)) {
+        *t = normal_texel(t.map(f32::from))?;
+    }
+    Ok(())
+}
+
 /// Converts a height map into a normal map (bump mapping, once at load time).
 ///
 /// `heights` holds `2^w_log2 × 2^h_log2` heights row by row (`v` down);
@@ -339,8 +409,8 @@ mod tests {
 
     #[test]
     fn wrap_and_clamp_at_the_edges() {
-        // texel i holds [i, 0, 0]
-        let t: [NormalTexel; 8] = core::array::from_fn(|i| [i as i16, 0, 0]);
+        // texel i holds [i, 0, 16384] (unit within the tolerance)
+        let t: [NormalTexel; 8] = core::array::from_fn(|i| [i as i16, 0, 16384]);
         let r = NormalMap::new(&t, 2, 1, Wrap::Repeat).unwrap();
         let c = NormalMap::new(&t, 2, 1, Wrap::Clamp).unwrap();
         assert_eq!(r.texel(-1, 0)[0], 3);
@@ -381,6 +451,48 @@ mod tests {
             }
         }
         assert!(worst < 6e-5, "length error {worst}");
+    }
+
+    #[test]
+    fn texels_must_be_unit_normals() {
+        for (t, ok) in [
+            (FLAT_NORMAL, true),
+            ([-16384, 0, 0], true),
+            ([0, 0, -16384], true),
+            ([16384, 1, 1], true),
+            ([16385, 0, 0], false),   // 2^28 + 32769
+            ([16383, 0, 0], true),    // 2^28 − 32767
+            ([16382, 0, 0], false),   // 2^28 − 65532
+            ([16384, 181, 0], true),  // 2^28 + 32761
+            ([16384, 182, 0], false), // 2^28 + 33124
+            ([i16::MAX; 3], false),
+            ([i16::MIN; 3], false),
+            ([i16::MIN, 0, 0], false),
+            ([0; 3], false),
+        ] {
+            assert_eq!(is_unit_texel(t), ok, "{t:?}");
+        }
+        let t = [FLAT_NORMAL, FLAT_NORMAL, [1, 2, 3], FLAT_NORMAL];
+        assert_eq!(
+            NormalMap::new(&t, 1, 1, Wrap::Clamp),
+            Err(TextureError::NotUnit {
+                index: 2,
+                texel: [1, 2, 3]
+            })
+        );
+        // texels beyond the size are not read, nor checked
+        assert!(NormalMap::new(&t, 1, 0, Wrap::Clamp).is_ok());
+        // every i16 texel but zero can be made unit
+        let mut t = [[i16::MAX; 3], [i16::MIN, 5, -7], [1, 0, 0], [0, -3, 0]];
+        normalize_texels(&mut t).unwrap();
+        assert!(t.iter().all(|&t| is_unit_texel(t)), "{t:?}");
+        assert_eq!(t[2..], [[16384, 0, 0], [0, -16384, 0]]);
+        let mut z = [FLAT_NORMAL, [0; 3], [9, 9, 9]];
+        assert_eq!(
+            normalize_texels(&mut z),
+            Err(TextureError::Degenerate("texel"))
+        );
+        assert_eq!(z[2], [9, 9, 9], "nothing written on error");
     }
 
     #[test]

@@ -1,2 +1,4 @@
 pub mod render;
 pub mod scenes;
+pub mod seeded;
+pub mod worst_case;

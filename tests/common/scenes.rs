@@ -489,9 +489,11 @@ pub fn excluded(s: &Sample) -> bool {
 }
 
 /// Whether an attenuation factor of the sample exceeds 2 (`a + b·d + c·d² < ½`):
-/// the fixed tiers' values end just below 2, so such a factor saturates there (see
-/// `Attenuation`); the generator keeps the sum above 0.6, but a search may move a
-/// light closer.
+/// beyond the fixed tiers' range, where they carry the factor as `m·2^e` and the
+/// error of every cosine is multiplied by it (the reference's sensitivity too;
+/// `tests/attenuation_unbounded.rs` covers that domain with a bound that grows
+/// with the factor); the generator keeps the sum above 0.6, but a search may
+/// move a light closer.
 pub fn beyond_range(s: &Sample) -> bool {
     let pd = s.p.map(|c| c as f64);
     s.lights.iter().any(|l| {
@@ -800,4 +802,207 @@ pub fn search<S: Scalar>(
         }
     }
     best.unwrap()
+}
+
+// ---- targeted worst-case search (issue 21, item 6) ------------------------------------
+
+/// The unit direction towards the viewer at the sample's point.
+fn view_dir(s: &Sample) -> [f64; 3] {
+    match s.viewer {
+        ViewerDesc::Infinite(d) => norm(d.map(|c| c as f64)),
+        ViewerDesc::Local(e) => norm([0, 1, 2].map(|i| e[i] as f64 - s.p[i] as f64)),
+    }
+}
+
+/// Puts light `l` in the unit direction `dir` from the sample's point (at its
+/// distance; a spot light's axis aimed back at the point).
+fn aim(l: &mut LightDesc, p: [f32; 3], dir: [f64; 3]) {
+    let pd = p.map(|c| c as f64);
+    match &mut l.kind {
+        LightKind::Directional { towards_light } => *towards_light = f32s(dir),
+        LightKind::Point { position, .. } => {
+            let dist = [0, 1, 2]
+                .map(|i| position[i] as f64 - pd[i])
+                .iter()
+                .map(|c| c * c)
+                .sum::<f64>()
+                .sqrt()
+                .max(1.0e-3);
+            *position = f32s([0, 1, 2].map(|i| pd[i] + dir[i] * dist));
+        }
+        LightKind::Spot { position, axis, .. } => {
+            let dist = [0, 1, 2]
+                .map(|i| position[i] as f64 - pd[i])
+                .iter()
+                .map(|c| c * c)
+                .sum::<f64>()
+                .sqrt()
+                .max(1.0e-3);
+            *position = f32s([0, 1, 2].map(|i| pd[i] + dir[i] * dist));
+            *axis = f32s(dir.map(|c| -c));
+        }
+    }
+}
+
+/// Moves a point or spot light along its direction to where `a + b·d + c·d²`
+/// equals `t` (if it can).
+fn place_for_attenuation(l: &mut LightDesc, p: [f32; 3], t: f64) {
+    let pd = p.map(|c| c as f64);
+    let (position, [a, b, c]) = match &mut l.kind {
+        LightKind::Point {
+            position,
+            attenuation,
+        }
+        | LightKind::Spot {
+            position,
+            attenuation,
+            ..
+        } => (position, attenuation.map(|x| x as f64)),
+        LightKind::Directional { .. } => return,
+    };
+    let d = if c > 0.0 {
+        (-b + (b * b + 4.0 * c * (t - a)).max(0.0).sqrt()) / (2.0 * c)
+    } else if b > 0.0 {
+        (t - a) / b
+    } else {
+        return;
+    };
+    if !(d > 1.0e-3 && d < 2.0e4) {
+        return;
+    }
+    let dir = norm([0, 1, 2].map(|i| position[i] as f64 - pd[i]));
+    *position = f32s([0, 1, 2].map(|i| pd[i] + dir[i] * d));
+}
+
+/// Targeted starts for the worst-case search of `term` and `band`: `count`
+/// samples of the generator, each moved to a place where a tier's rounding is
+/// amplified most (in turn):
+/// - the mirror direction: the light placed so that `R = V` (and `H = N`),
+///   then turned away by up to `2/√n` radians, at the band's highest exponent;
+/// - a grazing light: `N·L` from `1.2·10⁻³` (just outside the excluded band)
+///   to `2·10⁻²`;
+/// - near saturation: the light colours scaled so that the brightest channel
+///   of the reference is at 0.97–1.0;
+/// - attenuation extremes: point and spot lights where `a + b·d + c·d²` is
+///   0.5–0.53 (a factor just below the fixed tiers' 2) or 10⁴;
+/// - the mirror direction at a random exponent of the band.
+pub fn targeted_starts(term: Term, band: Band, count: usize, seed: u64) -> Vec<Sample> {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut seed_bytes = [0u8; 32];
+    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let mut runner = TestRunner::new_with_rng(
+        Config::default(),
+        TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes),
+    );
+    let strat = sample(term, band);
+    let mut rng = Rng::new(seed ^ 0x5EED);
+    let (_, n_max) = band.range();
+    let mut out = Vec::new();
+    let mut k = 0usize;
+    while out.len() < count && k < 50 * count {
+        let mut s = strat.new_tree(&mut runner).unwrap().current();
+        let family = k % 5;
+        k += 1;
+        let n = norm(s.n.map(|c| c as f64));
+        let v = view_dir(&s);
+        let p = s.p;
+        match family {
+            0 | 4 => {
+                if family == 0 {
+                    s.material.shininess = n_max as f32;
+                }
+                let spread = 2.0 / (s.material.shininess.max(1.0) as f64).sqrt();
+                let l0 = if term == Term::Transmission {
+                    around(
+                        n.map(|c| -c),
+                        rng.f() * 0.5,
+                        rng.f() * std::f64::consts::TAU,
+                    )
+                } else {
+                    let m = [0, 1, 2].map(|i| 2.0 * dot(n, v) * n[i] - v[i]);
+                    norm(m)
+                };
+                let th = spread * rng.f() * rng.f();
+                for l in &mut s.lights {
+                    let dir = around(l0, th, rng.f() * std::f64::consts::TAU);
+                    aim(l, p, dir);
+                }
+            }
+            1 => {
+                for l in &mut s.lights {
+                    let g = 1.2e-3 + rng.f() * 0.019;
+                    let dir = around(
+                        n,
+                        std::f64::consts::FRAC_PI_2 - g,
+                        rng.f() * std::f64::consts::TAU,
+                    );
+                    aim(l, p, dir);
+                }
+            }
+            2 => {
+                let r = reference_rgb(&s);
+                let top = r.iter().cloned().fold(0.0f64, f64::max);
+                let brightest = s
+                    .lights
+                    .iter()
+                    .flat_map(|l| l.diffuse.iter().chain(l.specular.iter()))
+                    .cloned()
+                    .fold(0.0f32, f32::max);
+                if top > 1.0e-3 && brightest > 0.0 {
+                    let k = ((0.97 + 0.03 * rng.f()) / top).min(1.8 / brightest as f64) as f32;
+                    for l in &mut s.lights {
+                        l.diffuse = l.diffuse.map(|c| c * k);
+                        l.specular = l.specular.map(|c| c * k);
+                        l.ambient = l.ambient.map(|c| c * k);
+                    }
+                }
+            }
+            _ => {
+                let t = if rng.f() < 0.7 {
+                    0.5 + 0.03 * rng.f()
+                } else {
+                    1.0e4
+                };
+                for l in &mut s.lights {
+                    place_for_attenuation(l, p, t);
+                }
+            }
+        }
+        if !excluded(&s) {
+            out.push(s);
+        }
+    }
+    out
+}
+
+/// The worst-case search from [`targeted_starts`]: `count` starts, hill climbs of
+/// `steps` moves ([`perturb`], following [`linear_error`]), samples the bounds
+/// exclude skipped. Returns the largest quantised error met and its sample.
+pub fn targeted_search<S: Scalar>(
+    term: Term,
+    band: Band,
+    count: usize,
+    steps: u32,
+    seed: u64,
+) -> (u32, Option<Sample>) {
+    let starts = targeted_starts(term, band, count, seed);
+    let mut rng = Rng::new(seed ^ 0xC11B);
+    let w = super::worst_case::climb(
+        &starts,
+        steps,
+        seed,
+        |s, amount, _| perturb(s, band, amount, &mut rng),
+        |s| {
+            if excluded(s) {
+                None
+            } else {
+                Some((
+                    linear_error::<S>(s),
+                    lsb_error(tier_u8::<S>(s), reference_u8(s)),
+                ))
+            }
+        },
+    );
+    (w.error, w.at)
 }
