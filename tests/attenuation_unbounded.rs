@@ -14,12 +14,12 @@
 
 use fixshade::error::ParamError;
 use fixshade::lighting::gl::{GlLight, GlLightModel, GlLighting, GlMaterial, GlScene};
-use fixshade::lighting::{AnyLight, Attenuation, LightDesc};
 use fixshade::lighting::LinearFog;
+use fixshade::lighting::{AnyLight, Attenuation, LightDesc};
+use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
 use fixshade::prelude::*;
 use fixshade::reference::{FogDesc, ModelDesc, Reference, ViewerDesc};
-use fixshade::num::{point_from_f32, Vec3};
 
 /// Tiny coefficients: every decade from 10⁻⁴⁵ (a subnormal) to 10⁻³, and the
 /// smallest normal `f32`.

@@ -10,16 +10,14 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
+use fixshade::error::TextureError;
 use fixshade::lighting::{Illuminate, Model};
-use fixshade::texture::{
-    normal_texel, normalize_texels, NormalMap, Wrap,
-};
 use fixshade::prelude::*;
 use fixshade::render::{
     bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
 };
-use fixshade::error::TextureError;
 use fixshade::shade::{GeneralPhongShading, IncrementalModel, Kernel, PhongShading};
+use fixshade::texture::{normal_texel, normalize_texels, NormalMap, Wrap};
 
 /// The tolerance `NormalMap::new` documents: `|x² + y² + z² − 2^28| ≤ 2^15`.
 const UNIT_TOLERANCE: u32 = 1 << 15;

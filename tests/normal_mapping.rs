@@ -28,8 +28,6 @@ use fixshade::render::{draw_triangle, BandView, Corner, DrawBand};
 use fixshade::shade::{GeneralPhongShading, VertexIn};
 use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, Wrap, FLAT_NORMAL};
 
-mod support;
-
 const FB: u32 = 64;
 
 // ---- f64 helpers ------------------------------------------------------------------
@@ -613,18 +611,6 @@ fn fast_error<const NW: u8, M: fixshade::shade::IncrementalModel>(
         let fr = [frame(0), frame(1), frame(2)];
         let (ls, hs) = (fr.map(|f| f.0), fr.map(|f| f.1));
         let uv = q.uv;
-        // the texels within reach of the coordinates: 2e-3 texels, or the
-        // pipeline's stated error bound of the screen-linear coordinate
-        // planes (`Setup::err`, restated by `support::plane_bound`: 14-bit
-        // barycentric coefficients), when larger
-        let c = corners(t);
-        let xy = c.map(|c| (c.clip.x, c.clip.y));
-        let texels_per_unit = f64::from(map.width().max(map.height()))
-            / f64::from(1u32 << (TEXCOORD_FRAC + fixshade::raster::ATTR_FRAC));
-        let reach = [0, 1]
-            .map(|k| support::plane_bound(xy, c.map(|c| c.vertex.uv[k])) * texels_per_unit)
-            .into_iter()
-            .fold(2e-3, f64::max);
         for y in 0..FB {
             for x in 0..FB {
                 let Some(b) = bary(t, x, y, 0.02) else {
@@ -635,7 +621,7 @@ fn fast_error<const NW: u8, M: fixshade::shade::IncrementalModel>(
                 let (lp, hp) = (norm(lerp3(b, ls)), norm(lerp3(b, hs)));
                 let c = lerp3(b, uv);
                 let got = px[i];
-                let e = candidates(&map, [c[0], c[1]], reach)
+                let e = candidates(&map, [c[0], c[1]], 2e-3)
                     .into_iter()
                     .map(|m| {
                         let m = m.map(|v| f64::from(v) / 16384.0);

@@ -9,10 +9,10 @@
 use super::{frames, FrameSpec, Input};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use fixshade::camera::{Camera, MeshTransform, Projection};
-use fixshade::lighting::DirectionalLight;
-use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Phong};
-use fixshade::lighting::Material;
 use fixshade::camera::{Mat4, Viewport};
+use fixshade::lighting::DirectionalLight;
+use fixshade::lighting::Material;
+use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Phong};
 use fixshade::mesh::Mesh;
 use fixshade::num::{Q14, Q30};
 use fixshade::raster::Cull;

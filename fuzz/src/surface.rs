@@ -21,22 +21,20 @@
 use super::{frames, FrameSpec, Input};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use fixshade::camera::{Camera, MeshTransform, Projection};
+use fixshade::camera::{Mat4, Viewport};
+use fixshade::error::TextureError;
 use fixshade::lighting::DirectionalLight;
-use fixshade::lighting::{BlinnPhong, Lambert, Lighting};
 use fixshade::lighting::Material;
+use fixshade::lighting::{BlinnPhong, Lambert, Lighting};
 use fixshade::mesh::{
     displace, textured_sphere_counts, to_compact, uv_sphere_counts, Mesh, MeshData,
     TexturedMeshData,
 };
-use fixshade::camera::{Mat4, Viewport};
-use fixshade::error::TextureError;
-use fixshade::texture::{normalize_texels, NormalMap};
 use fixshade::num::Q14;
 use fixshade::raster::Cull;
-use fixshade::shade::{
-    GeneralPhongShading, GouraudShading, Kernel, Linear, PhongShading, Shader,
-};
+use fixshade::shade::{GeneralPhongShading, GouraudShading, Kernel, Linear, PhongShading, Shader};
 use fixshade::standard;
+use fixshade::texture::{normalize_texels, NormalMap};
 use fixshade::texture::{Filter, TexCoord, Texels, Texture, Wrap};
 use std::collections::HashMap;
 use std::sync::Mutex;

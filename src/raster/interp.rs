@@ -127,19 +127,26 @@ impl<V: Varyings> Linear<V> {
     /// order given to [`Setup::new`]; clamped to ±[`VARYING_LIMIT`]; the
     /// others are not interpolated), and whether a run must be clamped so
     /// that every value stays in `safe(i)` (with [`ATTR_FRAC`] bits),
-    /// positioned at the triangle's first row.
+    /// positioned at the triangle's first row; the values for which `exact(i)`
+    /// holds get planes exact to rounding (`Setup::plane_exact`).
     #[inline(always)]
     pub(crate) fn new(
         s: &Setup,
         v: &[V; 3],
         used: usize,
         safe: impl Fn(usize) -> (i32, i32),
+        exact: impl Fn(usize) -> bool,
     ) -> Self {
         let mut clamp = false;
         let mut planes = V::planes_from_fn(|_| Plane::default());
+        let mut recip = None;
         for (i, p) in planes.as_mut().iter_mut().enumerate().take(used) {
             let a = [0, 1, 2].map(|k| corner(s, v, k, i));
-            let plane = s.plane(a);
+            let plane = if exact(i) {
+                s.plane_exact(a, *recip.get_or_insert_with(|| s.exact_recip()))
+            } else {
+                s.plane(a)
+            };
             let base = super::setup::at3(&a, s.tmb[0]) << ATTR_FRAC;
             clamp |= !within(s, &plane, base, safe(i));
             *p = plane.absolute(base);

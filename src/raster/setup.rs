@@ -315,6 +315,81 @@ impl Setup {
     }
 }
 
+impl Setup {
+    /// The reciprocal of the doubled area for [`Setup::plane_exact`]:
+    /// `(R, b)` with `R = ⌊(2^(31 + b) − 1) / A'⌋` (in `[2^31, 2^32)`), `b`
+    /// the bit length of `A'`. One bit-serial division.
+    #[inline(never)]
+    pub(crate) fn exact_recip(&self) -> (u32, u32) {
+        let t = self.tmb[0];
+        let (o, p1, p2) = (
+            at3(&self.xy, t),
+            at3(&self.xy, self.bary.other[0]),
+            at3(&self.xy, self.bary.other[1]),
+        );
+        // A' = D1 × D2 > 0 (oriented), each product below 2^30
+        let a = ((p1.0 - o.0) * (p2.1 - o.1) - (p1.1 - o.1) * (p2.0 - o.0)).max(1) as u32;
+        let b = bit_length(a);
+        let (r, _) = crate::num::wide::div_u64_u32((1u64 << (31 + b)) - 1, a);
+        (r, b)
+    }
+
+    /// [`Setup::plane`] with its gradients exact to rounding: from the
+    /// reciprocal `recip` ([`Setup::exact_recip`]) to 32 bits and 64-bit
+    /// products made of 32-bit ones, instead of 14-bit barycentric
+    /// coefficients, so that a value is off by at most one unit (of
+    /// `2^−ATTR_FRAC`) per pixel stepped: for values whose every unit counts
+    /// (texture coordinates: the texel a pixel samples). Values within
+    /// ±(2^15 − 1).
+    #[inline]
+    pub(crate) fn plane_exact(&self, a: [i32; 3], recip: (u32, u32)) -> Plane {
+        let b = &self.bary;
+        let t = self.tmb[0];
+        let (o, p1, p2) = (
+            at3(&self.xy, t),
+            at3(&self.xy, b.other[0]),
+            at3(&self.xy, b.other[1]),
+        );
+        let at = at3(&a, t);
+        // |d| ≤ 2^16 − 2, |D| < 2^15: each product below 2^31
+        let d1 = at3(&a, b.other[0]) - at;
+        let d2 = at3(&a, b.other[1]) - at;
+        let (e1, e2) = ((p1.0 - o.0, p1.1 - o.1), (p2.0 - o.0, p2.1 - o.1));
+        // ∂a/∂X = (d1·D2y − d2·D1y)/A', ∂a/∂Y = (d2·D1x − d1·D2x)/A' (per
+        // sub-pixel); per pixel with ATTR_FRAC bits: N·2^(SUBPIXEL_BITS +
+        // ATTR_FRAC)/A' = N·R / 2^(31 + b − 18), rounded, saturated at ±2^30
+        let nx = i64::from(d1 * e2.1) - i64::from(d2 * e1.1);
+        let ny = i64::from(d2 * e1.0) - i64::from(d1 * e2.0);
+        let (r, bits) = recip;
+        let sh = 31 + bits - (SUBPIXEL_BITS + ATTR_FRAC);
+        let grad = |n: i64| {
+            let m = crate::num::wide::mul_u32(n.unsigned_abs() as u32, r);
+            let g = ((m >> (sh - 1)) + 1) >> 1;
+            let g = g.min(1 << 30) as i32;
+            if n < 0 {
+                -g
+            } else {
+                g
+            }
+        };
+        let (dx, dy) = (grad(nx), grad(ny));
+        let v = ((dx >> SUBPIXEL_BITS) * b.dxs)
+            .wrapping_add((dy >> SUBPIXEL_BITS) * b.rem)
+            .wrapping_add(dy.wrapping_mul(b.rows));
+        Plane {
+            row: v,
+            dx,
+            dy,
+            c0: b.c0,
+            lo: 0.min(d1).min(d2) << ATTR_FRAC,
+            hi: 0.max(d1).max(d2) << ATTR_FRAC,
+            // the error bound of `Setup::err` with no coefficient error: one
+            // unit per step
+            spread: 0,
+        }
+    }
+}
+
 /// One attribute over a triangle: the value at column `c0` of the current row
 /// and its changes per pixel and per row, in `2^ATTR_FRAC` units of
 /// `attribute >> sa`, relative to the top vertex's value. Values are computed

@@ -89,7 +89,7 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
             draw_rows::<K, _, false>(kernel, t, &mut w, last, &mut zp, band, &mut p);
         }
     } else {
-        let mut l = Linear::new(&s, v, K::USED, |i| kernel.safe(i));
+        let mut l = Linear::new(&s, v, K::USED, |i| kernel.safe(i), |i| kernel.exact(i));
         if skip > 0 {
             l.skip_rows(skip, K::USED);
         }

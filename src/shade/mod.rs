@@ -289,6 +289,20 @@ pub trait Kernel {
         (-(1 << 30), 1 << 30)
     }
 
+    /// Whether value `i` needs its screen-linear interpolation exact to
+    /// rounding (one unit of 2^−[`ATTR_FRAC`](crate::raster::ATTR_FRAC) per
+    /// pixel stepped) rather than within the 14-bit barycentric
+    /// coefficients' error: texture coordinates, whose every unit can move a
+    /// pixel to the neighbouring texel. Costs the triangle's set-up one
+    /// bit-serial division and four 16 × 16-bit products per such value. The
+    /// default is `false`; perspective-correct values are exact to the same
+    /// order anyway.
+    #[inline(always)]
+    fn exact(&self, i: usize) -> bool {
+        let _ = i;
+        false
+    }
+
     /// Shades pixels `x..x + out.len()` of row `y` (they passed the depth
     /// test): pixel `k` has the values `start + k·step`, which stay within the
     /// range of the corners' values (with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)

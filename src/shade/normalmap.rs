@@ -554,6 +554,12 @@ where
         perpixel::safe::<Mapped>(i)
     }
 
+    /// The texture coordinates (in both kernels' layouts).
+    #[inline(always)]
+    fn exact(&self, i: usize) -> bool {
+        perpixel::exact::<Mapped>(i)
+    }
+
     fn span(
         &self,
         t: &PixelTriangle,

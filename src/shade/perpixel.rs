@@ -305,6 +305,13 @@ pub struct Sources<'m, 't> {
     pub(crate) tex: Option<TextureBinding<'t>>,
 }
 
+/// Whether value `i` is a texture coordinate (interpolated exactly: see
+/// [`Kernel::exact`]).
+#[inline(always)]
+pub(crate) fn exact<F: Surface>(i: usize) -> bool {
+    (F::MAP || F::TEX) && (UV..UV + 2).contains(&i)
+}
+
 /// What a mode's shader holds of its [`Sources`] (`()`: nothing).
 #[doc(hidden)]
 pub trait HasSources: Copy + core::fmt::Debug {
@@ -497,6 +504,12 @@ where
     #[inline(always)]
     fn safe(&self, i: usize) -> (i32, i32) {
         safe::<M::Features>(i)
+    }
+
+    /// The texture coordinates.
+    #[inline(always)]
+    fn exact(&self, i: usize) -> bool {
+        exact::<M::Features>(i)
     }
 
     #[inline(always)]

@@ -255,6 +255,12 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
         }
     }
 
+    /// The texture coordinates.
+    #[inline(always)]
+    fn exact(&self, i: usize) -> bool {
+        i >= 6
+    }
+
     #[inline(always)]
     fn span(
         &self,
