@@ -187,7 +187,12 @@ impl Mat4 {
     /// assert!(Mat4::perspective(1.0, 1.0, 0.0, 10.0).is_err());
     /// # Ok::<(), fixshade::error::ParamError>(())
     /// ```
-    pub fn perspective(fovy_rad: f32, aspect: f32, near: f32, far: f32) -> Result<Self, ParamError> {
+    pub fn perspective(
+        fovy_rad: f32,
+        aspect: f32,
+        near: f32,
+        far: f32,
+    ) -> Result<Self, ParamError> {
         let fovy = finite("fovy", fovy_rad)?;
         let aspect = finite("aspect", aspect)?;
         let near = finite("near", near)?;

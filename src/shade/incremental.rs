@@ -142,10 +142,10 @@ impl<const K: usize> IncrementalState<K> {
     pub(super) fn new<C: OutputColor, S: Scalar>(terms: [DirectionalTerms<S>; K]) -> Self {
         let first = terms.first();
         let lights = terms.map(|t| LightTerms {
-                l: q14v(t.dir),
-                h: q14v(t.half),
-                kd: channel_units::<C, S>(t.diffuse),
-                ks: channel_units::<C, S>(t.specular),
+            l: q14v(t.dir),
+            h: q14v(t.half),
+            kd: channel_units::<C, S>(t.diffuse),
+            ks: channel_units::<C, S>(t.specular),
         });
         IncrementalState {
             lights,
@@ -217,87 +217,87 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
     d: &[i32],
     out: &mut [C],
 ) {
-        let n = out.len() as i64;
-        // Q28 → Q26
-        let q26 = |v: Option<&i32>| v.copied().unwrap_or(0) >> 2;
-        let (n0, dn) = (
-            [q26(a.first()), q26(a.get(1)), q26(a.get(2))],
-            [q26(d.first()), q26(d.get(1)), q26(d.get(2))],
-        );
-        // |N(k)|² = s0 + k·(2·N0·dN) + k²·|dN|², in Q28 (the normal is Q26)
-        let s0 = n0
-            .iter()
-            .map(|&c| ((c >> 12) * (c >> 12)) as u32 as i64)
-            .sum::<i64>();
-        let nd = n0
-            .iter()
-            .zip(dn)
-            .map(|(&a, b)| a as i64 * b as i64)
-            .sum::<i64>()
-            >> 24;
-        let dd = dn.iter().map(|&b| b as i64 * b as i64).sum::<i64>() >> 24;
-        let general = |out: &mut [C]| {
-            let g = |v: &[i32]| [0, 1, 2].map(|i| v.get(i).copied().unwrap_or(0));
-            lit_span(
-                lighting,
-                &Linear,
-                &PhongTriangle::default(),
-                g(a),
-                g(d),
-                [0; 3],
-                [0; 3],
-                x,
-                y,
-                out,
-            )
-        };
-        if dd > 1 << 24 {
-            // |dN| above ¼ per pixel
-            return general(out);
-        }
-        // the extremes of the convex |N(k)|² over the span: the ends, and the vertex
-        // when it is inside (tested as s0·dd − nd² ≥ ¼·dd, i.e. min ≥ ¼, no division)
-        let s_end = s0 + (n - 1).max(0) * (2 * nd + (n - 1).max(0) * dd);
-        let interior = nd < 0 && nd + (n - 1) * dd > 0;
-        let (lo, hi) = (s0.min(s_end), s0.max(s_end));
-        let lo = if interior { 1 << 26 } else { lo };
-        // |N|² change per pixel: ds(k) = 2·N0·dN + (2k + 1)·|dN|², largest at an end
-        let ds_max = (2 * nd + dd)
-            .abs()
-            .max((2 * nd + (2 * n - 3).max(1) * dd).abs());
-        if lo < 1 << 26
-            || hi >= 1 << 30
-            || (interior && s0 * dd - nd * nd < dd << 26)
-            || ds_max > lo >> 3
-        {
-            // |N| outside [½, 2), or changing by more than 1/8 per pixel: the general path
-            return general(out);
-        }
-        // 1/|N| in Q14 at the span start: s ∈ [2^26, 2^30) splits with k = 2 or 4
-        let (t, k) = split_u32(s0 as u32);
-        let y0 = rsqrt_q14_mantissa(t, 2) as i32;
-        let span = SpanState {
-            s: s0 as i32,
-            ds: (2 * nd + dd) as i32,
-            dds: (2 * dd) as i32,
-            r: if k == 2 { y0 >> 1 } else { y0 },
-        };
-        let dots: [[i32; 4]; K] = core::array::from_fn(|j| {
-            [
-                q26(a.get(3 + 2 * j)),
-                q26(d.get(3 + 2 * j)),
-                q26(a.get(4 + 2 * j)),
-                q26(d.get(4 + 2 * j)),
-            ]
-        });
-        // One Newton step per pixel from the previous pixel's 1/|N| leaves a relative
-        // error of 1.5·e², e the relative change of |N| per pixel: below 2^-8 that is
-        // under the Q14 resolution; up to 2^-4 (the limit above) two steps are taken.
-        if ds_max <= lo >> 8 {
-            run::<C, K, 1, SPEC>(st_c, span, dots, out);
-        } else {
-            run::<C, K, 2, SPEC>(st_c, span, dots, out);
-        }
+    let n = out.len() as i64;
+    // Q28 → Q26
+    let q26 = |v: Option<&i32>| v.copied().unwrap_or(0) >> 2;
+    let (n0, dn) = (
+        [q26(a.first()), q26(a.get(1)), q26(a.get(2))],
+        [q26(d.first()), q26(d.get(1)), q26(d.get(2))],
+    );
+    // |N(k)|² = s0 + k·(2·N0·dN) + k²·|dN|², in Q28 (the normal is Q26)
+    let s0 = n0
+        .iter()
+        .map(|&c| ((c >> 12) * (c >> 12)) as u32 as i64)
+        .sum::<i64>();
+    let nd = n0
+        .iter()
+        .zip(dn)
+        .map(|(&a, b)| a as i64 * b as i64)
+        .sum::<i64>()
+        >> 24;
+    let dd = dn.iter().map(|&b| b as i64 * b as i64).sum::<i64>() >> 24;
+    let general = |out: &mut [C]| {
+        let g = |v: &[i32]| [0, 1, 2].map(|i| v.get(i).copied().unwrap_or(0));
+        lit_span(
+            lighting,
+            &Linear,
+            &PhongTriangle::default(),
+            g(a),
+            g(d),
+            [0; 3],
+            [0; 3],
+            x,
+            y,
+            out,
+        )
+    };
+    if dd > 1 << 24 {
+        // |dN| above ¼ per pixel
+        return general(out);
+    }
+    // the extremes of the convex |N(k)|² over the span: the ends, and the vertex
+    // when it is inside (tested as s0·dd − nd² ≥ ¼·dd, i.e. min ≥ ¼, no division)
+    let s_end = s0 + (n - 1).max(0) * (2 * nd + (n - 1).max(0) * dd);
+    let interior = nd < 0 && nd + (n - 1) * dd > 0;
+    let (lo, hi) = (s0.min(s_end), s0.max(s_end));
+    let lo = if interior { 1 << 26 } else { lo };
+    // |N|² change per pixel: ds(k) = 2·N0·dN + (2k + 1)·|dN|², largest at an end
+    let ds_max = (2 * nd + dd)
+        .abs()
+        .max((2 * nd + (2 * n - 3).max(1) * dd).abs());
+    if lo < 1 << 26
+        || hi >= 1 << 30
+        || (interior && s0 * dd - nd * nd < dd << 26)
+        || ds_max > lo >> 3
+    {
+        // |N| outside [½, 2), or changing by more than 1/8 per pixel: the general path
+        return general(out);
+    }
+    // 1/|N| in Q14 at the span start: s ∈ [2^26, 2^30) splits with k = 2 or 4
+    let (t, k) = split_u32(s0 as u32);
+    let y0 = rsqrt_q14_mantissa(t, 2) as i32;
+    let span = SpanState {
+        s: s0 as i32,
+        ds: (2 * nd + dd) as i32,
+        dds: (2 * dd) as i32,
+        r: if k == 2 { y0 >> 1 } else { y0 },
+    };
+    let dots: [[i32; 4]; K] = core::array::from_fn(|j| {
+        [
+            q26(a.get(3 + 2 * j)),
+            q26(d.get(3 + 2 * j)),
+            q26(a.get(4 + 2 * j)),
+            q26(d.get(4 + 2 * j)),
+        ]
+    });
+    // One Newton step per pixel from the previous pixel's 1/|N| leaves a relative
+    // error of 1.5·e², e the relative change of |N| per pixel: below 2^-8 that is
+    // under the Q14 resolution; up to 2^-4 (the limit above) two steps are taken.
+    if ds_max <= lo >> 8 {
+        run::<C, K, 1, SPEC>(st_c, span, dots, out);
+    } else {
+        run::<C, K, 2, SPEC>(st_c, span, dots, out);
+    }
 }
 
 /// The `Kernel` for `K` lights, with `N = 3 + 2K` values.
@@ -365,48 +365,48 @@ fn run<C: OutputColor, const K: usize, const NEWTON: u32, const SPEC: bool>(
     mut dots: [[i32; 4]; K],
     out: &mut [C],
 ) {
-        let SpanState {
-            mut s,
-            mut ds,
-            dds,
-            mut r,
-        } = st;
-        let max = C::CHANNEL_MAX.map(|m| m as i32);
-        for p in out.iter_mut() {
-            // every light term is ≥ 0; the base may be negative (negative ambient)
-            let mut acc = state.base;
-            for (lt, dot) in state.lights.iter().zip(dots.iter_mut()) {
-                // diffuse: N·L/|N| (Q14)
-                let d = ((dot[0] >> 12) * r) >> 14;
-                if d > 0 {
-                    let d = d.min(16384);
-                    acc[0] += (d * lt.kd[0]) >> 14;
-                    acc[1] += (d * lt.kd[1]) >> 14;
-                    acc[2] += (d * lt.kd[2]) >> 14;
-                    if SPEC {
-                        // specular: (N·H/|N|)^n
-                        let sp = state.pow.get(((dot[2] >> 12) * r) >> 14);
-                        acc[0] += (sp * lt.ks[0]) >> 14;
-                        acc[1] += (sp * lt.ks[1]) >> 14;
-                        acc[2] += (sp * lt.ks[2]) >> 14;
-                    }
+    let SpanState {
+        mut s,
+        mut ds,
+        dds,
+        mut r,
+    } = st;
+    let max = C::CHANNEL_MAX.map(|m| m as i32);
+    for p in out.iter_mut() {
+        // every light term is ≥ 0; the base may be negative (negative ambient)
+        let mut acc = state.base;
+        for (lt, dot) in state.lights.iter().zip(dots.iter_mut()) {
+            // diffuse: N·L/|N| (Q14)
+            let d = ((dot[0] >> 12) * r) >> 14;
+            if d > 0 {
+                let d = d.min(16384);
+                acc[0] += (d * lt.kd[0]) >> 14;
+                acc[1] += (d * lt.kd[1]) >> 14;
+                acc[2] += (d * lt.kd[2]) >> 14;
+                if SPEC {
+                    // specular: (N·H/|N|)^n
+                    let sp = state.pow.get(((dot[2] >> 12) * r) >> 14);
+                    acc[0] += (sp * lt.ks[0]) >> 14;
+                    acc[1] += (sp * lt.ks[1]) >> 14;
+                    acc[2] += (sp * lt.ks[2]) >> 14;
                 }
-                dot[0] += dot[1];
-                dot[2] += dot[3];
             }
-            *p = C::from_channels([
-                (acc[0] >> 8).max(0).min(max[0]) as u32,
-                (acc[1] >> 8).max(0).min(max[1]) as u32,
-                (acc[2] >> 8).max(0).min(max[2]) as u32,
-            ]);
-            // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
-            // seeded with this pixel's r
-            s += ds;
-            ds += dds;
-            for _ in 0..NEWTON {
-                let r2 = (r * r) >> 14;
-                let sr2 = ((s >> 14) * r2) >> 14;
-                r = (r * (49152 - sr2)) >> 15;
-            }
+            dot[0] += dot[1];
+            dot[2] += dot[3];
+        }
+        *p = C::from_channels([
+            (acc[0] >> 8).max(0).min(max[0]) as u32,
+            (acc[1] >> 8).max(0).min(max[1]) as u32,
+            (acc[2] >> 8).max(0).min(max[2]) as u32,
+        ]);
+        // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
+        // seeded with this pixel's r
+        s += ds;
+        ds += dds;
+        for _ in 0..NEWTON {
+            let r2 = (r * r) >> 14;
+            let sr2 = ((s >> 14) * r2) >> 14;
+            r = (r * (49152 - sr2)) >> 15;
         }
     }
+}
