@@ -34,23 +34,23 @@
 mod float;
 mod geo;
 mod matrix;
-mod vector;
-mod pow;
+pub(crate) mod pow;
 mod q14;
 mod q30;
 pub(crate) mod recip;
 pub(crate) mod rsqrt;
+mod vector;
 pub(crate) mod wide;
 
 pub use float::{F32Fast, RampF32, F32_LIMIT};
 pub use geo::{GeoScalar, InvQuadratic16};
 pub use matrix::Mat4;
-pub use vector::{point_from_f32, point_sub, Point3, Vec3};
 pub use pow::Exponent;
 pub use q14::RampQ14;
 pub use q14::Q14;
 pub use q30::RampQ30;
 pub use q30::Q30;
+pub use vector::{point_from_f32, point_sub, Point3, Vec3};
 
 use core::fmt::Debug;
 
@@ -96,7 +96,6 @@ pub const ATTR_FRAC: u32 = 14;
 pub(crate) fn at3<T: Copy>(a: &[T; 3], i: usize) -> T {
     a[i.min(2)]
 }
-
 
 /// `v · 2^-shift` rounded to nearest (ties up), for `shift` in 0..=62: an
 /// arithmetic shift, so it cannot overflow for any `v` whose magnitude is below

@@ -1,5 +1,5 @@
 //! Quadratic Phong shading: per-pixel lighting at close to Gouraud cost, by
-//! re-anchored quadratic interpolation along each span (see [`segment`](super::segment)).
+//! re-anchored quadratic interpolation along each span (see [`segment`]).
 // the span loops index several per-light and per-channel arrays at once
 #![allow(clippy::needless_range_loop)]
 
@@ -12,9 +12,10 @@ use crate::lighting::DirectionalLight;
 use crate::lighting::{
     BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Phong, Specular,
 };
+use crate::num::rsqrt::{newton_f32, newton_q15, rsqrt_micromath, rsqrt_q15};
+use crate::num::Vec3;
 use crate::num::{F32Fast, Scalar, Q14};
 use crate::raster::ATTR_FRAC;
-use crate::num::Vec3;
 
 /// The reflection models [`QuadraticPhongShading`] evaluates: [`Lambert`],
 /// [`BlinnPhong`] and [`Phong`] (`R·V`). Brilliance, the Fresnel factor and
@@ -78,8 +79,6 @@ pub struct QuadraticState<const K: usize> {
     dev_x: u32,
     u_mul: i32,
     u_sh: u32,
-    /// `x0` in Q15.
-    x0: i32,
     spec: bool,
     /// Whether the table coordinate can be computed in 32 bits (`n` < 2100).
     spec_ok: bool,
@@ -164,7 +163,8 @@ const DEV_RV: u32 = 8848;
 fn encoder_map<E: Encoder<C>, C: OutputColor>(enc: &E) -> ([i32; 3], [i32; 3]) {
     if E::LINEAR {
         let fs = C::CHANNEL_MAX.map(|m| (m << crate::color::encode::vertex_shift(m)) as i32);
-        let off = C::CHANNEL_MAX.map(|m| ((1u32 << crate::color::encode::vertex_shift(m)) >> 1) as i32);
+        let off =
+            C::CHANNEL_MAX.map(|m| ((1u32 << crate::color::encode::vertex_shift(m)) >> 1) as i32);
         (fs, off)
     } else {
         let b = enc.vertex(Rgb::<Q14>::BLACK);
@@ -202,14 +202,8 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
     let q14v = |v: [f32; 3]| -> [i32; 3] { v.map(|c| libm::roundf(c * 16384.0) as i32) };
     let spec = d.specular != Specular::None;
     let phong = d.specular == Specular::Phong;
-    let n = d.n;
-    let x0 = if n == 0.0 {
-        0.0
-    } else {
-        libm::powf(4096.0, -1.0 / n)
-    };
-    let x0q = libm::floorf(x0 * 32768.0) as i32;
-    let x0 = x0q as f32 / 32768.0;
+    let pow = PowTable::new(d.n);
+    let x0 = pow.x0() as f32 / 32768.0;
     // u = (x − x0)·U_ONE/(1 − x0) = (x_q15 − x0q)·u_mul >> u_sh, u_mul < 2^15
     // (U_ONE = 2^22: u_mul/2^u_sh = 2^7/(1 − x0)); possible for 1 − x0 > 2^−8,
     // i.e. n up to about 2100 (above: the general path)
@@ -239,12 +233,11 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
         libm::roundf((0..3).map(|i| d.l[k][i] * d.v[i]).sum::<f32>() * 32768.0) as i32
     });
     let mut st = QuadraticState {
-        pow: PowTable::new(n, x0),
+        pow,
         y_q: y(TAU_Q, f_q),
         dev_x: if phong { DEV_RV } else { DEV_D },
         u_mul,
         u_sh,
-        x0: x0q,
         spec,
         spec_ok,
         base_l: q14(d.base),
@@ -317,39 +310,6 @@ impl<S: QuadraticTier, const K: usize, M: QuadraticModel, C: OutputColor>
 
 // ---- the Q14 probe -----------------------------------------------------------------
 
-/// `1/√s` seeds in Q15 for `s` in `[2^28, 2^31)` (`|N|` in `[½, √2)`, `s` in
-/// Q30), one per `2^22`, taken at the bin centre (relative error ≤ 0.4 %).
-const RSQRT_SEED: [u16; 448] = {
-    let mut t = [0u16; 448];
-    let mut i = 0;
-    while i < 448 {
-        let centre = (1u64 << 28) + ((2 * i as u64 + 1) << 21);
-        let r = ((1u64 << 60) / centre).isqrt();
-        t[i] = if r > 65535 { 65535 } else { r as u16 };
-        i += 1;
-    }
-    t
-};
-
-/// One Newton step of `1/√s` (Q15) from `y` (within a few percent).
-#[inline(always)]
-fn newton_q15(y: u32, s: u32) -> u32 {
-    // y ← y + y·(1 − s·y²)/2; s·y² ≈ 1: no overflow
-    let y2 = (y * y + (1 << 14)) >> 15;
-    let sy2 = ((s >> 15) * y2 + (1 << 14)) >> 15;
-    let corr = (1i32 << 15) - sy2 as i32;
-    (y as i32 + ((y as i32 * corr + (1 << 15)) >> 16)) as u32
-}
-
-/// `1/√s` in Q15 for `s` in `[2^28, 2^31)` (Q30): a seed and one Newton step,
-/// relative error below 7·10⁻⁵ (at most 3·10⁻⁵ for `|N| > 0.7`).
-#[inline(always)]
-fn rsqrt_q15(s: u32) -> u32 {
-    let y = u32::from(RSQRT_SEED[(((s - (1 << 28)) >> 22) as usize).min(447)]);
-    // the seed is within 0.4 %
-    newton_q15(y, s)
-}
-
 /// Evaluates the Q14 directional lighting along one span.
 struct Q14Probe<'a, const K: usize, M> {
     n0: [i32; 3],
@@ -400,7 +360,7 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for Q14Probe<'_, K, M> {
                 };
                 // |x − x0| ≤ 2^15 and u_mul < 2^15: no overflow; far below x0
                 // (x^n = 0 there) the coordinate is clamped
-                let dx = x - st.x0;
+                let dx = x - st.pow.x0();
                 a.u[k] = if dx < -(1 << 14) {
                     segment::U_FLOOR
                 } else {
@@ -449,11 +409,11 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for Q14Probe<'_, K, M> {
             } else {
                 e
             };
-            let dx = x - st.x0;
+            let dx = x - st.pow.x0();
             *p = if dx <= 0 {
                 0
             } else {
-                st.pow.at(((dx * st.u_mul) >> st.u_sh).min(U_ONE)) as u16
+                st.pow.at((dx * st.u_mul) >> st.u_sh) as u16
             };
             for (v, d) in n.iter_mut().zip(self.dn) {
                 *v = v.wrapping_add(d);
@@ -466,16 +426,6 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for Q14Probe<'_, K, M> {
 }
 
 // ---- the f32 probe ----------------------------------------------------------------
-
-/// `1/√s` for `s` in `[¼, 2)`: the bit-trick seed and three Newton steps (no
-/// `libm`, no division), about 10⁻⁷ relative.
-#[inline(always)]
-fn rsqrt_f32(s: f32) -> f32 {
-    let y = f32::from_bits(0x5f37_5a86 - (s.to_bits() >> 1));
-    let y = y * (1.5 - 0.5 * s * y * y);
-    let y = y * (1.5 - 0.5 * s * y * y);
-    y * (1.5 - 0.5 * s * y * y)
-}
 
 /// Evaluates the directional lighting along one span in `f32` (the FPU tiers).
 struct F32Probe<'a, const K: usize, M> {
@@ -521,7 +471,7 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for F32Probe<'_, K, M> {
         if !a.ok {
             return;
         }
-        let r = rsqrt_f32(s);
+        let r = rsqrt_micromath::<3>(s);
         a.r = (r * 32768.0) as u32;
         let mut v = self.base;
         let st = self.st;
@@ -564,10 +514,9 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for F32Probe<'_, K, M> {
         for (i, p) in out.iter_mut().enumerate() {
             let s = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
             let r1 = if i < 2 || fast {
-                rsqrt_f32(s)
+                rsqrt_micromath::<3>(s)
             } else {
-                let y = r + dr;
-                y * (1.5 - 0.5 * s * y * y)
+                newton_f32(r + dr, s)
             };
             dr = r1 - r;
             r = r1;
@@ -578,11 +527,7 @@ impl<const K: usize, M: QuadraticModel> Probe<K> for F32Probe<'_, K, M> {
                 e
             };
             let u = self.u(x);
-            *p = if u <= 0 {
-                0
-            } else {
-                st.pow.at(u.min(U_ONE)) as u16
-            };
+            *p = if u <= 0 { 0 } else { st.pow.at(u) as u16 };
             for (v, d) in n.iter_mut().zip(self.dn) {
                 *v += d;
             }
@@ -798,51 +743,3 @@ macro_rules! quadratic_lights {
     )*};
 }
 quadratic_lights!(1 => 5, 2 => 7, 3 => 9, 4 => 11);
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn rsqrt_seed_and_step() {
-        let mut worst = 0.0f64;
-        let mut s = 1u32 << 28;
-        while s < (1u32 << 31) - 1000 {
-            let y = f64::from(rsqrt_q15(s)) / 32768.0;
-            let want = 1.0 / (f64::from(s) / f64::from(1u32 << 30)).sqrt();
-            worst = worst.max((y - want).abs() / want);
-            s += 99_991;
-        }
-        // measured 6.1e-5 (at |N| ≈ 0.52, where the seed bins are widest)
-        assert!(worst < 7.0e-5, "{worst}");
-    }
-
-    #[test]
-    fn quadratic_fit_is_exact_on_quadratics() {
-        for jm in 1..5u32 {
-            let m = 1i64 << jm;
-            let p = |t: i64| 1000 + 37 * t - 5 * t * t;
-            let q = segment::Quad::fit(p(0) as i32, p(m) as i32, p(2 * m) as i32, jm);
-            let (mut v, mut d1) = (i64::from(q.v), i64::from(q.d1));
-            for t in 0..2 * m {
-                assert_eq!(v, p(t), "jm {jm} t {t}");
-                v += d1;
-                d1 += i64::from(q.d2);
-            }
-        }
-    }
-
-    #[test]
-    fn pow_table_matches_powf() {
-        for n in [1.0f32, 1.5, 8.0, 12.8, 32.0, 256.0, 1024.0] {
-            let x0 = libm::powf(4096.0, -1.0 / n);
-            let t = PowTable::new(n, x0);
-            for i in (0..=U_ONE).step_by(61) {
-                let x = x0 + (1.0 - x0) * i as f32 / U_ONE as f32;
-                let want = libm::powf(x, n);
-                let got = t.at(i) as f32 / 32768.0;
-                assert!((got - want).abs() < 2.5e-3, "n {n} i {i}: {got} {want}");
-            }
-        }
-    }
-}

@@ -36,58 +36,15 @@ use crate::color::OutputColor;
 /// Fraction bits of the `N·L`-like quantities a probe returns (`d`, and `g`
 /// before it becomes the table coordinate `u`).
 pub(crate) const DFRAC: u32 = 15;
-/// Segments of the specular power table.
-pub(crate) const POW_SEGMENTS: usize = 64;
-/// Table coordinate units per table segment (fine: the coordinate's second
-/// differences must keep their fraction).
-pub(crate) const U_SEG: i32 = 1 << 16;
 /// Table coordinate of `x = 1`.
-pub(crate) const U_ONE: i32 = POW_SEGMENTS as i32 * U_SEG;
+pub(crate) const U_ONE: i32 = crate::num::pow::POW_END;
 /// Probes clamp the table coordinate below at `U_FLOOR` (where `x^n` is 0).
 pub(crate) const U_FLOOR: i32 = -(1 << 29);
 /// The longest segment, `2^MAX_LOG` pixels.
 pub(crate) const MAX_LOG: u32 = 5;
 
-/// `x^n` for `x` in `[x0, 1]` at `POW_SEGMENTS + 1` points, Q15, padded.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct PowTable {
-    t: [u16; POW_SEGMENTS + 4],
-}
-
-impl PowTable {
-    /// The table of `x^n` over `[x0, 1]`.
-    pub(crate) fn new(n: f32, x0: f32) -> Self {
-        let mut t = [0u16; POW_SEGMENTS + 4];
-        for (i, v) in t.iter_mut().enumerate() {
-            let x = x0 + (1.0 - x0) * (i.min(POW_SEGMENTS) as f32) / POW_SEGMENTS as f32;
-            let p = if n == 0.0 { 1.0 } else { libm::powf(x, n) };
-            *v = libm::roundf(p * 32768.0).clamp(0.0, 32768.0) as u16;
-        }
-        Self { t }
-    }
-
-    /// `x^n` in Q15 at table coordinate `u` (`0 ≤ u < U_ONE + 2·U_SEG`).
-    #[inline(always)]
-    pub(crate) fn at(&self, u: i32) -> i32 {
-        let i = (u >> 16) as usize;
-        let f = (u >> 8) & 255;
-        let (a, b) = (
-            i32::from(self.t.get(i).copied().unwrap_or(32768)),
-            i32::from(self.t.get(i + 1).copied().unwrap_or(32768)),
-        );
-        a + (((b - a) * f) >> 8)
-    }
-
-    /// [`PowTable::at`] for any `u`: 0 below the table, 1 above it.
-    #[inline(always)]
-    pub(crate) fn at_clamped(&self, u: i32) -> i32 {
-        if u <= 0 {
-            0
-        } else {
-            self.at(u.min(U_ONE))
-        }
-    }
-}
+/// The specular power table of the quadratic kernel: Q15.
+pub(crate) type PowTable = crate::num::pow::PowTable<15>;
 
 /// What a probe computes at one pixel of a span.
 #[derive(Clone, Copy, Debug)]
@@ -506,7 +463,8 @@ fn run_encode<E: Encoder<C>, C: OutputColor, const K: usize, const CLAMP: bool>(
 #[inline(always)]
 fn in_565(v: [i32; 3], s: i32, max: u32) -> bool {
     let (lo, hi) = Quad::range(v[0], v[1], v[2]);
-    let top = ((max + 1) << (crate::color::encode::vertex_shift(max) + crate::raster::ATTR_FRAC)) as i32;
+    let top =
+        ((max + 1) << (crate::color::encode::vertex_shift(max) + crate::raster::ATTR_FRAC)) as i32;
     lo >= 0 && hi.saturating_add(s) < top
 }
 
@@ -848,6 +806,21 @@ mod tests {
                 (v - i64::from(v1)).abs() <= 2 << (2 * jm),
                 "end jm {jm}: {v} {v1}"
             );
+        }
+    }
+
+    #[test]
+    fn quadratic_fit_is_exact_on_quadratics() {
+        for jm in 1..5u32 {
+            let m = 1i64 << jm;
+            let p = |t: i64| 1000 + 37 * t - 5 * t * t;
+            let q = Quad::fit(p(0) as i32, p(m) as i32, p(2 * m) as i32, jm);
+            let (mut v, mut d1) = (i64::from(q.v), i64::from(q.d1));
+            for t in 0..2 * m {
+                assert_eq!(v, p(t), "jm {jm} t {t}");
+                v += d1;
+                d1 += i64::from(q.d2);
+            }
         }
     }
 }
