@@ -164,7 +164,7 @@ fn slivers_with_saturating_gradients_stay_in_the_corners_range() {
             range_excess(t)
         }
     };
-    let mut r = Rng(0x5EED_0F_5A7u64);
+    let mut r = Rng(0x0005_EED0_F5A7_u64);
     let mut slivers = 0;
     for _ in 0..200 {
         let mut t = random(&mut r);

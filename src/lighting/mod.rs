@@ -332,7 +332,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     ///   (emission and global ambient included) and the sum of all negative ones.
     ///
     /// - with a light whose attenuation has no constant term
-    ///   ([`Attenuation::is_unbounded`](crate::light::Attenuation::is_unbounded):
+    ///   ([`Attenuation::is_unbounded`]:
     ///   its factor grows without limit near the light, and its contribution
     ///   saturates there): no negative term on that light, the negative terms of
     ///   every channel summing to more than `1 − max`, no fog; so a saturated

@@ -1,6 +1,7 @@
 //! The float tiers: `f32` (exact functions from `libm`) and [`F32Fast`] (micromath's
 //! approximate inverse square root).
 
+use super::rsqrt::{rsqrt_exact, rsqrt_micromath};
 use super::Scalar;
 use crate::num::Vec3;
 
@@ -93,23 +94,6 @@ fn clamp_f32(v: f32) -> f32 {
     } else {
         v
     }
-}
-
-#[inline(always)]
-fn rsqrt_exact(x: f32) -> f32 {
-    1.0 / libm::sqrtf(x)
-}
-
-/// micromath's bit-trick seed refined by `N` Newton steps `y ← y·(1.5 − ½·x·y²)`.
-#[inline(always)]
-fn rsqrt_micromath<const N: u8>(x: f32) -> f32 {
-    let mut y = micromath::F32Ext::invsqrt(x);
-    let mut i = 0;
-    while i < N {
-        y *= 1.5 - 0.5 * x * y * y;
-        i += 1;
-    }
-    y
 }
 
 /// `x` limited to [0, 1], NaN to 0 (comparisons: `f32::clamp` has a panicking

@@ -34,7 +34,7 @@
 mod float;
 mod geo;
 mod matrix;
-mod pow;
+pub(crate) mod pow;
 mod q14;
 mod q30;
 pub(crate) mod recip;

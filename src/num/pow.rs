@@ -254,6 +254,105 @@ fn pow_frac_out_of_line<S: Scalar>(x: S, f: u16) -> S {
     x.pow_frac(f)
 }
 
+// ------------------------------------------------------------------ power table
+
+/// Segments of a [`PowTable`].
+pub(crate) const POW_SEGMENTS: usize = 64;
+/// Table coordinate units per segment of a [`PowTable`] (fine: a coordinate that
+/// is interpolated keeps a fraction in its second differences).
+pub(crate) const POW_SEG: i32 = 1 << 16;
+/// The table coordinate of `x = 1`.
+pub(crate) const POW_END: i32 = POW_SEGMENTS as i32 * POW_SEG;
+
+/// `x^n` over `[x0, 1]` for a material's (real) shininess `n`, `x0 = 4096^(−1/n)`
+/// (below `x0` the power is under 1/4096 and read as 0), at `POW_SEGMENTS + 1`
+/// evenly spaced points, linearly interpolated: the per-pixel specular power of
+/// the shading kernels (one multiplication where [`Scalar::pow`] takes a chain of
+/// products or logarithms). `x0` (rounded down), `x` and `x^n` are `Q`-bit fixed
+/// point (`Q` = 14 or 15).
+///
+/// The table coordinate `u` of `x` is `(x − x0)/(1 − x0)·POW_END`; [`PowTable::get`]
+/// computes it, a kernel that interpolates the coordinate itself reads
+/// [`PowTable::at`]. Error: the chord of `x^n` over a segment, at most
+/// `n(n − 1)·x^(n−2)·(1 − x0)²/(8·64²)`, plus the rounding of the entries and of
+/// the interpolation (2^−Q each).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PowTable<const Q: u32> {
+    /// `x0`, `Q`-bit.
+    x0: i32,
+    /// `(x − x0)·mul` is the coordinate of `x` (`Q`-bit) in `2^24` per segment:
+    /// `⌊2^30/(2^Q − x0)⌋`.
+    mul: i32,
+    /// `x^n` at the segment ends (`≤ 2^Q`), the last repeated: the entry after
+    /// an index is always there.
+    t: [u16; POW_SEGMENTS + 2],
+}
+
+impl<const Q: u32> PowTable<Q> {
+    /// One in `Q`-bit fixed point.
+    const ONE: i32 = 1 << Q;
+
+    /// The table of `x^n` (`n ≥ 0`; `n = 0` gives 1 everywhere).
+    pub(crate) fn new(n: f32) -> Self {
+        // f32 (libm's powf is exact to an ulp) so that the fast path links no f64
+        let x0 = if n == 0.0 {
+            0.0
+        } else {
+            libm::powf(4096.0, -1.0 / n)
+        };
+        let one = Self::ONE as f32;
+        let x0q = libm::floorf(x0 * one) as i32;
+        let width = (Self::ONE - x0q).max(1);
+        let mut t = [0u16; POW_SEGMENTS + 2];
+        for (i, v) in t.iter_mut().enumerate() {
+            let x = (x0q as f32 + width as f32 * i.min(POW_SEGMENTS) as f32 / POW_SEGMENTS as f32)
+                / one;
+            let p = if n == 0.0 { 1.0 } else { libm::powf(x, n) };
+            *v = libm::roundf(p * one).clamp(0.0, one) as u16;
+        }
+        Self {
+            x0: x0q,
+            // POW_SEGMENTS·2^24 = 2^30
+            mul: ((1u32 << 30) / width as u32) as i32,
+            t,
+        }
+    }
+
+    /// `x0`, `Q`-bit.
+    #[inline(always)]
+    pub(crate) fn x0(&self) -> i32 {
+        self.x0
+    }
+
+    /// `x^n` (`Q`-bit) for `x` (`Q`-bit; above 1 read as 1).
+    #[inline(always)]
+    pub(crate) fn get(&self, x: i32) -> i32 {
+        if x <= self.x0 {
+            return 0;
+        }
+        // (x − x0)·mul ≤ (2^Q − x0)·⌊2^30/(2^Q − x0)⌋ ≤ 2^30
+        self.at(((x.min(Self::ONE) - self.x0) * self.mul) >> 8)
+    }
+
+    /// `x^n` (`Q`-bit) at table coordinate `u ≥ 0` (beyond [`POW_END`]: 1).
+    #[inline(always)]
+    pub(crate) fn at(&self, u: i32) -> i32 {
+        let i = ((u >> 16) as usize).min(POW_SEGMENTS);
+        let (a, b) = (i32::from(self.t[i]), i32::from(self.t[i + 1]));
+        a + (((b - a) * ((u >> 8) & 255)) >> 8)
+    }
+
+    /// [`PowTable::at`] for any `u`: 0 at and below 0.
+    #[inline(always)]
+    pub(crate) fn at_clamped(&self, u: i32) -> i32 {
+        if u <= 0 {
+            0
+        } else {
+            self.at(u)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -345,5 +444,35 @@ mod tests {
             Q30::ZERO
         );
         assert_eq!(0.0f32.pow(Exponent::new("e", 0.5).unwrap()), 0.0);
+    }
+    /// The table against `powf` at points across the whole coordinate range, and
+    /// `get` against `at` for both precisions.
+    #[test]
+    fn pow_table_matches_powf() {
+        for n in [0.0f32, 1.0, 1.5, 8.0, 12.8, 32.0, 256.0, 1024.0] {
+            let t = PowTable::<15>::new(n);
+            let x0 = t.x0() as f32 / 32768.0;
+            for i in (0..=POW_END).step_by(61) {
+                let x = x0 + (1.0 - x0) * i as f32 / POW_END as f32;
+                let want = libm::powf(x, n);
+                let got = t.at(i) as f32 / 32768.0;
+                assert!((got - want).abs() < 2.5e-3, "n {n} i {i}: {got} {want}");
+            }
+            assert_eq!(t.at(POW_END + 3 * POW_SEG + 77), 32768);
+            assert_eq!(t.at_clamped(-5), 0);
+            let t14 = PowTable::<14>::new(n);
+            for x in (0..=20000).step_by(7) {
+                let want = if x <= t14.x0() {
+                    0.0
+                } else {
+                    libm::powf(x.min(16384) as f32 / 16384.0, n)
+                };
+                let got = t14.get(x) as f32 / 16384.0;
+                assert!(
+                    (got - want).abs() < 2.5e-3 + 1.0 / 4096.0,
+                    "n {n} x {x}: {got} {want}"
+                );
+            }
+        }
     }
 }

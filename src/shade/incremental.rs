@@ -6,28 +6,25 @@ use super::{IncrementalPhongShading, Kernel, Linear, ModeState, Shader};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
 use crate::lighting::{DirectionalLight, DirectionalTerms, Illuminate};
-use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
+use crate::num::rsqrt::rsqrt_q28_q14;
 use crate::num::{Scalar, Vec3, Q14};
 use crate::raster::interp::Varyings;
 use crate::raster::ATTR_FRAC;
 
-/// The models [`IncrementalPhongShading`](super::IncrementalPhongShading) evaluates: [`Lambert`] and [`BlinnPhong`].
+/// The models [`IncrementalPhongShading`] evaluates: [`Lambert`] and [`BlinnPhong`].
 pub trait IncrementalModel: Model {}
 impl IncrementalModel for Lambert {}
 impl IncrementalModel for BlinnPhong {}
 
-/// The lighting configurations [`IncrementalPhongShading`](super::IncrementalPhongShading) accepts.
+/// The lighting configurations [`IncrementalPhongShading`] accepts.
 pub type DirectionalLighting<const NW: u8, const K: usize, M> =
     Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M, InfiniteViewer<Q14<NW>>, NoFog>;
-
-/// Segments of the specular power table.
-const POW_SEGMENTS: usize = 64;
 
 /// The precomputed constants of [`IncrementalPhongShading`] for `K` directional
 /// lights, a viewer at infinity and the [`Lambert`] or [`BlinnPhong`] model in the
 /// `Q14` tier. Per-pixel Phong shading computed incrementally along each span
-/// (the same images as [`PhongShading`] up to the error stated below, at a
-/// fraction of the cost on a Cortex-M0):
+/// (the same images as [`GeneralPhongShading`](super::GeneralPhongShading) up to
+/// the error stated below, at a fraction of the cost on a Cortex-M0):
 ///
 /// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
 ///   triangle: the rasterizer interpolates them as attributes (`3 + 2K` attributes:
@@ -46,8 +43,9 @@ const POW_SEGMENTS: usize = 64;
 /// used). A span whose interpolated normal gets shorter than ½ or longer than 2
 /// (normals more than ~120° apart across a triangle), or whose `|N|²` changes
 /// by more than 1/8 from one pixel to the next (tiny triangles with very
-/// different vertex normals), falls back to [`PhongShading`] for that span: the
-/// result stays within the bound, only the speed differs.
+/// different vertex normals), falls back to the per-pixel lighting of
+/// [`GeneralPhongShading`](super::GeneralPhongShading) for that span: the result
+/// stays within the bound, only the speed differs.
 ///
 /// Error against the `f64` reference: see the golden tests and `docs/tradeoff.md`.
 #[derive(Clone, Copy, Debug)]
@@ -74,52 +72,8 @@ struct LightTerms {
     ks: [i32; 3],
 }
 
-/// `x^n` over `[x0, 1]` at 65 points, Q14.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct PowTable {
-    /// `x0` in Q14.
-    x0: i32,
-    /// `u = (x − x0)·mul ≫ 16` is the table position in 1/256 segments.
-    mul: i32,
-    t: [i32; POW_SEGMENTS + 2],
-}
-
-impl PowTable {
-    pub(super) fn new(n: f32) -> Self {
-        // f32 (libm's powf is exact to an ulp) so that the fast path links no f64
-        let x0 = if n == 0.0 {
-            0.0
-        } else {
-            libm::powf(4096.0, -1.0 / n)
-        };
-        let x0q = libm::floorf(x0 * 16384.0) as i32;
-        let width = (16384 - x0q).max(1);
-        let mut t = [0i32; POW_SEGMENTS + 2];
-        for (i, v) in t.iter_mut().enumerate() {
-            let x = (x0q as f32 + width as f32 * i.min(POW_SEGMENTS) as f32 / POW_SEGMENTS as f32)
-                / 16384.0;
-            *v = libm::roundf(libm::powf(x, n) * 16384.0) as i32;
-        }
-        Self {
-            x0: x0q,
-            mul: (((POW_SEGMENTS as i64) << 24) / width as i64) as i32,
-            t,
-        }
-    }
-
-    /// `x^n` for `x` in Q14 (`x ≤ 1`), linearly interpolated.
-    #[inline(always)]
-    pub(super) fn get(&self, x: i32) -> i32 {
-        if x <= self.x0 {
-            return 0;
-        }
-        // position in the table in 1/256 segments: (x − x0)·64·256/width
-        let u = ((x.min(16384) - self.x0) * self.mul) >> 16;
-        let i = ((u >> 8) as usize).min(POW_SEGMENTS);
-        let (a, b) = (self.t[i], self.t[i + 1]);
-        a + (((b - a) * (u & 255)) >> 8)
-    }
-}
+/// The specular power table of this kernel and of the fast normal-map kernel: Q14.
+pub(super) type PowTable = crate::num::pow::PowTable<14>;
 
 /// A colour's channels (`C::linear_channels`) in channel units · 2^8 (from
 /// their Q14 values: exact for the `Q14` tiers).
@@ -274,14 +228,12 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
         // |N| outside [½, 2), or changing by more than 1/8 per pixel: the general path
         return general(out);
     }
-    // 1/|N| in Q14 at the span start: s ∈ [2^26, 2^30) splits with k = 2 or 4
-    let (t, k) = split_u32(s0 as u32);
-    let y0 = rsqrt_q14_mantissa(t, 2) as i32;
+    // 1/|N| in Q14 at the span start (s ∈ [2^26, 2^30))
     let span = SpanState {
         s: s0 as i32,
         ds: (2 * nd + dd) as i32,
         dds: (2 * dd) as i32,
-        r: if k == 2 { y0 >> 1 } else { y0 },
+        r: rsqrt_q28_q14(s0 as u32),
     };
     let dots: [[i32; 4]; K] = core::array::from_fn(|j| {
         [

@@ -8,7 +8,7 @@ use super::{unit_q14, Encoder, GeneralPhongShading, Kernel, Mode, ModeState};
 use super::{PhongShading, Shader, VertexIn};
 use crate::color::OutputColor;
 use crate::lighting::{DirectionalTerms, Illuminate};
-use crate::num::rsqrt::{rsqrt_q14_mantissa, split_u32};
+use crate::num::rsqrt::inv_len_q14;
 use crate::num::{Flag, Off, On, Scalar, Vec3};
 use crate::raster::interp::Varyings;
 use crate::texture::{Nearest, NormalMap, Wrap};
@@ -126,20 +126,6 @@ fn tangent_space(n: [i32; 3], t: [i32; 3], hand: i32, l: &[i32; 3], h: &[i32; 3]
         dot(&b, h),
         dot(&n, h),
     ]
-}
-
-/// `1/√(s/2^28)` in Q14 for `s > 0` (Q28; below `2^20` treated as `2^20`).
-#[inline]
-fn inv_len_q14(s: i32) -> i32 {
-    let s = s.max(1 << 20) as u32;
-    let (t, k) = split_u32(s);
-    let y = rsqrt_q14_mantissa(t, 2) as i32;
-    // 1/√s = y·2^((k − 4)/2) / 2^14, k even, 2 ≤ k ≤ 10
-    if k >= 4 {
-        y << ((k - 4) / 2)
-    } else {
-        y >> ((4 - k) / 2)
-    }
 }
 
 /// `|v|²` (Q28) of a Q24 vector, its first and second forward differences
