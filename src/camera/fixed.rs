@@ -322,7 +322,7 @@ fn row_at(lin: &[i64; 3], t: i64, e: i32, mfrac: i32, frac: i32) -> Row {
 /// // every frame: integers only
 /// let t = fixed.mesh_transform(&Pose::rotate_y(Angle(1234)), 14)?;
 /// let f = cam.mesh_transform(&Mat4::rotate_y(1234.0 / 65536.0 * core::f32::consts::TAU), 14)?;
-/// let (a, b) = (t.project([16384, 0, 0]), f.project([16384, 0, 0]));
+/// let (a, b) = (t.project([16384, 0, 0]).unwrap(), f.project([16384, 0, 0]).unwrap());
 /// assert!((a.x - b.x).abs() <= 1 && (a.y - b.y).abs() <= 1);
 /// # Ok::<(), fixshade::error::ParamError>(())
 /// ```

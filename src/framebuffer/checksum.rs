@@ -21,7 +21,7 @@ use embedded_graphics_core::Pixel;
 /// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 /// use embedded_graphics_core::prelude::*;
 /// use embedded_graphics_core::primitives::Rectangle;
-/// use fixshade::target::Checksum;
+/// use fixshade::framebuffer::Checksum;
 /// let mut a = Checksum::<Rgb565>::new(Size::new(4, 1));
 /// let mut b = Checksum::<Rgb565>::new(Size::new(4, 1));
 /// let area = Rectangle::new(Point::zero(), Size::new(4, 1));

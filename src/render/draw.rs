@@ -211,7 +211,8 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     ///
     /// ```
     /// use fixshade::camera::Camera;
-    /// use fixshade::mesh::{uv_sphere_counts, Mat4, MeshData, Viewport};
+    /// use fixshade::camera::{Mat4, Viewport};
+    /// use fixshade::mesh::{uv_sphere_counts, MeshData};
     /// use fixshade::prelude::*;
     /// use fixshade::render::{bins_len, FullFrame, Layout, MeshBuffers, MeshDraw, RefineBuffers};
     /// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
@@ -231,8 +232,8 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// assert!(draw.refine_stats().vertices > 0);
     /// let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
     /// let mut frame = FullFrame::new(64, 64, &mut color, Some(&mut depth)).unwrap();
-    /// frame.render(Rgb565::BLACK, &mut [&mut draw]);
-    /// # Ok::<(), fixshade::mesh::MeshError>(())
+    /// frame.render(Rgb565::BLACK, &mut [&mut draw])?;
+    /// # Ok::<(), fixshade::error::Error>(())
     /// ```
     ///
     /// # Errors
