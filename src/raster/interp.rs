@@ -100,6 +100,20 @@ pub(crate) fn lerp<V: Varyings>(a: &V, b: &V, num: u32, den: u32) -> V {
     V::from_fn(|i| crate::num::wide::lerp_i32(get(a, i), get(b, i), num, den))
 }
 
+/// The first `n` elements of `s` (all of them if it is shorter): a slice
+/// loop, which opt-level "z" inlines (`iter().take(n)` it does not).
+#[inline(always)]
+fn first_mut<T>(s: &mut [T], n: usize) -> &mut [T] {
+    let n = n.min(s.len());
+    s.get_mut(..n).unwrap_or_default()
+}
+
+/// [`first_mut`] of a shared slice.
+#[inline(always)]
+fn first<T>(s: &[T], n: usize) -> &[T] {
+    s.get(..n.min(s.len())).unwrap_or_default()
+}
+
 /// The values of the oriented vertices (`s.order`).
 #[inline(always)]
 pub(crate) fn oriented<T: Copy>(s: &Setup, v: &[T; 3]) -> [T; 3] {
@@ -138,10 +152,14 @@ impl<V: Varyings> Linear<V> {
         exact: impl Fn(usize) -> bool,
     ) -> Self {
         let mut clamp = false;
-        let mut planes = V::planes_from_fn(|_| Plane::default());
         let mut recip = None;
-        for (i, p) in planes.as_mut().iter_mut().enumerate().take(used) {
-            let a = [0, 1, 2].map(|k| corner(s, v, k, i));
+        // built in place (no zeroed array copied over: a memclr and a memcpy of
+        // the planes per triangle)
+        let planes = V::planes_from_fn(|i| {
+            if i >= used {
+                return Plane::default();
+            }
+            let a = [corner(s, v, 0, i), corner(s, v, 1, i), corner(s, v, 2, i)];
             let plane = if exact(i) {
                 s.plane_exact(a, *recip.get_or_insert_with(|| s.exact_recip()))
             } else {
@@ -149,15 +167,15 @@ impl<V: Varyings> Linear<V> {
             };
             let base = super::setup::at3(&a, s.tmb[0]) << ATTR_FRAC;
             clamp |= !within(s, &plane, base, safe(i));
-            *p = plane.absolute(base);
-        }
+            plane.absolute(base)
+        });
         Linear { planes, clamp }
     }
 
     /// The next row.
     #[inline(always)]
     pub(crate) fn next_row(&mut self, used: usize) {
-        for p in self.planes.as_mut().iter_mut().take(used) {
+        for p in first_mut(self.planes.as_mut(), used) {
             p.next_row();
         }
     }
@@ -165,7 +183,7 @@ impl<V: Varyings> Linear<V> {
     /// `n` rows down.
     #[inline(always)]
     pub(crate) fn skip_rows(&mut self, n: i32, used: usize) {
-        for p in self.planes.as_mut().iter_mut().take(used) {
+        for p in first_mut(self.planes.as_mut(), used) {
             p.skip_rows(n);
         }
     }
@@ -176,13 +194,15 @@ impl<V: Varyings> Linear<V> {
     pub(crate) fn run<const CLAMP: bool>(&self, x: i32, n: usize, used: usize) -> (V, V) {
         let mut start = V::from_fn(|_| 0);
         let mut step = start;
-        let values = start.values_mut().iter_mut().zip(step.values_mut());
-        for (p, (s, d)) in self.planes.as_ref().iter().zip(values).take(used) {
-            (*s, *d) = if CLAMP {
-                p.clamped(x, n as i32)
-            } else {
-                (p.at(x), p.dx)
-            };
+        let (starts, steps) = (start.values_mut(), step.values_mut());
+        for (i, p) in first(self.planes.as_ref(), used).iter().enumerate() {
+            if let (Some(s), Some(d)) = (starts.get_mut(i), steps.get_mut(i)) {
+                (*s, *d) = if CLAMP {
+                    p.clamped(x, n as i32)
+                } else {
+                    (p.at(x), p.dx)
+                };
+            }
         }
         (start, step)
     }

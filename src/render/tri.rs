@@ -9,6 +9,7 @@ use crate::raster::clip::{self, ClipPoint, Polygon, Screen};
 use crate::raster::interp::{self, eighth, step_over, within, Linear, Persp, Varyings};
 use crate::raster::setup::at3;
 use crate::raster::{Cull, Plane, Setup, Walker, ATTR_FRAC, PERSPECTIVE_SPAN, SUBPIXEL_BITS};
+use crate::raster::{WINDOW_MAX, WINDOW_MIN};
 use crate::shade::{depth_runs, Kernel, VertexIn};
 
 /// A corner of a triangle in clip space, with the kernel's values.
@@ -304,22 +305,26 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     // fan triangle at it then lies inside its neighbours, turned the other
     // way (its pixels would be written twice); it is left out (the notch it
     // would cut is smaller than a sub-pixel rounding)
+    // (screen corners are clamped to the window, whose sides are below 2^15
+    // sub-pixels: each product is below 2^30 and their difference fits an i32;
+    // no 64-bit multiply on the M0)
     let area = |b: &ScreenCorner<V>, c: &ScreenCorner<V>| {
-        let (ax, ay) = (i64::from(a.s.x), i64::from(a.s.y));
-        (i64::from(b.s.x) - ax) * (i64::from(c.s.y) - ay)
-            - (i64::from(b.s.y) - ay) * (i64::from(c.s.x) - ax)
+        let (ax, ay) = (a.s.x, a.s.y);
+        (b.s.x - ax) * (c.s.y - ay) - (b.s.y - ay) * (c.s.x - ax)
     };
+    const _: () = assert!(WINDOW_MAX - WINDOW_MIN < 1 << 15);
     let fan = 1..vs.len().saturating_sub(1);
     let mut total = 0i64;
     for k in fan.clone() {
         if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
-            total = total.saturating_add(area(&screen(b), &screen(c)));
+            total = total.saturating_add(i64::from(area(&screen(b), &screen(c))));
         }
     }
     for k in fan {
         if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
             let (b, c) = (screen(b), screen(c));
-            if area(&b, &c).signum() * total.signum() >= 0 {
+            let s = area(&b, &c);
+            if s == 0 || total == 0 || (s > 0) == (total > 0) {
                 f(&[a, b, c]);
             }
         }

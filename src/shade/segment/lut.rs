@@ -13,7 +13,8 @@ pub(crate) type DiffuseTable = [u16; 256];
 /// The table index of `N̂·L̂` in Q23 (clamped to the table).
 #[inline(always)]
 fn lut_index(d: i32) -> usize {
-    ((((d.max(0) as u32) * 510) >> 24) as usize).min(255)
+    // clamped before the product: (LUT_TOP − 1)·510 < 2^32 and indexes 255
+    (((d.clamp(0, LUT_TOP - 1) as u32) * 510) >> 24) as usize
 }
 
 /// `N̂·L̂` (Q23) below which the table index needs no clamp: `256/255`.
@@ -136,6 +137,29 @@ pub(crate) fn walk_lut<C: OutputColor, F: Fn(i32) -> DAnchor, G: Fn(usize) -> C>
                 j = 2;
                 break;
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{lut_index, LUT_TOP};
+
+    /// The clamped path's index for any `N̂·L̂` in Q23: an overshoot of the
+    /// quadratic beyond 1 (up to `i32::MAX`) reads the last entry, without
+    /// overflowing the product (it did above 1.004: a debug panic, a wrapped index
+    /// in release).
+    #[test]
+    fn lut_index_clamps_any_value() {
+        assert_eq!(lut_index(i32::MIN), 0);
+        assert_eq!(lut_index(0), 0);
+        assert_eq!(lut_index(1 << 23), 255);
+        assert_eq!(lut_index(LUT_TOP - 1), 255);
+        for d in [LUT_TOP, 1 << 24, 1 << 30, i32::MAX] {
+            assert_eq!(lut_index(d), 255, "{d}");
+        }
+        for d in (0..LUT_TOP).step_by(4099) {
+            assert_eq!(lut_index(d), (((d as u64) * 510) >> 24).min(255) as usize);
         }
     }
 }
