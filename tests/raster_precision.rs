@@ -185,3 +185,49 @@ fn slivers_with_saturating_gradients_stay_in_the_corners_range() {
     assert!(slivers >= 20, "{slivers} saturating slivers found");
     println!("{slivers} saturating slivers among the triangles searched");
 }
+
+/// Triangles reaching far outside the set-up window (issue 21, item 5: one
+/// reaching −13 829 px was 7.1 units off the old "½ + k" statement): the
+/// pipeline clips them to the window and sets up the pieces; every value is
+/// still within the bound of the whole triangle (`plane_bound` of its
+/// unclipped corners), searched like the triangles inside it.
+#[test]
+fn clipped_triangles_within_the_bound_of_the_whole_triangle() {
+    let far = 1 << 18; // 16 384 px in sub-pixels
+    let c = (W as i32) << SUBPIXEL_BITS;
+    let outside = |r: &mut Rng, t: &mut Tri| {
+        let i = (r.next() % 3) as usize;
+        t[i].0 = r.range(-far, far);
+        t[i].1 = r.range(-far, far);
+    };
+    let mut r = Rng(0x0C11_F0ED);
+    let (mut worst, mut pixels, mut clipped) = (0.0f64, 0usize, 0usize);
+    for _ in 0..40 {
+        let mut t = random(&mut r);
+        outside(&mut r, &mut t);
+        let (mut e, _, n) = measure(&t);
+        pixels += n;
+        for _ in 0..40 {
+            let mut u = mutate(&mut r, &t);
+            if r.next() % 4 == 0 {
+                outside(&mut r, &mut u);
+            }
+            let (eu, _, n) = measure(&u);
+            pixels += n;
+            if n > 0 && eu >= e {
+                (t, e) = (u, eu);
+            }
+        }
+        clipped += usize::from(
+            t.iter()
+                .any(|p| p.0.min(p.1) < -(c / 4) || p.0.max(p.1) > 2 * c),
+        );
+        worst = worst.max(e);
+    }
+    println!("clipped: worst error / bound {worst:.3} ({pixels} pixels, {clipped} far triangles)");
+    assert!(
+        pixels > 100_000 && clipped >= 10,
+        "{pixels} pixels, {clipped}"
+    );
+    assert!(worst <= 1.0, "a value {worst} times the bound off");
+}

@@ -11,7 +11,10 @@
 //!   coefficients), evaluated once per run. When a plane's error bound could
 //!   carry values out of the range the kernel can take
 //!   ([`Kernel::safe`](crate::shade::Kernel::safe)), runs are clamped to the
-//!   vertex range.
+//!   vertex range. A triangle reaching beyond the set-up window is clipped to
+//!   it and its pieces set up; their values stay within the bound of the
+//!   whole triangle (`tests/raster_precision.rs` searches both cases for
+//!   their worst error).
 //! - **Perspective-correct**, as OpenGL interpolates: with `βᵢ`
 //!   the screen-space barycentric weights and `wᵢ` the clip `w` of the
 //!   vertices, a pixel gets `Σ βᵢ·aᵢ/wᵢ / Σ βᵢ/wᵢ`. It is evaluated exactly
