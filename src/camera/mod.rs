@@ -233,7 +233,7 @@ fn scaled(r: [f32; 4], k: f32, inv: f32) -> [f32; 4] {
 /// the largest `|e_c|` lies in `[2^28, 2^29)`, so every product term is below
 /// 2^28 and the sum with `|t| < 2^30` cannot overflow.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Row {
+pub(crate) struct Row {
     e: [i32; 3],
     t: i32,
     frac: i32,
@@ -316,11 +316,6 @@ impl Row {
             }
         }
     }
-
-    /// The fraction bits of [`Row::apply`].
-    pub fn frac(&self) -> i32 {
-        self.frac
-    }
 }
 
 /// `⌊e·p / 2^16⌋` exactly, from two 16 × 16-bit products: `e = eh·2^16 + el`
@@ -334,7 +329,7 @@ pub(crate) fn mul_q16(e: i32, p: i16) -> i32 {
 /// The normal matrix (inverse-transpose of the model-view 3×3, up to a positive
 /// factor) in Q14 with a common scale: normals come out unnormalised.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct NormalRows {
+pub(crate) struct NormalRows {
     e: [[i16; 3]; 3],
 }
 
@@ -370,7 +365,7 @@ impl NormalRows {
 
 /// The model-view matrix for eye-space positions, as rows with Q16.16 output.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct EyeRows {
+pub(crate) struct EyeRows {
     r: [Row; 3],
 }
 

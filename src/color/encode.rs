@@ -7,7 +7,7 @@ use crate::num::Scalar;
 use crate::num::ATTR_FRAC;
 
 /// Vertex values are below `2^VERTEX_BITS` (the rasterizer's attribute range).
-pub const VERTEX_BITS: u32 = 15;
+pub(crate) const VERTEX_BITS: u32 = 15;
 
 /// Turns linear colours into pixels of colour type `C`.
 ///

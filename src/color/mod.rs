@@ -3,7 +3,7 @@
 
 pub(crate) mod encode;
 
-pub use encode::{Dithered, Encoder, Gamma, Linear, VERTEX_BITS};
+pub use encode::{Dithered, Encoder, Gamma, Linear};
 
 use crate::error::{finite, non_negative3, ParamError};
 use crate::num::Scalar;

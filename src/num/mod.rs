@@ -51,7 +51,8 @@ pub use q14::RampQ14;
 pub use q14::Q14;
 pub use q30::RampQ30;
 pub use q30::Q30;
-pub use vector::{point_from_f32, point_sub, Point3, Vec3};
+pub(crate) use vector::point_sub;
+pub use vector::{point_from_f32, Point3, Vec3};
 
 use core::fmt::Debug;
 

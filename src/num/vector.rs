@@ -114,7 +114,7 @@ pub fn point_from_f32<S: Scalar>(p: [f32; 3]) -> Point3<S> {
 
 /// `a − b` for positions (saturating).
 #[inline(always)]
-pub fn point_sub<S: Scalar>(a: Point3<S>, b: Point3<S>) -> Point3<S> {
+pub(crate) fn point_sub<S: Scalar>(a: Point3<S>, b: Point3<S>) -> Point3<S> {
     Vec3::new(
         S::geo_sub(a.x, b.x),
         S::geo_sub(a.y, b.y),

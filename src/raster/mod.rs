@@ -15,7 +15,7 @@
 //!   counter-clockwise as seen on the screen (y down), e.g. `(0,0) → (0,10) →
 //!   (10,0)`. [`Cull::Back`] drops the others; with [`Cull::None`] both draw.
 //! - **Window**: set-up works on vertices inside a window of 2^15 sub-pixels
-//!   per axis, [`WINDOW_MIN`]`..=`[`WINDOW_MAX`] (−512 to 1536 pixels), so
+//!   per axis, `WINDOW_MIN..=WINDOW_MAX` (−512 to 1536 pixels), so
 //!   that every product of the set-up fits 32 bits. A triangle reaching beyond
 //!   it, or behind the near plane of a perspective projection, is clipped in
 //!   clip space first (one clipper, canonical cuts, so neighbours
@@ -51,10 +51,10 @@ pub use setup::{Plane, Setup};
 pub use crate::camera::SUBPIXEL_BITS;
 
 /// The smallest sub-pixel coordinate set-up works on: −512 pixels.
-pub const WINDOW_MIN: i32 = -(1 << 13);
+pub(crate) const WINDOW_MIN: i32 = -(1 << 13);
 /// The largest sub-pixel coordinate set-up works on: just below 1536 pixels
 /// (`WINDOW_MAX − WINDOW_MIN = 2^15 − 1`).
-pub const WINDOW_MAX: i32 = (3 << 13) - 1;
+pub(crate) const WINDOW_MAX: i32 = (3 << 13) - 1;
 
 /// Length of the sub-spans whose ends are interpolated perspective-correctly
 /// under a perspective projection (8 pixels; see [`interp`]).

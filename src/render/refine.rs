@@ -91,7 +91,7 @@ const FRONT: u16 = 1;
 const BACK: u16 = 2;
 
 /// The most new vertices one frame can add (14-bit edge lists).
-pub const MAX_NEW_VERTICES: usize = NONE as usize;
+pub(crate) const MAX_NEW_VERTICES: usize = NONE as usize;
 
 /// The caller-owned memory of silhouette refinement, as slices (see
 /// [`RefineBuffers`] for arrays sized by const generics):

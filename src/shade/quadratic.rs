@@ -47,7 +47,7 @@ impl<const NW: u8> QuadraticTier for F32Fast<NW> {
 
 /// The lighting configurations [`QuadraticPhongShading`] accepts: `K`
 /// directional lights, a viewer at infinity, no fog, in tier `S`.
-pub type QuadraticLighting<S, const K: usize, M> =
+pub(crate) type QuadraticLighting<S, const K: usize, M> =
     Lighting<S, [DirectionalLight<S>; K], M, InfiniteViewer<S>, NoFog>;
 
 /// The error budget of the interpolated ambient + diffuse colour, in 8-bit

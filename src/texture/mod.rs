@@ -38,7 +38,7 @@ pub(crate) use rgb565::{modulate_run, Pieces};
 use crate::error::TextureError;
 
 /// Fraction bits of a [`TexCoord`] component.
-pub const TEX_FRAC: u32 = 16;
+pub(crate) const TEX_FRAC: u32 = 16;
 
 /// The largest `log2` of a texture side (32 768 texels).
 pub const MAX_LOG2_SIZE: u8 = 15;
