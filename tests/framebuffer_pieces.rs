@@ -151,3 +151,39 @@ fn perspective_same_pixels_however_the_frame_is_split() {
         Shader::new(PhongShading, &l, Linear),
     );
 }
+
+/// The Q14 fast per-pixel kernels (issue 21, item 4: `IncrementalPhongShading`
+/// gave other pixels when a span was handed out in pieces): the incremental
+/// and quadratic kernels, and `PhongShading` choosing the incremental one,
+/// give the same pixels in every band height and through `draw_triangle`,
+/// orthographic and perspective.
+#[test]
+fn fast_per_pixel_kernels_same_pixels_however_the_frame_is_split() {
+    use fixshade::num::Q14;
+    use fixshade::shade::{IncrementalPhongShading, QuadraticPhongShading};
+    let blinn = fixshade::standard::blinn::<Q14>().unwrap();
+    let array: Lighting<Q14, [_; 1], BlinnPhong> = Lighting::new(
+        [fixshade::standard::light::<Q14>().unwrap()],
+        Material::new(&fixshade::standard::material()).unwrap(),
+    );
+    assert_same(
+        "picked incremental",
+        &ortho(),
+        Shader::new(PhongShading, &blinn, Linear),
+    );
+    assert_same(
+        "incremental",
+        &ortho(),
+        Shader::new(IncrementalPhongShading, &array, Linear),
+    );
+    assert_same(
+        "incremental, perspective",
+        &persp(),
+        Shader::new(IncrementalPhongShading, &array, Linear),
+    );
+    assert_same(
+        "quadratic",
+        &ortho(),
+        Shader::new(QuadraticPhongShading, &array, Linear),
+    );
+}
