@@ -3,7 +3,7 @@
 use super::bins::{self, Bins};
 use super::refine::{self, Refine, RefineStats, Refined};
 use super::tri::{self, ClipCorner};
-use super::vertex::{self, CachedVertex};
+use super::vertex::{self, CachedVertex, Zeroed};
 use super::{BandView, DrawBand, Layout, RenderError};
 use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
@@ -20,6 +20,13 @@ pub struct Carry {
 }
 
 impl Carry {
+    /// An empty record (for arrays built by a `const fn`).
+    pub const ZERO: Carry = Carry {
+        tri: 0,
+        long: 0,
+        short: 0,
+    };
+
     /// `long` of a triangle drawn through the clipping path: it is clipped and
     /// set up again in every band.
     const CLIPPED: i16 = i16::MIN;
@@ -62,6 +69,20 @@ pub struct MeshMemory<'a, V> {
 /// let buffers: MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 64> = MeshBuffers::new();
 /// assert_eq!(core::mem::size_of_val(&buffers), 362 * 12 + 782 * 2 + 64 * 6);
 /// ```
+///
+/// `new` is a `const fn`: the buffers can live in a `static`, built at
+/// compile time in `.bss` (not on the stack first, as a run-time constructor
+/// through `cortex_m::singleton!` or `StaticCell::init` would), for example
+/// with `static_cell::ConstStaticCell`, which hands out the `&'static mut`
+/// once without `unsafe`:
+///
+/// ```
+/// use fixshade::render::{bins_len, MeshBuffers};
+/// type Buffers = MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 64>;
+/// // evaluated at compile time (what a `static`'s initialiser needs)
+/// static BUFFERS: Buffers = MeshBuffers::new();
+/// assert_eq!(core::mem::size_of_val(&BUFFERS), 362 * 12 + 782 * 2 + 64 * 6);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct MeshBuffers<V, const NV: usize, const NB: usize, const NC: usize> {
     vertices: [CachedVertex<V>; NV],
@@ -69,15 +90,13 @@ pub struct MeshBuffers<V, const NV: usize, const NB: usize, const NC: usize> {
     carry: [Carry; NC],
 }
 
-impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize>
-    MeshBuffers<V, NV, NB, NC>
-{
-    /// Zeroed buffers.
-    pub fn new() -> Self {
+impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> MeshBuffers<V, NV, NB, NC> {
+    /// Zeroed buffers (a `const fn`).
+    pub const fn new() -> Self {
         MeshBuffers {
-            vertices: [CachedVertex::default(); NV],
+            vertices: [CachedVertex::ZERO; NV],
             bins: [0; NB],
-            carry: [Carry::default(); NC],
+            carry: [Carry::ZERO; NC],
         }
     }
 
@@ -91,7 +110,7 @@ impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize>
     }
 }
 
-impl<V: Copy + Default, const NV: usize, const NB: usize, const NC: usize> Default
+impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> Default
     for MeshBuffers<V, NV, NB, NC>
 {
     fn default() -> Self {

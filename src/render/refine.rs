@@ -78,7 +78,7 @@
 //!   copies fall in different classes can be split on one side only (a
 //!   T-junction there).
 
-use super::vertex::{self, CachedVertex};
+use super::vertex::{self, CachedVertex, Zeroed};
 use crate::camera::{MeshTransform, Projection};
 use crate::mesh::Mesh;
 use crate::shade::Kernel;
@@ -160,11 +160,10 @@ pub struct RefineBuffers<V, const NV: usize, const E: usize, const T: usize> {
     triangles: [[u16; 4]; T],
 }
 
-impl<V: Copy + Default, const NV: usize, const E: usize, const T: usize>
-    RefineBuffers<V, NV, E, T>
-{
-    /// Zeroed buffers.
-    pub fn new() -> Self {
+impl<V: Zeroed, const NV: usize, const E: usize, const T: usize> RefineBuffers<V, NV, E, T> {
+    /// Zeroed buffers (a `const fn`: see [`MeshBuffers`](super::MeshBuffers)
+    /// for buffers in a `static`).
+    pub const fn new() -> Self {
         RefineBuffers {
             words: [0; NV],
             edges: [[0; 3]; E],
@@ -172,7 +171,7 @@ impl<V: Copy + Default, const NV: usize, const E: usize, const T: usize>
             normals: [[0; 3]; E],
             texcoords: [[0; 2]; E],
             tangents: [[0; 4]; E],
-            vertices: [CachedVertex::default(); E],
+            vertices: [CachedVertex::ZERO; E],
             triangles: [[0; 4]; T],
         }
     }
@@ -200,7 +199,7 @@ impl<V: Copy + Default, const NV: usize, const E: usize, const T: usize>
     }
 }
 
-impl<V: Copy + Default, const NV: usize, const E: usize, const T: usize> Default
+impl<V: Zeroed, const NV: usize, const E: usize, const T: usize> Default
     for RefineBuffers<V, NV, E, T>
 {
     fn default() -> Self {

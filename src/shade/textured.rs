@@ -142,6 +142,14 @@ pub struct TexPayload {
     uv: [i16; 2],
 }
 
+impl crate::render::Zeroed for TexPayload {
+    const ZERO: Self = TexPayload {
+        prim: [0; 3],
+        spec: [0; 3],
+        uv: [0; 2],
+    };
+}
+
 /// A textured triangle: whether its secondary colour differs from black
 /// anywhere (else the fast path may take it).
 #[derive(Clone, Copy, Debug, Default)]

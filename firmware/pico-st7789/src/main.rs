@@ -52,13 +52,12 @@ const NT: usize = standard::COUNTS.1;
 /// sphere (twice the triangles crossing one band boundary).
 const CARRY: usize = 64;
 
-// The renderer's memory (`.bss`; all-zero is a valid `CachedVertex` and
-// `Carry`: integers).
+// The renderer's memory (`.bss`, from the crate's `const` zero values).
 static mut STRIP: [Rgb565; W * ROWS] = [Rgb565::BLACK; W * ROWS];
 static mut DEPTH: [u16; W * ROWS] = [0; W * ROWS];
-static mut CACHE: [CachedVertex<[u16; 3]>; NV] = unsafe { core::mem::zeroed() };
+static mut CACHE: [CachedVertex<[u16; 3]>; NV] = [CachedVertex::ZERO; NV];
 static mut BINS: [u16; bins_len(NT, BANDS)] = [0; bins_len(NT, BANDS)];
-static mut CARRY_RECORDS: [Carry; CARRY] = unsafe { core::mem::zeroed() };
+static mut CARRY_RECORDS: [Carry; CARRY] = [Carry::ZERO; CARRY];
 /// The SPI interface's staging buffer.
 static mut SPI_BUFFER: [u8; 512] = [0; 512];
 

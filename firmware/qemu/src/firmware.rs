@@ -3,7 +3,7 @@
 
 use core::arch::{asm, global_asm};
 use core::fmt::Write;
-use core::mem::{zeroed, MaybeUninit};
+use core::mem::MaybeUninit;
 use core::ptr::{addr_of, addr_of_mut};
 
 use cortex_m::peripheral::syst::SystClkSource;
@@ -11,10 +11,10 @@ use cortex_m::peripheral::SYST;
 use cortex_m_rt::{entry, exception};
 use cortex_m_semihosting::{debug, hio};
 use embedded_graphics_core::geometry::Size;
-use embedded_graphics_core::pixelcolor::Rgb565;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
-use fixshade::render::{CachedVertex, Carry};
 use fixshade::framebuffer::Checksum;
+use fixshade::render::{CachedVertex, Carry};
 use fixshade_qemu::{bins, Buffers, Fail, CARRY, NV, W};
 
 mod board {
@@ -44,18 +44,18 @@ compile_error!("choose one configuration: --features lambert_gouraud|blinn_goura
 /// Frames rendered (all must give the same checksum and count).
 const FRAMES: usize = 2;
 
-// The frame's memory, in `.bss` (all-zero is a valid value of every element:
-// integers, `Rgb565`, `CachedVertex` and `Carry`), named for run.py.
+// The frame's memory, in `.bss`, built at compile time by the crate's `const`
+// zero values (no `unsafe` initialiser), named for run.py.
 #[no_mangle]
-static mut STRIP: [Rgb565; W * ROWS] = unsafe { zeroed() };
+static mut STRIP: [Rgb565; W * ROWS] = [Rgb565::BLACK; W * ROWS];
 #[no_mangle]
 static mut DEPTH: [u16; W * ROWS] = [0; W * ROWS];
 #[no_mangle]
-static mut CACHE: [CachedVertex<config::Vertex>; NV] = unsafe { zeroed() };
+static mut CACHE: [CachedVertex<config::Vertex>; NV] = [CachedVertex::ZERO; NV];
 #[no_mangle]
 static mut BINS: [u16; bins(ROWS)] = [0; bins(ROWS)];
 #[no_mangle]
-static mut CARRY_RECORDS: [Carry; CARRY] = unsafe { zeroed() };
+static mut CARRY_RECORDS: [Carry; CARRY] = [Carry::ZERO; CARRY];
 
 extern "C" {
     /// The stack's lowest address (`memory.x`: the bottom of RAM).

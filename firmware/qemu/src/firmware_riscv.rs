@@ -22,14 +22,14 @@
 
 use core::arch::{asm, global_asm};
 use core::fmt::Write;
-use core::mem::{zeroed, MaybeUninit};
+use core::mem::MaybeUninit;
 use core::ptr::{addr_of, addr_of_mut, read_volatile, write_volatile};
 
 use embedded_graphics_core::geometry::Size;
-use embedded_graphics_core::pixelcolor::Rgb565;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
-use fixshade::render::{CachedVertex, Carry};
 use fixshade::framebuffer::Checksum;
+use fixshade::render::{CachedVertex, Carry};
 use fixshade_qemu::{bins, Buffers, Fail, CARRY, NV, W};
 use riscv_rt::entry;
 
@@ -62,15 +62,15 @@ const FRAMES: usize = 2;
 
 // The frame's memory, in `.bss`, named for run.py (as on the Cortex-M images).
 #[no_mangle]
-static mut STRIP: [Rgb565; W * ROWS] = unsafe { zeroed() };
+static mut STRIP: [Rgb565; W * ROWS] = [Rgb565::BLACK; W * ROWS];
 #[no_mangle]
 static mut DEPTH: [u16; W * ROWS] = [0; W * ROWS];
 #[no_mangle]
-static mut CACHE: [CachedVertex<config::Vertex>; NV] = unsafe { zeroed() };
+static mut CACHE: [CachedVertex<config::Vertex>; NV] = [CachedVertex::ZERO; NV];
 #[no_mangle]
 static mut BINS: [u16; bins(ROWS)] = [0; bins(ROWS)];
 #[no_mangle]
-static mut CARRY_RECORDS: [Carry; CARRY] = unsafe { zeroed() };
+static mut CARRY_RECORDS: [Carry; CARRY] = [Carry::ZERO; CARRY];
 
 extern "C" {
     /// The stack's lowest address (`memory.x`).

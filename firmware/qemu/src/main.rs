@@ -28,8 +28,8 @@ mod firmware;
 fn main() {
     use embedded_graphics_core::geometry::Size;
     use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-    use fixshade::render::Carry;
     use fixshade::framebuffer::Checksum;
+    use fixshade::render::Carry;
     use fixshade_qemu::*;
 
     let t = transform().expect("standard transform");

@@ -32,8 +32,8 @@ mod firmware {
     use embedded_graphics_core::geometry::Size;
     use embedded_graphics_core::pixelcolor::Rgb565;
     use fixshade::camera::{FixedCamera, MeshTransform, Orthographic};
-    use fixshade::render::{CachedVertex, Carry};
     use fixshade::framebuffer::Checksum;
+    use fixshade::render::{CachedVertex, Carry};
     use fixshade_frame::{
         Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, W,
     };
@@ -232,8 +232,8 @@ mod firmware {
 fn main() {
     use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
     use embedded_graphics_core::prelude::*;
-    use fixshade::render::Carry;
     use fixshade::framebuffer::Checksum;
+    use fixshade::render::Carry;
     use fixshade_frame::*;
 
     /// Checksums the stream like the firmware and counts the non-black pixels.

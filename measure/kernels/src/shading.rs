@@ -128,7 +128,13 @@ fn span_ends() -> [VertexIn; 2] {
 /// over `max(n, SPAN)` pixels, handed to `Kernel::span` for `n` pixels (what
 /// the pipeline hands it for one run of an orthographic triangle).
 #[inline(always)]
-unsafe fn span_of<K: Kernel<Color = Rgb565>>(k: &K, a: &VertexIn, b: &VertexIn, n: u32, out: *mut u16) -> u32 {
+unsafe fn span_of<K: Kernel<Color = Rgb565>>(
+    k: &K,
+    a: &VertexIn,
+    b: &VertexIn,
+    n: u32,
+    out: *mut u16,
+) -> u32 {
     let (pa, pb) = (k.vertex(a), k.vertex(b));
     let (t, v) = k.triangle([&pa, &pa, &pb], &[a.eye, a.eye, b.eye]);
     let len = black_box(if n > SPAN { n } else { SPAN }) as i32;
@@ -446,8 +452,10 @@ where
 #[inline(always)]
 unsafe fn tri_phong_quad<S: Scalar, M: QuadraticModel>(scale: u32, out: *mut u16) -> u32
 where
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>: Kernel<Color = Rgb565>,
-    QuadraticPhongShading: fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
+    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>:
+        Kernel<Color = Rgb565>,
+    QuadraticPhongShading:
+        fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
 {
     let lit = lighting::<S, _, M>([dir::<S>()]);
     draw(Shader::new(QuadraticPhongShading, &lit, Linear), scale, out)
@@ -559,7 +567,9 @@ unsafe fn tri_tex<M: Model>(filter: Filter, persp: bool, scale: u32, out: *mut u
     )
     .unwrap()
     .with_view(Mat4::translate([-32.0, 32.0, -32.0]));
-    let t: MeshTransform<Perspective> = cam.mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8).unwrap();
+    let t: MeshTransform<Perspective> = cam
+        .mesh_transform(&Mat4::IDENTITY, SUBPIXEL_BITS as u8)
+        .unwrap();
     draw_tex(sh, t, scale, out, 1)
 }
 
@@ -589,8 +599,8 @@ unsafe fn draw_tex<K: Kernel<Color = Rgb565>, P: fixshade::camera::Projection>(
     // `far`: the third corner pushed back (perspective rows); the camera looks at z = 0
     // (a leg of one pixel stays in the plane: the one-pixel triangle of `setup`)
     let z2 = -far * 32 * (s as i32 - 1);
-    let pos = [[o, -o, 0], [o + d, -o, 0], [o, -(o + d), z2.max(-32000)]]
-        .map(|p| p.map(|c| c as i16));
+    let pos =
+        [[o, -o, 0], [o + d, -o, 0], [o, -(o + d), z2.max(-32000)]].map(|p| p.map(|c| c as i16));
     let nrm: [[i16; 3]; 3] = [
         [-8180, 6544, 12597],
         [8180, 6544, 12597],
@@ -708,9 +718,14 @@ unsafe fn span_nmap_fast<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u1
 /// `span_<tier>_nmap_general_<set>`: the general path
 /// (`GeneralPhongShading.normal_mapped`).
 #[inline(always)]
-unsafe fn span_nmap_general<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
+unsafe fn span_nmap_general<S: Scalar, L: LightSet<S>, M: Model>(
+    lights: L,
+    n: u32,
+    out: *mut u16,
+) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let sh = Shader::<_, _, _, Rgb565>::new(GeneralPhongShading.normal_mapped(nmap()), &lit, Linear);
+    let sh =
+        Shader::<_, _, _, Rgb565>::new(GeneralPhongShading.normal_mapped(nmap()), &lit, Linear);
     let [a, b] = nm_ends();
     span_of(&sh, &a, &b, n, out)
 }
@@ -723,7 +738,10 @@ unsafe fn draw_nm<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -
     let s = black_box(scale);
     // SAFETY: the kernels run one at a time (single-threaded emulator); nothing
     // else references DEPTH
-    let depth = slice::from_raw_parts_mut(core::ptr::addr_of_mut!(DEPTH) as *mut u16, (FB * FB) as usize);
+    let depth = slice::from_raw_parts_mut(
+        core::ptr::addr_of_mut!(DEPTH) as *mut u16,
+        (FB * FB) as usize,
+    );
     let Ok(mut frame) = FullFrame::new(FB, FB, pixels(out, (FB * FB) as usize), Some(depth)) else {
         return 0;
     };
@@ -734,11 +752,24 @@ unsafe fn draw_nm<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -
     }
     let (o, d) = (9 << (SUBPIXEL_BITS - 2), (s as i32) << SUBPIXEL_BITS);
     let pos = [[o, -o, 0], [o + d, -o, 0], [o, -(o + d), 0]].map(|p| p.map(|c| c as i16));
-    let nrm: [[i16; 3]; 3] = [[-8180, 6544, 12597], [8180, 6544, 12597], [-8180, -6544, 12597]];
-    let tan: [[i16; 4]; 3] = [[13741, 0, 8923, 16384], [13741, 0, -8923, 16384], [13741, 0, 8923, 16384]];
+    let nrm: [[i16; 3]; 3] = [
+        [-8180, 6544, 12597],
+        [8180, 6544, 12597],
+        [-8180, -6544, 12597],
+    ];
+    let tan: [[i16; 4]; 3] = [
+        [13741, 0, 8923, 16384],
+        [13741, 0, -8923, 16384],
+        [13741, 0, 8923, 16384],
+    ];
     let uv: [[i16; 2]; 3] = [[0, 0], [8192, 0], [0, 8192]];
     let tris = [[0u16, 1, 2]];
-    let (pos, nrm, tan, uv) = (black_box(pos), black_box(nrm), black_box(tan), black_box(uv));
+    let (pos, nrm, tan, uv) = (
+        black_box(pos),
+        black_box(nrm),
+        black_box(tan),
+        black_box(uv),
+    );
     let Ok(mesh) = Mesh::new(&pos, &nrm, &tris, SUBPIXEL_BITS as u8) else {
         return 0;
     };
