@@ -170,6 +170,11 @@ pub fn displace(
 /// positions `round(p · 2^frac)` as `i16`, normals in Q14; returns the number
 /// of vertices.
 ///
+/// Choosing `frac`: the largest value for which every coordinate fits,
+/// `max|p| · 2^frac < 32767.5`, keeps the most precision (a step of `2^−frac`
+/// model units): `frac = 14` for a model within ±2, `12` within ±8. The model
+/// importer (`import/`) chooses it from the bounds the same way.
+///
 /// # Errors
 ///
 /// [`MeshError::OutOfRange`] (`"frac"`) for `frac > 15`, (`"position"`) for
