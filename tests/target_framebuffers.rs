@@ -226,3 +226,48 @@ fn a_mesh_prepared_for_another_layout_is_refused() {
         "nothing drawn, not even cleared"
     );
 }
+
+/// A textured shader on a mesh without texture coordinates, and a vertex
+/// cache shorter than the mesh: typed errors from `MeshDraw::new`, not a
+/// picture painted with one texel or a bare "too many vertices".
+#[test]
+fn missing_texture_coordinates_and_a_short_cache_are_refused() {
+    use fixshade::texture::{Filter, Texels, Texture, Wrap};
+    static WHITE: [u16; 16] = [0xFFFF; 16];
+    let texture = Texture::new(Texels::Rgb565(&WHITE), 2, 2, Wrap::Repeat).unwrap();
+    let lighting = fixshade::standard::lambert::<Q14>().unwrap();
+    let t = fixshade::standard::transform().unwrap();
+    let (nv, nt) = fixshade::standard::COUNTS;
+    let layout = Layout::full(240, 240).unwrap();
+    let shader: Shader<'_, _, _, _, Rgb565> = Shader::new(
+        GouraudShading.textured(texture, Filter::Nearest),
+        &lighting,
+        Linear,
+    );
+    let mut cache = vec![CachedVertex::ZERO; nv];
+    let mut bins = vec![0u16; bins_len(nt, 1)];
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut [],
+    };
+    let mesh = fixshade::standard::SPHERE.mesh();
+    assert!(mesh.texcoords().is_empty());
+    assert!(matches!(
+        MeshDraw::new(layout, mesh, &t, shader, memory),
+        Err(RenderError::MissingAttribute(_))
+    ));
+    let shader: Shader<'_, _, _, _, Rgb565> = Shader::new(GouraudShading, &lighting, Linear);
+    let mut cache = vec![CachedVertex::ZERO; nv - 1];
+    let memory = MeshMemory {
+        vertices: &mut cache,
+        bins: &mut bins,
+        carry: &mut [],
+    };
+    match MeshDraw::new(layout, mesh, &t, shader, memory) {
+        Err(RenderError::BufferTooSmall { which, needed, got }) => {
+            assert_eq!((which, needed, got), ("vertex cache", nv, nv - 1));
+        }
+        other => panic!("{:?}", other.err()),
+    }
+}
