@@ -577,22 +577,24 @@ def measure_section(section: str, host: dict, profile: set[str]) -> tuple[dict, 
 # (category, regex on a demangled function name of the inline stack). The
 # innermost frame that matches decides; compiler-builtins count for their call site.
 STAGES = [
-    ("vertex", r"render::vertex::orthographic$"),
-    ("bins", r"render::bins::sort$|render::draw::classify$"),
-    ("clip", r"MeshDraw<K>::clipped$|raster::clip::"),
-    ("setup", r"Setup::(new|prepare_planes|plane|walker)$|Kernel for .*>::(triangle|skip_rows)$"
+    ("vertex", r"render::vertex::stage$|render::vertex::orthographic$"),
+    ("bins", r"render::bins::|render::draw::classify$|MeshDraw<K,P>::prepare::\{\{closure\}\}$"),
+    ("clip", r"render::tri::(draw_clipped|pieces|clipped_bounds)$|raster::clip::"),
+    ("setup", r"Setup::(new|prepare_planes|plane|plane_exact|exact_recip|walker|err)$|interp::within$"
+              r"|Linear<V>::new$|Persp<V>::new$|Kernel for .*>::triangle$"
               r"|Walker::(new|resume|unpositioned|edge_near|edge_from|level_row)$|Plane::skip_rows$"),
     ("edges", r"Walker::(next|more|snapshot)$|Edge::"),
     ("span_clamp", r"Plane::clamped$"),
-    ("rows", r"Kernel for .*>::next_row$|Plane::next_row$|BandView<C>::span$"),
-    ("spans", r"Kernel for .*>::run(::\{\{closure\}\})*$|::depth_loop(::\{\{closure\}\})*$"
-              r"|incremental::.*::span$"),
-    ("clears", r"render::fill$"),
+    ("rows", r"Plane::next_row$|Linear<V>::(next_row|skip_rows)$|BandView<C>::span$"),
+    ("spans", r"::depth_(prefix|fails|runs|loop)(::\{\{closure\}\})*$|gouraud::fill565$|flat::fill"
+              r"|Kernel for .*>::(span|run)(::\{\{closure\}\})*$|incremental::shade_run$|incremental::run$"
+              r"|Linear<V>::run$|Persp<V>::|perpixel::|segment::|quadratic::"),
+    ("clears", r"render::fill$|framebuffer::fill$"),
     ("flush", r"Checksum<C>|FullFrame<C>::flush$"),
     ("scene", r"fixshade::standard::|fixshade_frame::inc_lighting$|Shader<.*>::new$|ModeState.*::state$"
               r"|PowTable::new$|Lighting<.*>::new$|Material<S>::new$|DirectionalLight<S>::new$"
               r"|LightColors<S>::new$|Rgb<S>::try_from_f32$"),
-    ("triangles", r"::draw_band$|MeshDraw<K>::(triangle|draw_setup)$|Bands<C>::render$|FullFrame<C>::render$"),
+    ("triangles", r"::draw_band$|render::tri::draw$|MeshDraw<K,P>::prepare$|Bands<C>::render$|FullFrame<C>::render$"),
 ]
 STAGE_NAMES = [s for s, _ in STAGES] + ["other"]
 

@@ -100,6 +100,9 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> MeshBuffers<V
         }
     }
 
+}
+
+impl<V, const NV: usize, const NB: usize, const NC: usize> MeshBuffers<V, NV, NB, NC> {
     /// The buffers as slices.
     pub fn memory(&mut self) -> MeshMemory<'_, V> {
         MeshMemory {

@@ -176,6 +176,9 @@ impl<V: Zeroed, const NV: usize, const E: usize, const T: usize> RefineBuffers<V
         }
     }
 
+}
+
+impl<V, const NV: usize, const E: usize, const T: usize> RefineBuffers<V, NV, E, T> {
     /// The buffers as slices.
     pub fn memory(&mut self) -> RefineMemory<'_, V> {
         RefineMemory {
