@@ -410,6 +410,35 @@ pub(crate) fn no_unroll() {
     core::hint::black_box(());
 }
 
+/// A type with an all-zero value known at compile time, so that buffers of it
+/// can be built by a `const fn` (in a `static`, without building them on the
+/// stack): the payload types of the crate's shading modes (integer arrays)
+/// implement it; a kernel of one's own implements it for its
+/// [`Kernel::Vertex`](crate::shade::Kernel::Vertex) to use
+/// [`MeshBuffers::new`](crate::render::MeshBuffers::new) (slices through
+/// [`MeshMemory`](crate::render::MeshMemory) need nothing).
+pub trait Zeroed: Copy {
+    /// The zero value.
+    const ZERO: Self;
+}
+
+macro_rules! zeroed_ints {
+    ($($t:ty),*) => {$(
+        impl Zeroed for $t {
+            const ZERO: Self = 0;
+        }
+    )*};
+}
+zeroed_ints!(u8, i8, u16, i16, u32, i32);
+
+impl Zeroed for () {
+    const ZERO: Self = ();
+}
+
+impl<T: Zeroed, const N: usize> Zeroed for [T; N] {
+    const ZERO: Self = [T::ZERO; N];
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

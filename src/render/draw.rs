@@ -3,10 +3,11 @@
 use super::bins::{self, Bins};
 use super::refine::{self, Refine, RefineStats, Refined};
 use super::tri::{self, ClipCorner};
-use super::vertex::{self, CachedVertex, Zeroed};
+use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
 use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
+use crate::num::Zeroed;
 use crate::raster::Cull;
 use crate::shade::Kernel;
 
@@ -99,7 +100,6 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> MeshBuffers<V
             carry: [Carry::ZERO; NC],
         }
     }
-
 }
 
 impl<V, const NV: usize, const NB: usize, const NC: usize> MeshBuffers<V, NV, NB, NC> {

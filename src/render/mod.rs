@@ -34,7 +34,7 @@ pub use crate::framebuffer::{BandView, Bands, DrawBand, FullFrame, Layout, MAX_S
 pub use draw::{Carry, DrawOptions, MeshBuffers, MeshDraw, MeshMemory};
 pub use refine::{Refine, RefineBuffers, RefineMemory, RefineStats};
 pub use tri::{draw_triangle, Corner};
-pub use vertex::{CachedVertex, Zeroed};
+pub use vertex::CachedVertex;
 
 pub use crate::error::RenderError;
 

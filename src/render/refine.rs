@@ -78,9 +78,10 @@
 //!   copies fall in different classes can be split on one side only (a
 //!   T-junction there).
 
-use super::vertex::{self, CachedVertex, Zeroed};
+use super::vertex::{self, CachedVertex};
 use crate::camera::{MeshTransform, Projection};
 use crate::mesh::Mesh;
+use crate::num::Zeroed;
 use crate::shade::Kernel;
 
 /// No edge in a vertex's list (14 bits).
@@ -175,7 +176,6 @@ impl<V: Zeroed, const NV: usize, const E: usize, const T: usize> RefineBuffers<V
             triangles: [[0; 4]; T],
         }
     }
-
 }
 
 impl<V, const NV: usize, const E: usize, const T: usize> RefineBuffers<V, NV, E, T> {

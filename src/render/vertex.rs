@@ -3,6 +3,7 @@
 
 use crate::camera::{Clip, ClipSpace, MeshTransform, Projection};
 use crate::mesh::Mesh;
+use crate::num::Zeroed;
 use crate::raster::{WINDOW_MAX, WINDOW_MIN};
 use crate::shade::{Kernel, VertexIn};
 
@@ -18,35 +19,6 @@ pub struct CachedVertex<V> {
     pub(crate) y: i16,
     pub(crate) z: u16,
     pub(crate) v: V,
-}
-
-/// A type with an all-zero value known at compile time, so that buffers of it
-/// can be built by a `const fn` (in a `static`, without building them on the
-/// stack): the payload types of the crate's shading modes (integer arrays)
-/// implement it; a kernel of one's own implements it for its
-/// [`Kernel::Vertex`](crate::shade::Kernel::Vertex) to use
-/// [`MeshBuffers::new`](super::MeshBuffers::new) (slices through
-/// [`MeshMemory`](super::MeshMemory) need nothing).
-pub trait Zeroed: Copy {
-    /// The zero value.
-    const ZERO: Self;
-}
-
-macro_rules! zeroed_ints {
-    ($($t:ty),*) => {$(
-        impl Zeroed for $t {
-            const ZERO: Self = 0;
-        }
-    )*};
-}
-zeroed_ints!(u8, i8, u16, i16, u32, i32);
-
-impl Zeroed for () {
-    const ZERO: Self = ();
-}
-
-impl<T: Zeroed, const N: usize> Zeroed for [T; N] {
-    const ZERO: Self = [T::ZERO; N];
 }
 
 impl<V: Zeroed> CachedVertex<V> {

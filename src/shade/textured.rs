@@ -142,7 +142,7 @@ pub struct TexPayload {
     uv: [i16; 2],
 }
 
-impl crate::render::Zeroed for TexPayload {
+impl crate::num::Zeroed for TexPayload {
     const ZERO: Self = TexPayload {
         prim: [0; 3],
         spec: [0; 3],
