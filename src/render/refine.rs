@@ -81,7 +81,7 @@
 use super::vertex::{self, CachedVertex};
 use crate::camera::{MeshTransform, Projection};
 use crate::mesh::Mesh;
-use crate::num::Zeroed;
+use crate::num::{at3, Zeroed};
 use crate::shade::Kernel;
 
 /// No edge in a vertex's list (14 bits).
@@ -537,10 +537,10 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
         let idx = tri.map(usize::from);
         let cls = idx.map(|i| class_of(words, i));
         for k in 0..3 {
-            if !silhouette(cls[k], cls[(k + 1) % 3]) {
+            if !silhouette(at3(&cls, k), at3(&cls, (k + 1) % 3)) {
                 continue;
             }
-            let Some(key) = edge_key(mesh, idx[k], idx[(k + 1) % 3]) else {
+            let Some(key) = edge_key(mesh, at3(&idx, k), at3(&idx, (k + 1) % 3)) else {
                 continue;
             };
             let b = bucket(key.2, nv);
@@ -609,17 +609,19 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
         // the new vertex of each edge k = (idx[k], idx[k+1]), if split
         let mut mid: [Option<u16>; 3] = [None; 3];
         for k in 0..3 {
-            if !silhouette(cls[k], cls[(k + 1) % 3]) {
+            if !silhouette(at3(&cls, k), at3(&cls, (k + 1) % 3)) {
                 continue;
             }
-            let Some(key) = edge_key(mesh, idx[k], idx[(k + 1) % 3]) else {
+            let Some(key) = edge_key(mesh, at3(&idx, k), at3(&idx, (k + 1) % 3)) else {
                 continue;
             };
             let head = words.get(bucket(key.2, nv)).map_or(NONE, |w| w & NONE);
             match find(mesh, head, m.edges.get(..used).unwrap_or(&[]), key).0 {
                 Some(e) if m.edges.get(e).is_some_and(|r| r[2] & DEAD == 0) => {
                     // e < used < NONE, nv + e ≤ 65535
-                    mid[k] = Some((nv + e) as u16);
+                    if let Some(m) = mid.get_mut(k) {
+                        *m = Some((nv + e) as u16);
+                    }
                 }
                 _ => stats.skipped += 1,
             }
@@ -642,8 +644,8 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
             }
             1 => {
                 let r = mid.iter().position(|m| m.is_some()).unwrap_or(0);
-                let m0 = mid[r].unwrap_or(0);
-                let (a, b, c) = (v[r], v[(r + 1) % 3], v[(r + 2) % 3]);
+                let m0 = at3(&mid, r).unwrap_or(0);
+                let (a, b, c) = (at3(&v, r), at3(&v, (r + 1) % 3), at3(&v, (r + 2) % 3));
                 out[0] = [a, m0, c];
                 out[1] = [m0, b, c];
                 2
@@ -652,8 +654,11 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
                 // the whole edge j; rotate it to (v2, v0)
                 let j = mid.iter().position(|m| m.is_none()).unwrap_or(0);
                 let r = (j + 1) % 3;
-                let (a, b, c) = (v[r], v[(r + 1) % 3], v[(r + 2) % 3]);
-                let (m0, m1) = (mid[r].unwrap_or(0), mid[(r + 1) % 3].unwrap_or(0));
+                let (a, b, c) = (at3(&v, r), at3(&v, (r + 1) % 3), at3(&v, (r + 2) % 3));
+                let (m0, m1) = (
+                    at3(&mid, r).unwrap_or(0),
+                    at3(&mid, (r + 1) % 3).unwrap_or(0),
+                );
                 out[0] = [m0, b, m1];
                 out[1] = [a, m0, m1];
                 out[2] = [a, m1, c];

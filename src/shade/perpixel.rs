@@ -194,19 +194,24 @@ pub(crate) fn triangle<F: Surface, const POS: bool>(
     } else {
         (Positions::default(), [[0; 3]; 3])
     };
-    let at = |k: usize, i: usize| v[k].as_ref().get(i).copied().map_or(0, i32::from);
+    // (each corner by a constant index or by value: an index taken from an
+    // array inside the closure kept a bounds check, a panic path, in the frame)
+    let at = |vk: &F::Vertex, i: usize| vk.as_ref().get(i).copied().map_or(0, i32::from);
     let pp = position::<F>();
-    let var = [0, 1, 2].map(|k| {
+    let corner = |vk: &F::Vertex, pk: [i32; 3]| {
         F::Varyings::from_fn(|i| {
             if i < pp {
-                at(k, i)
+                at(vk, i)
             } else {
-                p[k].get(i - pp).copied().unwrap_or(0)
+                pk.get(i - pp).copied().unwrap_or(0)
             }
         })
-    });
+    };
+    let [v0, v1, v2] = v;
+    let [p0, p1, p2] = p;
+    let var = [corner(v0, p0), corner(v1, p1), corner(v2, p2)];
     let hand = if F::MAP {
-        majority([0, 1, 2].map(|k| at(k, TANGENT + 3)))
+        majority([v0, v1, v2].map(|vk| at(vk, TANGENT + 3)))
     } else {
         1
     };
