@@ -2,6 +2,8 @@
 //! (the fixed-point vertex stage takes them from here through
 //! [`Camera`](crate::camera::Camera)).
 
+use core::ops::{Add, Mul, Sub};
+
 use crate::error::{finite, ParamError};
 
 /// A 4×4 matrix in `f32`, row-major (`m[row][col]`), applied to column vectors:
@@ -31,11 +33,13 @@ impl Default for Mat4 {
     }
 }
 
-fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+/// `a − b` for plain `f32` or `f64` 3-vectors.
+pub(crate) fn sub3<T: Copy + Sub<Output = T>>(a: [T; 3], b: [T; 3]) -> [T; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+/// `a × b` for plain `f32` or `f64` 3-vectors.
+pub(crate) fn cross3<T: Copy + Sub<Output = T> + Mul<Output = T>>(a: [T; 3], b: [T; 3]) -> [T; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -43,7 +47,8 @@ fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     ]
 }
 
-fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
+/// `a·b` for plain `f32` or `f64` 3-vectors.
+pub(crate) fn dot3<T: Copy + Add<Output = T> + Mul<Output = T>>(a: [T; 3], b: [T; 3]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
