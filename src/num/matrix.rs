@@ -99,34 +99,28 @@ impl Mat4 {
     /// Rotation by `rad` about +x, counter-clockwise looking from +x towards
     /// the origin: `y' = c·y − s·z`, `z' = s·y + c·z`.
     pub fn rotate_x(rad: f32) -> Self {
-        let (s, c) = (libm::sinf(rad), libm::cosf(rad));
-        let mut m = Self::IDENTITY.m;
-        m[1][1] = c;
-        m[1][2] = -s;
-        m[2][1] = s;
-        m[2][2] = c;
-        Self { m }
+        Self::rotation(rad, 1, 2)
     }
 
     /// Rotation by `rad` about +y: `z' = c·z − s·x`, `x' = s·z + c·x`.
     pub fn rotate_y(rad: f32) -> Self {
-        let (s, c) = (libm::sinf(rad), libm::cosf(rad));
-        let mut m = Self::IDENTITY.m;
-        m[0][0] = c;
-        m[0][2] = s;
-        m[2][0] = -s;
-        m[2][2] = c;
-        Self { m }
+        Self::rotation(rad, 2, 0)
     }
 
     /// Rotation by `rad` about +z: `x' = c·x − s·y`, `y' = s·x + c·y`.
     pub fn rotate_z(rad: f32) -> Self {
+        Self::rotation(rad, 0, 1)
+    }
+
+    /// Rotation by `rad` in the plane of axes `i` and `j`, from `i` towards `j`:
+    /// `i' = c·i − s·j`, `j' = s·i + c·j`.
+    fn rotation(rad: f32, i: usize, j: usize) -> Self {
         let (s, c) = (libm::sinf(rad), libm::cosf(rad));
         let mut m = Self::IDENTITY.m;
-        m[0][0] = c;
-        m[0][1] = -s;
-        m[1][0] = s;
-        m[1][1] = c;
+        m[i][i] = c;
+        m[i][j] = -s;
+        m[j][i] = s;
+        m[j][j] = c;
         Self { m }
     }
 
