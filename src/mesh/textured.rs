@@ -119,6 +119,17 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
         }
     }
 
+    /// The start of a generator: the empty mesh with `frac` and the position
+    /// scale `2^frac`, after checking that its `counts` are `(V, T)` and that
+    /// `frac ≤ 14` (else panicking with `msg[0]` or `msg[1]`).
+    const fn start(counts: (usize, usize), frac: u8, msg: [&str; 2]) -> (Self, f64) {
+        assert!(counts.0 == V && counts.1 == T && V > 0, "{}", msg[0]);
+        assert!(frac <= 14, "{}", msg[1]);
+        let mut m = Self::EMPTY;
+        m.frac = frac;
+        (m, (1u32 << frac) as f64)
+    }
+
     /// Stores vertex `k`: unit normal `n` (position `n`, radius 1), texture
     /// coordinate `uv`, tangent `t`.
     const fn put(&mut self, k: usize, n: [f64; 3], uv: [f64; 2], t: [f64; 3], scale: f64) {
@@ -150,15 +161,14 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
     /// `V` and `T` must equal [`textured_sphere_counts`] (a compile-time error
     /// in a `static`).
     pub const fn uv_sphere(stacks: usize, slices: usize, frac: u8) -> Self {
-        let counts = textured_sphere_counts(stacks, slices);
-        assert!(
-            counts.0 == V && counts.1 == T && V > 0,
-            "V, T must equal textured_sphere_counts"
+        let (mut m, scale) = Self::start(
+            textured_sphere_counts(stacks, slices),
+            frac,
+            [
+                "V, T must equal textured_sphere_counts",
+                "positions of a unit sphere need frac <= 14",
+            ],
         );
-        assert!(frac <= 14, "positions of a unit sphere need frac <= 14");
-        let mut m = Self::EMPTY;
-        m.frac = frac;
-        let scale = (1u32 << frac) as f64;
         let ring0 = slices;
         let cols = slices + 1;
         let south0 = V - slices;
@@ -241,15 +251,14 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
     /// assert_eq!(PLANE.mesh().position(8), Some([1.0, -1.0, 0.0]));
     /// ```
     pub const fn plane(nx: usize, ny: usize, frac: u8) -> Self {
-        let counts = plane_counts(nx, ny);
-        assert!(
-            counts.0 == V && counts.1 == T && V > 0,
-            "V, T must equal plane_counts"
+        let (mut m, scale) = Self::start(
+            plane_counts(nx, ny),
+            frac,
+            [
+                "V, T must equal plane_counts",
+                "positions in [-1, 1] need frac <= 14",
+            ],
         );
-        assert!(frac <= 14, "positions in [-1, 1] need frac <= 14");
-        let mut m = Self::EMPTY;
-        m.frac = frac;
-        let scale = (1u32 << frac) as f64;
         let mut i = 0;
         while i <= ny {
             let mut j = 0;
