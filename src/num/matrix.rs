@@ -80,19 +80,20 @@ impl Mat4 {
 
     /// `p' = p + t`.
     pub const fn translate(t: [f32; 3]) -> Self {
-        let mut m = Self::IDENTITY.m;
-        m[0][3] = t[0];
-        m[1][3] = t[1];
-        m[2][3] = t[2];
-        Self { m }
+        Self::identity_with(t, [3, 3, 3])
     }
 
     /// `p' = (sx·x, sy·y, sz·z)`.
     pub const fn scale(s: [f32; 3]) -> Self {
+        Self::identity_with(s, [0, 1, 2])
+    }
+
+    /// The identity with `m[i][col[i]] = v[i]` in rows 0 to 2.
+    const fn identity_with(v: [f32; 3], col: [usize; 3]) -> Self {
         let mut m = Self::IDENTITY.m;
-        m[0][0] = s[0];
-        m[1][1] = s[1];
-        m[2][2] = s[2];
+        m[0][col[0]] = v[0];
+        m[1][col[1]] = v[1];
+        m[2][col[2]] = v[2];
         Self { m }
     }
 
