@@ -296,24 +296,29 @@ impl Row {
     /// saturated to `i32`.
     #[inline(always)]
     pub fn apply_round(&self, p: [i16; 3]) -> i32 {
-        let v = self.apply(p);
-        if self.frac > 0 {
-            let f = self.frac.min(31) as u32;
-            // round half up: floor(v / 2^f) + bit f − 1 (`((v >> (f − 1)) + 1) >> 1`
-            // without its overflow at v = i32::MAX)
-            (v >> f) + ((v >> (f - 1)) & 1)
+        // frac ≤ 0: a matrix scaling one raw unit beyond 2^13 sub-pixels
+        shift_round(self.apply(p), self.frac)
+    }
+}
+
+/// `v / 2^s` rounded half up for `s > 0` (`s` capped at 31), else `v·2^−s`
+/// saturated to ±`i32::MAX` (`−s` capped at 30), without a 64-bit multiply.
+#[inline(always)]
+fn shift_round(v: i32, s: i32) -> i32 {
+    if s > 0 {
+        let f = s.min(31) as u32;
+        // round half up: floor(v / 2^f) + bit f − 1 (`((v >> (f − 1)) + 1) >> 1`
+        // without its overflow at v = i32::MAX)
+        (v >> f) + ((v >> (f - 1)) & 1)
+    } else {
+        let s = (-s).min(30) as u32;
+        let lim = i32::MAX >> s;
+        if v > lim {
+            i32::MAX
+        } else if v < -lim {
+            -i32::MAX
         } else {
-            // a matrix scaling one raw unit beyond 2^13 sub-pixels: whole units,
-            // saturated (without a 64-bit multiply)
-            let s = (-self.frac).min(30) as u32;
-            let lim = i32::MAX >> s;
-            if v > lim {
-                i32::MAX
-            } else if v < -lim {
-                -i32::MAX
-            } else {
-                v << s
-            }
+            v << s
         }
     }
 }
@@ -381,25 +386,9 @@ impl EyeRows {
     pub fn apply(&self, p: [i16; 3]) -> [i32; 3] {
         self.r.map(|row| {
             let v = row.apply(p);
-            let s = row.frac - 16;
-            if s >= 0 {
-                let s = s.min(31) as u32;
-                if s == 0 {
-                    v
-                } else {
-                    // round half up without overflow at v = i32::MAX
-                    (v >> s) + ((v >> (s - 1)) & 1)
-                }
-            } else {
-                let s = (-s).min(30) as u32;
-                let lim = i32::MAX >> s;
-                if v > lim {
-                    i32::MAX
-                } else if v < -lim {
-                    -i32::MAX
-                } else {
-                    v << s
-                }
+            match row.frac - 16 {
+                0 => v,
+                s => shift_round(v, s),
             }
         })
     }

@@ -154,17 +154,74 @@ fn check_layouts<C>(layout: Layout, items: &[&mut dyn DrawBand<C>]) -> Result<()
     }
 }
 
+/// The memory of [`Bands`] and [`FullFrame`]: colours and (optional) depth values
+/// for `layout`, at least `width · band_rows` of each.
+#[derive(Debug)]
+struct Buffers<'a, C> {
+    layout: Layout,
+    color: &'a mut [C],
+    depth: Option<&'a mut [u16]>,
+}
+
+impl<'a, C: Copy> Buffers<'a, C> {
+    /// [`RenderError::BufferTooSmall`] naming `names[0]` (colour) or `names[1]`
+    /// (depth) for a buffer shorter than `width · band_rows`.
+    fn new(
+        layout: Layout,
+        names: [&'static str; 2],
+        color: &'a mut [C],
+        depth: Option<&'a mut [u16]>,
+    ) -> Result<Self, RenderError> {
+        let needed = layout.width as usize * layout.band_rows as usize;
+        let lens = [Some(color.len()), depth.as_deref().map(<[u16]>::len)];
+        for (which, got) in names.into_iter().zip(lens) {
+            if let Some(got) = got.filter(|&got| got < needed) {
+                return Err(RenderError::BufferTooSmall { which, needed, got });
+            }
+        }
+        Ok(Buffers {
+            layout,
+            color,
+            depth,
+        })
+    }
+
+    /// Draws the band of `rows`: clears its colours to `clear` and its depth
+    /// values to `u16::MAX`, lets every item draw, and returns the view (`None`
+    /// for buffers too short, which [`Buffers::new`] excludes).
+    fn draw(
+        &mut self,
+        rows: Range<i32>,
+        clear: C,
+        items: &mut [&mut dyn DrawBand<C>],
+    ) -> Option<BandView<'_, C>> {
+        let n = (rows.end - rows.start) as usize * self.layout.width as usize;
+        let color = self.color.get_mut(..n)?;
+        fill(color, clear);
+        let mut depth = self.depth.as_deref_mut().and_then(|d| d.get_mut(..n));
+        if let Some(d) = depth.as_deref_mut() {
+            fill(d, u16::MAX);
+        }
+        let mut view = BandView {
+            color,
+            depth,
+            width: self.layout.width,
+            rows,
+        };
+        for item in items.iter_mut() {
+            item.draw_band(&mut view);
+        }
+        Some(view)
+    }
+}
+
 /// A frame drawn in horizontal bands through a caller-owned strip, each band
 /// flushed to a [`DrawTarget`] (a display driver, the simulator).
 ///
 /// RAM: `width · band_rows` colours and (with depth testing) as many `u16`s:
 /// 7.5 KiB for a 240 × 240 `Rgb565` frame in 8-row bands.
 #[derive(Debug)]
-pub struct Bands<'a, C> {
-    layout: Layout,
-    strip: &'a mut [C],
-    depth: Option<&'a mut [u16]>,
-}
+pub struct Bands<'a, C>(Buffers<'a, C>);
 
 impl<'a, C: PixelColor> Bands<'a, C> {
     /// A band renderer for `layout` over `strip` (at least `width · band_rows`
@@ -178,33 +235,12 @@ impl<'a, C: PixelColor> Bands<'a, C> {
         strip: &'a mut [C],
         depth: Option<&'a mut [u16]>,
     ) -> Result<Self, RenderError> {
-        let needed = layout.width as usize * layout.band_rows as usize;
-        if strip.len() < needed {
-            return Err(RenderError::BufferTooSmall {
-                which: "colour strip",
-                needed,
-                got: strip.len(),
-            });
-        }
-        if let Some(d) = depth.as_deref() {
-            if d.len() < needed {
-                return Err(RenderError::BufferTooSmall {
-                    which: "depth strip",
-                    needed,
-                    got: d.len(),
-                });
-            }
-        }
-        Ok(Bands {
-            layout,
-            strip,
-            depth,
-        })
+        Buffers::new(layout, ["colour strip", "depth strip"], strip, depth).map(Bands)
     }
 
     /// The layout.
     pub fn layout(&self) -> Layout {
-        self.layout
+        self.0.layout
     }
 
     /// Renders a frame: for every band, clears the strip to `clear` and the
@@ -222,31 +258,16 @@ impl<'a, C: PixelColor> Bands<'a, C> {
         clear: C,
         items: &mut [&mut dyn DrawBand<C>],
     ) -> Result<(), RenderError<D::Error>> {
-        check_layouts(self.layout, items).map_err(RenderError::widen)?;
-        let w = self.layout.width as usize;
-        for b in 0..self.layout.bands() {
-            let rows = self.layout.rows(b);
-            let n = (rows.end - rows.start) as usize * w;
-            let (Some(color), depth) = (self.strip.get_mut(..n), self.depth.as_deref_mut()) else {
+        let layout = self.0.layout;
+        check_layouts(layout, items).map_err(RenderError::widen)?;
+        for b in 0..layout.bands() {
+            let rows = layout.rows(b);
+            let Some(view) = self.0.draw(rows.clone(), clear, items) else {
                 return Ok(());
             };
-            fill(color, clear);
-            let mut depth = depth.and_then(|d| d.get_mut(..n));
-            if let Some(d) = depth.as_deref_mut() {
-                fill(d, u16::MAX);
-            }
-            let mut view = BandView {
-                color,
-                depth,
-                width: self.layout.width,
-                rows: rows.clone(),
-            };
-            for item in items.iter_mut() {
-                item.draw_band(&mut view);
-            }
             let area = Rectangle::new(
                 Point::new(0, rows.start),
-                Size::new(self.layout.width, (rows.end - rows.start) as u32),
+                Size::new(layout.width, (rows.end - rows.start) as u32),
             );
             display
                 .fill_contiguous(&area, view.color.iter().copied())
@@ -259,11 +280,7 @@ impl<'a, C: PixelColor> Bands<'a, C> {
 /// A whole frame in caller-owned memory (row-major, `width` per row), with an
 /// optional depth buffer of the same size.
 #[derive(Debug)]
-pub struct FullFrame<'a, C> {
-    layout: Layout,
-    color: &'a mut [C],
-    depth: Option<&'a mut [u16]>,
-}
+pub struct FullFrame<'a, C>(Buffers<'a, C>);
 
 impl<'a, C: PixelColor> FullFrame<'a, C> {
     /// A frame over `color` (and `depth`), `width · height` elements each.
@@ -279,33 +296,12 @@ impl<'a, C: PixelColor> FullFrame<'a, C> {
         depth: Option<&'a mut [u16]>,
     ) -> Result<Self, RenderError> {
         let layout = Layout::full(width, height)?;
-        let needed = width as usize * height as usize;
-        if color.len() < needed {
-            return Err(RenderError::BufferTooSmall {
-                which: "frame",
-                needed,
-                got: color.len(),
-            });
-        }
-        if let Some(d) = depth.as_deref() {
-            if d.len() < needed {
-                return Err(RenderError::BufferTooSmall {
-                    which: "depth buffer",
-                    needed,
-                    got: d.len(),
-                });
-            }
-        }
-        Ok(FullFrame {
-            layout,
-            color,
-            depth,
-        })
+        Buffers::new(layout, ["frame", "depth buffer"], color, depth).map(FullFrame)
     }
 
     /// The layout (one band).
     pub fn layout(&self) -> Layout {
-        self.layout
+        self.0.layout
     }
 
     /// Clears the frame to `clear` and the depth buffer to `u16::MAX`, then
@@ -320,41 +316,22 @@ impl<'a, C: PixelColor> FullFrame<'a, C> {
         clear: C,
         items: &mut [&mut dyn DrawBand<C>],
     ) -> Result<(), RenderError> {
-        check_layouts(self.layout, items)?;
-        let n = self.layout.width as usize * self.layout.height as usize;
-        let Some(color) = self.color.get_mut(..n) else {
-            return Ok(());
-        };
-        fill(color, clear);
-        let mut depth = self.depth.as_deref_mut().and_then(|d| d.get_mut(..n));
-        if let Some(d) = depth.as_deref_mut() {
-            fill(d, u16::MAX);
-        }
-        let mut view = BandView {
-            color,
-            depth,
-            width: self.layout.width,
-            rows: 0..self.layout.height as i32,
-        };
-        for item in items.iter_mut() {
-            item.draw_band(&mut view);
-        }
+        check_layouts(self.0.layout, items)?;
+        self.0.draw(0..self.0.layout.height as i32, clear, items);
         Ok(())
     }
 
     /// The pixels.
     pub fn pixels(&self) -> &[C] {
-        self.color
+        self.0.color
     }
 
     /// Sends the frame to `display` with one `fill_contiguous`.
     pub fn flush<D: DrawTarget<Color = C>>(&self, display: &mut D) -> Result<(), D::Error> {
-        let n = self.layout.width as usize * self.layout.height as usize;
-        let area = Rectangle::new(
-            Point::zero(),
-            Size::new(self.layout.width, self.layout.height),
-        );
-        let px = self.color.get(..n).unwrap_or(&[]);
+        let layout = self.0.layout;
+        let n = layout.width as usize * layout.height as usize;
+        let area = Rectangle::new(Point::zero(), Size::new(layout.width, layout.height));
+        let px = self.0.color.get(..n).unwrap_or(&[]);
         display.fill_contiguous(&area, px.iter().copied())
     }
 }

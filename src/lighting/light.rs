@@ -590,35 +590,50 @@ impl<S: Scalar> PointLight<S> {
             pre: Prepared::default(),
         })
     }
+
+    /// The colour terms on `material`; `cone`: a spot cone makes them vary per
+    /// point whatever the attenuation.
+    fn terms(&self, material: &Material<S>, cone: bool) -> ColorTerms {
+        self.att.terms(&self.colors, material, cone)
+    }
+
+    /// Prepares [`PointLight::terms`] for the tier.
+    fn prepare_terms(&mut self, material: &Material<S>, cone: bool) {
+        self.pre = Prepared::new(&self.terms(material, cone), None, None);
+    }
+
+    /// `L = (P_light − P)/d` at `p`, and the attenuation factor `(k, e)` (`k·2^e`)
+    /// there, `None` when it is constant.
+    #[inline(always)]
+    fn towards(&self, p: &Point3<S>) -> (Vec3<S>, Option<(S, u32)>) {
+        let (l, d) = S::geo_direction(point_sub::<S>(self.pos, *p));
+        (l, (!self.att.constant).then(|| self.att.varying::<S>(d)))
+    }
 }
 
 impl<S: Scalar> LightSource<S> for PointLight<S> {
     const NEEDS_POSITION: bool = true;
     fn prepare(&mut self, material: &Material<S>, _view: Option<Vec3<S>>) {
-        self.pre = Prepared::new(&self.att.terms(&self.colors, material, false), None, None);
+        self.prepare_terms(material, false);
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
         self.att.constant.then_some(self.pre.ambient)
     }
     fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
-        Some(self.att.terms(&self.colors, material, false))
+        Some(self.terms(material, false))
     }
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
-        // L = (P_light − P)/d
-        let (l, d) = S::geo_direction(point_sub::<S>(self.pos, *p));
-        let varying = !self.att.constant;
-        let (scale, scale_exp) = if varying {
-            let (k, e) = self.att.varying::<S>(d);
-            (Some(k), e)
-        } else {
-            (None, 0)
+        let (l, att) = self.towards(p);
+        let (scale, scale_exp) = match att {
+            Some((k, e)) => (Some(k), e),
+            None => (None, 0),
         };
         Incident {
             l,
             scale,
             scale_exp,
-            ambient_per_point: varying,
+            ambient_per_point: att.is_some(),
             colors: &self.pre,
         }
     }
@@ -633,13 +648,11 @@ impl<S: Scalar> LightSource<S> for PointLight<S> {
 /// ambient term survives there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpotLight<S: Scalar> {
-    pos: Point3<S>,
+    /// The light without its cone.
+    point: PointLight<S>,
     axis: Vec3<S>,
     cos_cutoff: S,
     exponent: Exponent,
-    att: Attenuation<S::Geo>,
-    colors: LightColors<S>,
-    pre: Prepared<S>,
 }
 
 impl<S: Scalar> SpotLight<S> {
@@ -658,9 +671,7 @@ impl<S: Scalar> SpotLight<S> {
         attenuation: Attenuation<S::Geo>,
         colors: LightColors<S>,
     ) -> Result<Self, ParamError> {
-        for c in position {
-            finite("position", c)?;
-        }
+        let point = PointLight::new(position, attenuation, colors)?;
         let axis = direction("spot axis", axis)?;
         let exponent = Exponent::new("spot exponent", exponent)?;
         let cutoff = finite("spot cutoff", cutoff_deg).map_err(|_| ParamError::CutoffOutOfRange)?;
@@ -668,13 +679,10 @@ impl<S: Scalar> SpotLight<S> {
             return Err(ParamError::CutoffOutOfRange);
         }
         Ok(Self {
-            pos: point_from_f32::<S>(position),
+            point,
             axis: Vec3::from_f32(axis),
             cos_cutoff: S::from_f32(libm::cosf(cutoff.to_radians())),
             exponent,
-            att: attenuation,
-            colors,
-            pre: Prepared::default(),
         })
     }
 }
@@ -682,17 +690,17 @@ impl<S: Scalar> SpotLight<S> {
 impl<S: Scalar> LightSource<S> for SpotLight<S> {
     const NEEDS_POSITION: bool = true;
     fn prepare(&mut self, material: &Material<S>, _view: Option<Vec3<S>>) {
-        self.pre = Prepared::new(&self.att.terms(&self.colors, material, true), None, None);
+        self.point.prepare_terms(material, true);
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
         None
     }
     fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
-        Some(self.att.terms(&self.colors, material, true))
+        Some(self.point.terms(material, true))
     }
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
-        let (l, d) = S::geo_direction(point_sub::<S>(self.pos, *p));
+        let (l, att) = self.point.towards(p);
         // cos φ = s·(−L); spot = cos^e φ inside the cone, 0 outside (a cosine that
         // corrects the lengths of s and L, which cos^e φ amplifies)
         let cos_phi = S::ZERO.sub(S::cos_normal(self.axis, l));
@@ -701,18 +709,16 @@ impl<S: Scalar> LightSource<S> for SpotLight<S> {
         } else {
             S::ZERO
         };
-        let (scale, scale_exp) = if self.att.constant {
-            (spot, 0)
-        } else {
-            let (k, e) = self.att.varying::<S>(d);
-            (spot.mul(k), e)
+        let (scale, scale_exp) = match att {
+            Some((k, e)) => (spot.mul(k), e),
+            None => (spot, 0),
         };
         Incident {
             l,
             scale: Some(scale),
             scale_exp,
             ambient_per_point: true,
-            colors: &self.pre,
+            colors: &self.point.pre,
         }
     }
 }

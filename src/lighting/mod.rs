@@ -475,16 +475,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// (and full fog for a NaN viewing distance).
     #[inline(always)]
     pub fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
-        let (v, dist) = self.viewer.view(p);
-        let mut sum = LightSum::<S, L, M, V, F, false> {
-            lighting: self,
-            n,
-            v,
-            ambient: self.base,
-            direct: Rgb::BLACK,
-            specular: Rgb::BLACK,
-        };
-        self.lights.for_each(p, &mut sum);
+        let (sum, dist) = self.sum_lights::<false>(p, n, self.base);
         sum.ambient.add(self.fog.apply(sum.direct, dist))
     }
 
@@ -504,16 +495,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// towards zero.
     #[inline(always)]
     pub fn shade_parts(&self, p: &Point3<S>, n: Vec3<S>, color: Option<Rgb<S>>) -> LitColor<S> {
-        let (v, dist) = self.viewer.view(p);
-        let mut sum = LightSum::<S, L, M, V, F, true> {
-            lighting: self,
-            n,
-            v,
-            ambient: self.ambient_base,
-            direct: Rgb::BLACK,
-            specular: Rgb::BLACK,
-        };
-        self.lights.for_each(p, &mut sum);
+        let (sum, dist) = self.sum_lights::<true>(p, n, self.ambient_base);
         let (mut emission, mut ambient) = (self.emission, sum.ambient);
         let (mut diffuse, mut specular) = (sum.direct, sum.specular);
         if let Some(c) = color {
@@ -533,6 +515,28 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             primary: emission.add(ambient).add(self.fog.apply(diffuse, dist)),
             secondary: self.fog.fade(specular, dist),
         }
+    }
+
+    /// The lights' sum at `p` with normal `n`, starting from `ambient`, and the
+    /// viewing distance.
+    #[inline(always)]
+    fn sum_lights<const SPLIT: bool>(
+        &self,
+        p: &Point3<S>,
+        n: Vec3<S>,
+        ambient: Rgb<S>,
+    ) -> (LightSum<'_, S, L, M, V, F, SPLIT>, S::Geo) {
+        let (v, dist) = self.viewer.view(p);
+        let mut sum = LightSum {
+            lighting: self,
+            n,
+            v,
+            ambient,
+            direct: Rgb::BLACK,
+            specular: Rgb::BLACK,
+        };
+        self.lights.for_each(p, &mut sum);
+        (sum, dist)
     }
 
     /// One light's (per-point ambient, diffuse, specular): with `SPLIT` the

@@ -9,6 +9,7 @@
 //! [`MeshData`] filled by a `const fn` generator lives in flash: no RAM, no
 //! floating point at run time.
 
+use super::error::check_len;
 use crate::error::MeshError;
 
 /// Unit normal components are stored in Q14: `16384` is 1.
@@ -60,12 +61,8 @@ impl<'a> Mesh<'a> {
         if frac > 15 {
             return Err(MeshError::OutOfRange("frac"));
         }
-        if normals.len() < positions.len() {
-            return Err(MeshError::BufferTooSmall {
-                which: "normals",
-                needed: positions.len(),
-                got: normals.len(),
-            });
+        if let Err(e) = check_len("normals", positions.len(), normals.len()) {
+            return Err(e);
         }
         let mut t = 0;
         while t < triangles.len() {
@@ -98,12 +95,8 @@ impl<'a> Mesh<'a> {
     /// [`MeshError::BufferTooSmall`] when there are fewer coordinates than
     /// positions.
     pub const fn with_texcoords(mut self, texcoords: &'a [[i16; 2]]) -> Result<Self, MeshError> {
-        if texcoords.len() < self.positions.len() {
-            return Err(MeshError::BufferTooSmall {
-                which: "texcoords",
-                needed: self.positions.len(),
-                got: texcoords.len(),
-            });
+        if let Err(e) = check_len("texcoords", self.positions.len(), texcoords.len()) {
+            return Err(e);
         }
         self.texcoords = texcoords;
         Ok(self)
@@ -119,12 +112,8 @@ impl<'a> Mesh<'a> {
     /// [`MeshError::BufferTooSmall`] when there are fewer tangents than
     /// positions.
     pub const fn with_tangents(mut self, tangents: &'a [[i16; 4]]) -> Result<Self, MeshError> {
-        if tangents.len() < self.positions.len() {
-            return Err(MeshError::BufferTooSmall {
-                which: "tangents",
-                needed: self.positions.len(),
-                got: tangents.len(),
-            });
+        if let Err(e) = check_len("tangents", self.positions.len(), tangents.len()) {
+            return Err(e);
         }
         self.tangents = tangents;
         Ok(self)

@@ -3,8 +3,13 @@
 
 use crate::error::MeshError;
 
-/// `Ok` when `got ≥ needed`.
-pub(crate) fn check_len(which: &'static str, needed: usize, got: usize) -> Result<(), MeshError> {
+/// `Ok` when `got ≥ needed` (a `const fn`: [`Mesh`](super::Mesh)'s
+/// constructors use it).
+pub(crate) const fn check_len(
+    which: &'static str,
+    needed: usize,
+    got: usize,
+) -> Result<(), MeshError> {
     if got < needed {
         Err(MeshError::BufferTooSmall { which, needed, got })
     } else {

@@ -4,6 +4,7 @@
 use super::error::check_len;
 use crate::error::MeshError;
 use crate::num::Vec3;
+use crate::num::{cross3, dot3, sub3};
 use crate::num::{Geo16, Scalar, Q14};
 
 /// How [`vertex_normals`] weights the faces around a vertex.
@@ -36,22 +37,6 @@ fn to64(p: [f32; 3]) -> [f64; 3] {
     [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 /// `(b − a) × (c − a)` in `f64`: exact enough, and finite for any finite `f32`
 /// positions (|component| < 2·(6.8·10³⁸)² ≪ 10³⁰⁸). Non-finite for NaN or
 /// infinite positions.
@@ -59,12 +44,12 @@ fn face_cross(p: &[[f32; 3]], t: [u16; 3]) -> [f64; 3] {
     let a = to64(p[usize::from(t[0])]);
     let b = to64(p[usize::from(t[1])]);
     let c = to64(p[usize::from(t[2])]);
-    cross(sub(b, a), sub(c, a))
+    cross3(sub3(b, a), sub3(c, a))
 }
 
 /// `v / |v|` as `f32`, or zero when `|v|` is zero, denormal-small or not finite.
 fn unit_or_zero(v: [f64; 3]) -> [f32; 3] {
-    let len2 = dot(v, v);
+    let len2 = dot3(v, v);
     if !(len2.is_finite() && len2 > 1.0e-300) {
         return [0.0; 3];
     }
@@ -232,7 +217,7 @@ fn vertex_normals_mapped(
                 }
             }
             Weighting::Angle => {
-                let len = libm::sqrt(dot(c, c));
+                let len = libm::sqrt(dot3(c, c));
                 if !(len > 0.0 && len.is_finite()) {
                     continue;
                 }
@@ -240,10 +225,10 @@ fn vertex_normals_mapped(
                 for k in 0..3 {
                     // α = atan2(|e1 × e2|, e1 · e2), e1, e2 the edges leaving corner k.
                     let p = to64(positions[usize::from(t[k])]);
-                    let e1 = sub(to64(positions[usize::from(t[(k + 1) % 3])]), p);
-                    let e2 = sub(to64(positions[usize::from(t[(k + 2) % 3])]), p);
-                    let x = cross(e1, e2);
-                    let angle = libm::atan2(libm::sqrt(dot(x, x)), dot(e1, e2));
+                    let e1 = sub3(to64(positions[usize::from(t[(k + 1) % 3])]), p);
+                    let e2 = sub3(to64(positions[usize::from(t[(k + 2) % 3])]), p);
+                    let x = cross3(e1, e2);
+                    let angle = libm::atan2(libm::sqrt(dot3(x, x)), dot3(e1, e2));
                     if angle.is_finite() {
                         let w = [unit[0] * angle, unit[1] * angle, unit[2] * angle];
                         if let Some(o) = out.get_mut(map(t[k])) {

@@ -2,6 +2,7 @@
 
 use super::error::{check_len, finite};
 use super::MeshError;
+use crate::num::{cross3, dot3};
 
 /// Per-vertex tangents from positions, unit normals, texture coordinates and
 /// triangles, into `out` (`[tx, ty, tz, w]`, one per vertex).
@@ -184,7 +185,7 @@ fn triangle_derivatives(
 /// Gram–Schmidt and handedness for vertex `v`.
 fn finish(normals: &[[f32; 3]], v: usize, s: [[f64; 3]; 2]) -> Result<[f32; 4], MeshError> {
     let n = normals.get(v).copied().unwrap_or_default().map(f64::from);
-    let nl = libm::sqrt(dot(n, n));
+    let nl = libm::sqrt(dot3(n, n));
     if !(nl > 0.0) {
         return Err(MeshError::Degenerate("normal"));
     }
@@ -201,7 +202,7 @@ fn finish(normals: &[[f32; 3]], v: usize, s: [[f64; 3]; 2]) -> Result<[f32; 4], 
         return Ok([t[0] as f32, t[1] as f32, t[2] as f32, 1.0]);
     }
     let t = orthonormal(n, du).ok_or(MeshError::Degenerate("texcoords"))?;
-    let w = if dot(cross(n, t), dv) < 0.0 {
+    let w = if dot3(cross3(n, t), dv) < 0.0 {
         -1.0
     } else {
         1.0
@@ -211,26 +212,14 @@ fn finish(normals: &[[f32; 3]], v: usize, s: [[f64; 3]; 2]) -> Result<[f32; 4], 
 
 /// `a − (a·n)n`, normalised; `None` when (nearly) parallel to `n` or zero.
 fn orthonormal(n: [f64; 3], a: [f64; 3]) -> Option<[f64; 3]> {
-    let k = dot(a, n);
+    let k = dot3(a, n);
     let t = [a[0] - k * n[0], a[1] - k * n[1], a[2] - k * n[2]];
-    let l = libm::sqrt(dot(t, t));
-    let al = libm::sqrt(dot(a, a));
+    let l = libm::sqrt(dot3(t, t));
+    let al = libm::sqrt(dot3(a, a));
     if !(l > 1e-6 * al) || !l.is_finite() {
         return None;
     }
     Some(t.map(|c| c / l))
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// Converts `f32` tangents (from [`vertex_tangents`]) into the Q14 format of
@@ -383,15 +372,15 @@ mod tests {
             for (k, t) in out.iter().enumerate() {
                 let tv = [t[0] as f64, t[1] as f64, t[2] as f64];
                 let n = nrm[k].map(f64::from);
-                assert!((dot(tv, tv) - 1.0).abs() < 1e-6, "unit {t:?}");
-                assert!(dot(tv, n).abs() < 1e-6, "orthogonal {t:?}");
+                assert!((dot3(tv, tv) - 1.0).abs() < 1e-6, "unit {t:?}");
+                assert!(dot3(tv, n).abs() < 1e-6, "orthogonal {t:?}");
                 // the exact tangent ∂P/∂u = (cos a, 0, −sin a), reversed when mirrored
                 let a = (k / 2) as f64 * 0.3;
                 let s = if mirror { -1.0 } else { 1.0 };
                 let exact = [s * libm::cos(a), 0.0, -s * libm::sin(a)];
-                assert!(dot(tv, exact) > 0.995, "{k}: {t:?}");
+                assert!(dot3(tv, exact) > 0.995, "{k}: {t:?}");
                 // B = w·N×T must point along +v (the axis, +y)
-                let b = cross(n, tv).map(|c| c * f64::from(t[3]));
+                let b = cross3(n, tv).map(|c| c * f64::from(t[3]));
                 assert!(b[1] > 0.99, "{k} mirror {mirror}: {t:?}");
                 assert_eq!(t[3], if mirror { -1.0 } else { 1.0 });
             }

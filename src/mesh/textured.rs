@@ -119,6 +119,17 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
         }
     }
 
+    /// The start of a generator: the empty mesh with `frac` and the position
+    /// scale `2^frac`, after checking that its `counts` are `(V, T)` and that
+    /// `frac ≤ 14` (else panicking with `msg[0]` or `msg[1]`).
+    const fn start(counts: (usize, usize), frac: u8, msg: [&str; 2]) -> (Self, f64) {
+        assert!(counts.0 == V && counts.1 == T && V > 0, "{}", msg[0]);
+        assert!(frac <= 14, "{}", msg[1]);
+        let mut m = Self::EMPTY;
+        m.frac = frac;
+        (m, (1u32 << frac) as f64)
+    }
+
     /// Stores vertex `k`: unit normal `n` (position `n`, radius 1), texture
     /// coordinate `uv`, tangent `t`.
     const fn put(&mut self, k: usize, n: [f64; 3], uv: [f64; 2], t: [f64; 3], scale: f64) {
@@ -150,15 +161,14 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
     /// `V` and `T` must equal [`textured_sphere_counts`] (a compile-time error
     /// in a `static`).
     pub const fn uv_sphere(stacks: usize, slices: usize, frac: u8) -> Self {
-        let counts = textured_sphere_counts(stacks, slices);
-        assert!(
-            counts.0 == V && counts.1 == T && V > 0,
-            "V, T must equal textured_sphere_counts"
+        let (mut m, scale) = Self::start(
+            textured_sphere_counts(stacks, slices),
+            frac,
+            [
+                "V, T must equal textured_sphere_counts",
+                "positions of a unit sphere need frac <= 14",
+            ],
         );
-        assert!(frac <= 14, "positions of a unit sphere need frac <= 14");
-        let mut m = Self::EMPTY;
-        m.frac = frac;
-        let scale = (1u32 << frac) as f64;
         let ring0 = slices;
         let cols = slices + 1;
         let south0 = V - slices;
@@ -241,15 +251,14 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
     /// assert_eq!(PLANE.mesh().position(8), Some([1.0, -1.0, 0.0]));
     /// ```
     pub const fn plane(nx: usize, ny: usize, frac: u8) -> Self {
-        let counts = plane_counts(nx, ny);
-        assert!(
-            counts.0 == V && counts.1 == T && V > 0,
-            "V, T must equal plane_counts"
+        let (mut m, scale) = Self::start(
+            plane_counts(nx, ny),
+            frac,
+            [
+                "V, T must equal plane_counts",
+                "positions in [-1, 1] need frac <= 14",
+            ],
         );
-        assert!(frac <= 14, "positions in [-1, 1] need frac <= 14");
-        let mut m = Self::EMPTY;
-        m.frac = frac;
-        let scale = (1u32 << frac) as f64;
         let mut i = 0;
         while i <= ny {
             let mut j = 0;
@@ -303,6 +312,7 @@ const fn at(nx: usize, i: usize, j: usize) -> u16 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::num::{cross3, dot3};
 
     const N: (usize, usize) = textured_sphere_counts(16, 24);
     static SPHERE: TexturedMeshData<{ N.0 }, { N.1 }> = TexturedMeshData::uv_sphere(16, 24, 14);
@@ -311,18 +321,6 @@ mod tests {
 
     fn f(v: [i16; 3]) -> [f64; 3] {
         v.map(|c| f64::from(c) / 16384.0)
-    }
-
-    fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-    }
-
-    fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
     }
 
     /// Texcoords in [0, 1], tangents unit and orthogonal to the normals, the
@@ -339,9 +337,12 @@ mod tests {
                 f(m.normals[k]),
                 f([m.tangents[k][0], m.tangents[k][1], m.tangents[k][2]]),
             );
-            assert!((dot(t, t).sqrt() - 1.0).abs() < 1e-4, "{k}: tangent length");
-            assert!((dot(n, n).sqrt() - 1.0).abs() < 1e-4, "{k}: normal length");
-            assert!(dot(n, t).abs() < 1e-4, "{k}: tangent ⟂ normal");
+            assert!(
+                (dot3(t, t).sqrt() - 1.0).abs() < 1e-4,
+                "{k}: tangent length"
+            );
+            assert!((dot3(n, n).sqrt() - 1.0).abs() < 1e-4, "{k}: normal length");
+            assert!(dot3(n, t).abs() < 1e-4, "{k}: tangent ⟂ normal");
             assert_eq!(m.tangents[k][3], -NORMAL_ONE);
         }
         let s = 1.0 / f64::from(1u32 << m.frac);
@@ -352,12 +353,12 @@ mod tests {
             let e2 = [p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]];
             let (du1, dv1) = (uv[1][0] - uv[0][0], uv[1][1] - uv[0][1]);
             let (du2, dv2) = (uv[2][0] - uv[0][0], uv[2][1] - uv[0][1]);
-            let g = cross(e1, e2);
+            let g = cross3(e1, e2);
             let nsum = tri
                 .iter()
                 .map(|&i| f(m.normals[usize::from(i)]))
                 .fold([0.0; 3], |a, b| [a[0] + b[0], a[1] + b[1], a[2] + b[2]]);
-            assert!(dot(g, nsum) > 0.0, "{tri:?} winds against its normals");
+            assert!(dot3(g, nsum) > 0.0, "{tri:?} winds against its normals");
             // dp/du and dp/dv of the triangle's linear map
             let det = du1 * dv2 - du2 * dv1;
             assert!(det.abs() > 1e-9, "{tri:?}: degenerate uv");
@@ -369,9 +370,9 @@ mod tests {
                     f(m.normals[i]),
                     f([m.tangents[i][0], m.tangents[i][1], m.tangents[i][2]]),
                 );
-                assert!(dot(t, dpdu) > 0.0, "{tri:?}: tangent against du");
-                let b = cross(n, t).map(|c| c * f64::from(m.tangents[i][3]) / 16384.0);
-                assert!(dot(b, dpdv) > 0.0, "{tri:?}: handedness against dv");
+                assert!(dot3(t, dpdu) > 0.0, "{tri:?}: tangent against du");
+                let b = cross3(n, t).map(|c| c * f64::from(m.tangents[i][3]) / 16384.0);
+                assert!(dot3(b, dpdv) > 0.0, "{tri:?}: handedness against dv");
             }
         }
     }
@@ -382,7 +383,7 @@ mod tests {
         // positions on the unit sphere, equal to the normals
         for k in 0..N.0 {
             let p = f(SPHERE.positions[k]);
-            assert!((dot(p, p).sqrt() - 1.0).abs() < 1e-4);
+            assert!((dot3(p, p).sqrt() - 1.0).abs() < 1e-4);
         }
         // the seam: columns 0 and `slices` share position and normal, not u
         for i in 1..16 {

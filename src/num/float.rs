@@ -112,6 +112,25 @@ fn unit(x: f32) -> f32 {
     x
 }
 
+/// `(v/|v|, |v|², 1/|v|)` with the inverse square root `rsqrt`; `None` when `|v|²`
+/// is below `f32::MIN_POSITIVE`, infinite or NaN.
+#[inline(always)]
+fn unit_vector(v: [f32; 3], rsqrt: impl Fn(f32) -> f32) -> Option<([f32; 3], f32, f32)> {
+    let s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    if !(s > f32::MIN_POSITIVE) || s.is_infinite() {
+        return None;
+    }
+    let r = rsqrt(s);
+    Some((v.map(|c| c * r), s, r))
+}
+
+/// The components of `v` in a float tier (`wrap`).
+#[inline(always)]
+fn vec3<T>(v: [f32; 3], wrap: impl Fn(f32) -> T) -> Vec3<T> {
+    let [x, y, z] = v;
+    Vec3::new(wrap(x), wrap(y), wrap(z))
+}
+
 macro_rules! float_tier {
     ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $refine:expr) => {
         impl<$($gen)*> Scalar for $ty {
@@ -177,13 +196,8 @@ macro_rules! float_tier {
             }
             #[inline]
             fn normalize(v: Vec3<Self>) -> Vec3<Self> {
-                let (x, y, z) = ($get(v.x), $get(v.y), $get(v.z));
-                let s = x * x + y * y + z * z;
-                if !(s > f32::MIN_POSITIVE) || s.is_infinite() {
-                    return Vec3::new(<Self as Scalar>::ZERO, <Self as Scalar>::ZERO, <Self as Scalar>::ZERO);
-                }
-                let r = $rsqrt(s);
-                Vec3::new($wrap(x * r), $wrap(y * r), $wrap(z * r))
+                let v = [$get(v.x), $get(v.y), $get(v.z)];
+                vec3(unit_vector(v, $rsqrt).map_or([0.0; 3], |(u, ..)| u), $wrap)
             }
 
             const ATTR_FRAC: u32 = 26;
@@ -207,13 +221,8 @@ macro_rules! float_tier {
 
             #[inline]
             fn normalize_precise(v: Vec3<Self>) -> Vec3<Self> {
-                let (x, y, z) = ($get(v.x), $get(v.y), $get(v.z));
-                let s = x * x + y * y + z * z;
-                if !(s > f32::MIN_POSITIVE) || s.is_infinite() {
-                    return Vec3::new(<Self as Scalar>::ZERO, <Self as Scalar>::ZERO, <Self as Scalar>::ZERO);
-                }
-                let r = rsqrt_exact(s);
-                Vec3::new($wrap(x * r), $wrap(y * r), $wrap(z * r))
+                let v = [$get(v.x), $get(v.y), $get(v.z)];
+                vec3(unit_vector(v, rsqrt_exact).map_or([0.0; 3], |(u, ..)| u), $wrap)
             }
 
             #[inline(always)]
@@ -264,18 +273,16 @@ macro_rules! float_tier {
             }
             #[inline]
             fn geo_direction(v: Vec3<f32>) -> (Vec3<Self>, f32) {
-                let s = v.x * v.x + v.y * v.y + v.z * v.z;
-                if !(s > f32::MIN_POSITIVE) || s.is_infinite() {
-                    return (Vec3::new(<Self as Scalar>::ZERO, <Self as Scalar>::ZERO, <Self as Scalar>::ZERO), 0.0);
-                }
-                let r = $rsqrt(s);
+                let Some((u, s, r)) = unit_vector([v.x, v.y, v.z], $rsqrt) else {
+                    return (vec3([0.0; 3], $wrap), 0.0);
+                };
                 let d = s * r;
                 // The fog ramp scales a distance error by 1/(end − start): with an
                 // approximate r (relative error e), one step d·(3 − d·r)/2 takes the
                 // length's error to e² (2·10⁻¹¹ with two Newton steps), for four
                 // operations per light or local viewer.
                 let d = if $refine { d * (1.5 - 0.5 * d * r) } else { d };
-                (Vec3::new($wrap(v.x * r), $wrap(v.y * r), $wrap(v.z * r)), d)
+                (vec3(u, $wrap), d)
             }
         }
     };

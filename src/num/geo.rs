@@ -54,50 +54,36 @@ pub(crate) fn split_f32(x: f32) -> (u32, i32) {
     }
 }
 
-/// `p·2^s`, rounded to nearest and saturated to `u32`.
-#[inline(always)]
-pub(crate) fn shift_u32(p: u32, s: i32) -> u32 {
-    if s >= 0 {
-        if p == 0 {
-            0
-        } else if s >= 32 || p > u32::MAX >> s {
-            u32::MAX
-        } else {
-            p << s
+/// `shift_u32` and `shift_u64`: `p·2^s`, rounded to nearest and saturated to the
+/// unsigned type.
+macro_rules! shift_uint {
+    ($name:ident, $t:ty) => {
+        #[doc = concat!("`p·2^s`, rounded to nearest and saturated to `", stringify!($t), "`.")]
+        #[inline(always)]
+        pub(crate) fn $name(p: $t, s: i32) -> $t {
+            if s >= 0 {
+                if p == 0 {
+                    0
+                } else if s >= <$t>::BITS as i32 || p > <$t>::MAX >> s {
+                    <$t>::MAX
+                } else {
+                    p << s
+                }
+            } else {
+                let r = s.unsigned_abs();
+                if r > <$t>::BITS {
+                    0
+                } else {
+                    // ⌊p / 2^(r−1)⌋ then halve with rounding: no overflow for any p
+                    let h = p >> (r - 1);
+                    (h >> 1) + (h & 1)
+                }
+            }
         }
-    } else {
-        let r = s.unsigned_abs();
-        if r > 32 {
-            0
-        } else {
-            // ⌊p / 2^(r−1)⌋ then halve with rounding: no overflow for any p
-            let h = p >> (r - 1);
-            (h >> 1) + (h & 1)
-        }
-    }
+    };
 }
-
-/// `p·2^s`, rounded to nearest and saturated to `u64`.
-#[inline(always)]
-pub(crate) fn shift_u64(p: u64, s: i32) -> u64 {
-    if s >= 0 {
-        if p == 0 {
-            0
-        } else if s >= 64 || p > u64::MAX >> s {
-            u64::MAX
-        } else {
-            p << s
-        }
-    } else {
-        let r = s.unsigned_abs();
-        if r > 64 {
-            0
-        } else {
-            let h = p >> (r - 1);
-            (h >> 1) + (h & 1)
-        }
-    }
-}
+shift_uint!(shift_u32, u32);
+shift_uint!(shift_u64, u64);
 
 /// The coefficients of the attenuation `1/(a + b·d + c·d²)` for Q16.16 distances.
 ///

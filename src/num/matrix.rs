@@ -2,6 +2,8 @@
 //! (the fixed-point vertex stage takes them from here through
 //! [`Camera`](crate::camera::Camera)).
 
+use core::ops::{Add, Mul, Sub};
+
 use crate::error::{finite, ParamError};
 
 /// A 4×4 matrix in `f32`, row-major (`m[row][col]`), applied to column vectors:
@@ -31,11 +33,13 @@ impl Default for Mat4 {
     }
 }
 
-fn sub3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+/// `a − b` for plain `f32` or `f64` 3-vectors.
+pub(crate) fn sub3<T: Copy + Sub<Output = T>>(a: [T; 3], b: [T; 3]) -> [T; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+/// `a × b` for plain `f32` or `f64` 3-vectors.
+pub(crate) fn cross3<T: Copy + Sub<Output = T> + Mul<Output = T>>(a: [T; 3], b: [T; 3]) -> [T; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -43,7 +47,8 @@ fn cross3(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     ]
 }
 
-fn dot3(a: [f32; 3], b: [f32; 3]) -> f32 {
+/// `a·b` for plain `f32` or `f64` 3-vectors.
+pub(crate) fn dot3<T: Copy + Add<Output = T> + Mul<Output = T>>(a: [T; 3], b: [T; 3]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
@@ -75,53 +80,48 @@ impl Mat4 {
 
     /// `p' = p + t`.
     pub const fn translate(t: [f32; 3]) -> Self {
-        let mut m = Self::IDENTITY.m;
-        m[0][3] = t[0];
-        m[1][3] = t[1];
-        m[2][3] = t[2];
-        Self { m }
+        Self::identity_with(t, [3, 3, 3])
     }
 
     /// `p' = (sx·x, sy·y, sz·z)`.
     pub const fn scale(s: [f32; 3]) -> Self {
+        Self::identity_with(s, [0, 1, 2])
+    }
+
+    /// The identity with `m[i][col[i]] = v[i]` in rows 0 to 2.
+    const fn identity_with(v: [f32; 3], col: [usize; 3]) -> Self {
         let mut m = Self::IDENTITY.m;
-        m[0][0] = s[0];
-        m[1][1] = s[1];
-        m[2][2] = s[2];
+        m[0][col[0]] = v[0];
+        m[1][col[1]] = v[1];
+        m[2][col[2]] = v[2];
         Self { m }
     }
 
     /// Rotation by `rad` about +x, counter-clockwise looking from +x towards
     /// the origin: `y' = c·y − s·z`, `z' = s·y + c·z`.
     pub fn rotate_x(rad: f32) -> Self {
-        let (s, c) = (libm::sinf(rad), libm::cosf(rad));
-        let mut m = Self::IDENTITY.m;
-        m[1][1] = c;
-        m[1][2] = -s;
-        m[2][1] = s;
-        m[2][2] = c;
-        Self { m }
+        Self::rotation(rad, 1, 2)
     }
 
     /// Rotation by `rad` about +y: `z' = c·z − s·x`, `x' = s·z + c·x`.
     pub fn rotate_y(rad: f32) -> Self {
-        let (s, c) = (libm::sinf(rad), libm::cosf(rad));
-        let mut m = Self::IDENTITY.m;
-        m[0][0] = c;
-        m[0][2] = s;
-        m[2][0] = -s;
-        m[2][2] = c;
-        Self { m }
+        Self::rotation(rad, 2, 0)
     }
 
     /// Rotation by `rad` about +z: `x' = c·x − s·y`, `y' = s·x + c·y`.
     pub fn rotate_z(rad: f32) -> Self {
+        Self::rotation(rad, 0, 1)
+    }
+
+    /// Rotation by `rad` in the plane of axes `i` and `j`, from `i` towards `j`:
+    /// `i' = c·i − s·j`, `j' = s·i + c·j`.
+    fn rotation(rad: f32, i: usize, j: usize) -> Self {
         let (s, c) = (libm::sinf(rad), libm::cosf(rad));
         let mut m = Self::IDENTITY.m;
-        m[0][0] = c;
-        m[0][1] = -s;
-        m[1][0] = s;
-        m[1][1] = c;
+        m[i][i] = c;
+        m[i][j] = -s;
+        m[j][i] = s;
+        m[j][j] = c;
         Self { m }
     }
 

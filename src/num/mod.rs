@@ -46,6 +46,7 @@ pub(crate) mod wide;
 pub use float::{F32Fast, RampF32, F32_LIMIT};
 pub use geo::{GeoScalar, InvQuadratic16};
 pub use matrix::Mat4;
+pub(crate) use matrix::{cross3, dot3, sub3};
 pub use pow::Exponent;
 pub use q14::RampQ14;
 pub use q14::Q14;

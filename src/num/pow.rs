@@ -111,26 +111,25 @@ const fn exp(x: f64) -> f64 {
     s
 }
 
-/// `round(log₂(1 + i/N)·2^SCALE)` for `i` in 0..=N.
-const fn log2_table<const M: usize>(scale: u32) -> [u32; M] {
-    let n = (M - 1) as f64;
-    let mut t = [0u32; M];
-    let mut i = 0;
-    while i < M {
-        let v = ln1p(i as f64 / n) / core::f64::consts::LN_2;
-        t[i] = (v * (1u64 << scale) as f64 + 0.5) as u32;
-        i += 1;
-    }
-    t
+/// The function a table samples.
+enum Sampled {
+    /// `log₂(1 + x)`.
+    Log2,
+    /// `2^(−x)`.
+    Exp2,
 }
 
-/// `round(2^(−i/N)·2^SCALE)` for `i` in 0..=N.
-const fn exp2_table<const M: usize>(scale: u32) -> [u32; M] {
+/// `round(f(i/N)·2^SCALE)` for `i` in 0..=N.
+const fn table<const M: usize>(f: Sampled, scale: u32) -> [u32; M] {
     let n = (M - 1) as f64;
     let mut t = [0u32; M];
     let mut i = 0;
     while i < M {
-        let v = exp(-(i as f64 / n) * core::f64::consts::LN_2);
+        let x = i as f64 / n;
+        let v = match f {
+            Sampled::Log2 => ln1p(x) / core::f64::consts::LN_2,
+            Sampled::Exp2 => exp(-x * core::f64::consts::LN_2),
+        };
         t[i] = (v * (1u64 << scale) as f64 + 0.5) as u32;
         i += 1;
     }
@@ -138,13 +137,13 @@ const fn exp2_table<const M: usize>(scale: u32) -> [u32; M] {
 }
 
 /// `Q14`: `log₂(1 + i/64)` in Q16.
-static LOG2_64: [u32; 65] = log2_table::<65>(16);
+static LOG2_64: [u32; 65] = table::<65>(Sampled::Log2, 16);
 /// `Q14`: `2^(−i/64)` in Q15.
-static EXP2_64: [u32; 65] = exp2_table::<65>(15);
+static EXP2_64: [u32; 65] = table::<65>(Sampled::Exp2, 15);
 /// `Q30`: `log₂(1 + i/256)` in Q30.
-static LOG2_256: [u32; 257] = log2_table::<257>(30);
+static LOG2_256: [u32; 257] = table::<257>(Sampled::Log2, 30);
 /// `Q30`: `2^(−i/256)` in Q31.
-static EXP2_256: [u32; 257] = exp2_table::<257>(31);
+static EXP2_256: [u32; 257] = table::<257>(Sampled::Exp2, 31);
 
 /// `x^(f/2^16)` in Q14 for a raw Q14 `x` (32-bit arithmetic only: no 64-bit
 /// multiply on a Cortex-M0). Relative error below 1.2·10⁻⁴ (linear interpolation
@@ -157,23 +156,10 @@ pub(crate) fn pow_frac_q14(x: i32, f: u16) -> i32 {
         return 1 << 14;
     }
     // x = r·2^−(13 + k) with r in [2^13, 2^14): a binary search (no CLZ on a Cortex-M0)
-    let (mut r, mut k) = (x as u32, 0u32);
-    if r < 1 << 6 {
-        r <<= 8;
-        k += 8;
-    }
-    if r < 1 << 10 {
-        r <<= 4;
-        k += 4;
-    }
-    if r < 1 << 12 {
-        r <<= 2;
-        k += 2;
-    }
-    if r < 1 << 13 {
-        r <<= 1;
-        k += 1;
-    }
+    let (r, k) = normalize_step(x as u32, 0, 6, 8);
+    let (r, k) = normalize_step(r, k, 10, 4);
+    let (r, k) = normalize_step(r, k, 12, 2);
+    let (r, k) = normalize_step(r, k, 13, 1);
     // −log₂ x = (k + 1) − log₂(r/2^13); log₂ of t = r − 2^13 in 64 segments of 2^7
     let t = r - (1 << 13);
     let (i, w) = ((t >> 7) as usize, t & 127);
@@ -191,6 +177,17 @@ pub(crate) fn pow_frac_q14(x: i32, f: u16) -> i32 {
     let (a, b) = (EXP2_64[j], EXP2_64[j + 1]);
     let e = a - (((a - b) * w + 512) >> 10); // Q15, in (2^14, 2^15]
     ((e + (1 << q)) >> (q + 1)) as i32
+}
+
+/// One step of a binary search for the leading bit: `(r·2^s, k + s)` when
+/// `r < 2^b`, else `(r, k)`.
+#[inline(always)]
+fn normalize_step(r: u32, k: u32, b: u32, s: u32) -> (u32, u32) {
+    if r < 1 << b {
+        (r << s, k + s)
+    } else {
+        (r, k)
+    }
 }
 
 /// `x^(f/2^16)` in Q30 for a raw Q30 `x` (64-bit products). Relative error below
