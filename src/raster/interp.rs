@@ -334,12 +334,13 @@ impl<V: Varyings> Persp<V> {
         let w1 = weight(t[1]);
         let w2 = weight(t[2]).min((1 << 15) - w1);
         // a₀ + w₁·(a₁ − a₀) + w₂·(a₂ − a₀) with ATTR_FRAC (14) bits: a convex
-        // combination; |wⱼ·dⱼ| ≤ 2^15·(2^16 − 2) < 2^31
+        // combination, rounded once (two terms rounded apart could both round
+        // up and pass the largest corner by a unit: found by fuzzing);
+        // |wⱼ·dⱼ| ≤ 2^15·(2^16 − 2) and, as w₁ + w₂ ≤ 2^15, so is their sum:
+        // below 2^31 (the wrapping sum is exact)
         V::from_fn(|i| {
-            let p = |w: i32, d: i32| (w * d + 1) >> 1;
-            get(&self.a0, i)
-                .wrapping_add(p(w1, get(&self.d1, i)))
-                .wrapping_add(p(w2, get(&self.d2, i)))
+            let s = (w1 * get(&self.d1, i)).wrapping_add(w2 * get(&self.d2, i));
+            get(&self.a0, i).wrapping_add((s + 1) >> 1)
         })
     }
 }
