@@ -137,7 +137,7 @@ mod fuzz;
 /// fuzz target `surface`, crash-4a9262f7: a 1 × 1 normal map of
 /// `normalize_texels([i16::MIN; 3])` = `[−9459; 3]` (a unit normal facing
 /// into the surface) on the seamed 6 × 8 sphere turned by `f32::MAX` radians,
-/// a 12-pixel frame, through `FastNormalMapShader` (`Q14<1>`, Blinn-Phong):
+/// a 12-pixel frame, through the fast normal-map kernel (then `FastNormalMapShader`) (`Q14<1>`, Blinn-Phong):
 /// "attempt to multiply with overflow" in the fast path's `n·L` (normalmap.rs
 /// line 852).
 #[test]
@@ -160,7 +160,7 @@ fn mesh_incremental_phong_extreme_normals() {
 
 /// fuzz target `surface`, crash-569c613a: a 1 × 1 map of
 /// `normalize_texels([0, i16::MIN, i16::MIN])` on the sphere turned by
-/// `−f32::MAX` radians, `FastNormalMapShader` (`Q14<1>`): the Newton update
+/// `−f32::MAX` radians, the fast normal-map kernel (`Q14<1>`): the Newton update
 /// of `1/|H|` after a span's last pixel, from `|H|²` stepped beyond the span
 /// (wrapped, never used), overflowed ("attempt to multiply with overflow",
 /// normalmap.rs line 891); it wraps now, like the other accumulators there.

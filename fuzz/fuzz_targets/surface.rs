@@ -4,7 +4,7 @@
 //!
 //! - textures of any size (1 to 16 texels a side), wrap, filter, format
 //!   (Rgb565, Gray8, a palette of any length with any indices) and texels,
-//!   sampled at any coordinates and drawn with `TexturedGouraudShading`;
+//!   sampled at any coordinates and drawn with `GouraudShading.textured(…)`;
 //! - normal maps of any `i16` texels: `NormalMap::new` accepts them or
 //!   returns `NotUnit`, `normalize_texels` makes every non-zero map
 //!   acceptable, and every accepted map is drawn by the fast and the general

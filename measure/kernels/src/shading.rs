@@ -4,7 +4,7 @@
 //!
 //! * `span_<tier>_<shading>_<lights>(n, out) -> n` builds the lighting and the
 //!   shader (constant cost) and shades one span of `n` Rgb565 pixels into `out`
-//!   through `SpanShader::shade_span`. The span crosses a lit sphere (radius 1,
+//!   through `Kernel::span`. The span crosses a lit sphere (radius 1,
 //!   centre (0, 0, −4) in eye space): normal from (−0.6, 0.1, 0.79) to
 //!   (0.6, 0.1, 0.79), position = centre + normal, over `max(n, 64)` pixels.
 //!   `count(n) − count(0)` is the cost of `n` pixels.
@@ -497,7 +497,7 @@ quadratic! {
     f32fast = F32Fast<2>, dir_phong = Phong;
 }
 
-// ---- TexturedGouraudShading ------------------------------------------------------
+// ---- GouraudShading.textured -------------------------------------------------------
 //
 // `span_q14_1_tex_<filter>_<persp|affine>_<set>(n, out)`: the kernel
 // (`Kernel::span`) on the reference span's normals, texture coordinates from
