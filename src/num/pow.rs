@@ -162,7 +162,8 @@ pub(crate) fn pow_frac_q14(x: i32, f: u16) -> i32 {
     let (r, k) = normalize_step(r, k, 13, 1);
     // −log₂ x = (k + 1) − log₂(r/2^13); log₂ of t = r − 2^13 in 64 segments of 2^7
     let t = r - (1 << 13);
-    let (i, w) = ((t >> 7) as usize, t & 127);
+    // (t < 2^13: i ≤ 63; the min lets opt-level "z" drop the bounds check)
+    let (i, w) = (((t >> 7) as usize).min(63), t & 127);
     let (a, b) = (LOG2_64[i], LOG2_64[i + 1]);
     let l = a + (((b - a) * w + 64) >> 7); // Q16, < 2^16
                                            // y = −f·log₂ x in Q16: f·(k + 1) < 2^20, f·l < 2^32
@@ -204,7 +205,7 @@ pub(crate) fn pow_frac_q30(x: i32, f: u16) -> i32 {
     let r = (x as u32) << k;
     let t = r - (1 << 29);
     // 256 segments of 2^21
-    let (i, w) = ((t >> 21) as usize, u64::from(t & 0x1F_FFFF));
+    let (i, w) = (((t >> 21) as usize).min(255), u64::from(t & 0x1F_FFFF));
     let (a, b) = (u64::from(LOG2_256[i]), u64::from(LOG2_256[i + 1]));
     let l = a + (((b - a) * w + (1 << 20)) >> 21); // Q30, < 2^30
                                                    // y = −f·log₂ x in Q30 (as u64): f·(k + 1)·2^30 < 2^51
