@@ -9,9 +9,9 @@
 #   FUZZ_SEED=123 bash fuzz/run.sh       # the fixed runs from another seed
 #
 # Builds the targets exactly as `cargo fuzz build -s none` does (libFuzzer with
-# SanitizerCoverage, no sanitizer: works on stable Rust; the same RUSTFLAGS, so
-# `cargo fuzz run -s none <target>` reuses the build and cargo-fuzz need not be
-# installed here), replays every kept input of fuzz/regressions/<target>/, then
+# SanitizerCoverage, no sanitizer: works on stable Rust; cargo-fuzz need not be
+# installed here; the same flags as cargo fuzz's, plus the source paths
+# remapped, see below), replays every kept input of fuzz/regressions/<target>/, then
 # fuzzes each target from those inputs: by default `-runs=N` executions from
 # `-seed=S` (N per target below, about 30 s each on the 2-core CI machine) with
 # `-reload=0` (libFuzzer otherwise rereads its corpus directory once a second,
@@ -39,7 +39,14 @@ if [ "${#targets[@]}" -eq 0 ]; then
   targets=(lighting raster constructors mesh surface)
 fi
 triple="$(rustc -vV | sed -n 's/^host: //p')"
-export RUSTFLAGS=" -Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table -Cllvm-args=-sanitizer-coverage-trace-compares --cfg fuzzing -Cllvm-args=-simplifycfg-branch-fold-threshold=0 -Cllvm-args=-sanitizer-coverage-stack-depth -Ccodegen-units=1"
+# The source paths of the crate and of its dependencies are remapped to fixed
+# names: panic locations and file names are compiled into the binary, and the
+# fuzzer's path through the inputs depends on the binary, so a clone anywhere
+# (CI clones elsewhere) builds the same binary and runs the same inputs.
+repo="$(cd .. && pwd)"
+cargo_home="${CARGO_HOME:-$HOME/.cargo}"
+remap="--remap-path-prefix=$repo=/fixshade --remap-path-prefix=$cargo_home=/cargo"
+export RUSTFLAGS="$remap -Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table -Cllvm-args=-sanitizer-coverage-trace-compares --cfg fuzzing -Cllvm-args=-simplifycfg-branch-fold-threshold=0 -Cllvm-args=-sanitizer-coverage-stack-depth -Ccodegen-units=1"
 cargo build --quiet --release --target "$triple" --bins
 status=0
 for t in "${targets[@]}"; do

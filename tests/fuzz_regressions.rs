@@ -170,3 +170,48 @@ fn surface_fast_normal_map_newton_after_the_last_pixel() {
         "../fuzz/regressions/surface/crash-569c613ab464faaebbc74a3599ffa85ce416b263"
     ));
 }
+
+/// fuzz target `raster`, crash-806ef1a3: a sliver crossing the near plane
+/// (one corner in front, w = 256; two behind, one of them at
+/// `(i32::MIN, i32::MIN)`), clipped to the near plane and the window's
+/// corner: after rounding its cut corners to sub-pixels, the five-corner
+/// polygon folded over and its fan's two non-empty triangles had opposite
+/// windings of equal area, so the polygon's rounded winding (zero) could not
+/// tell the folded one, and pixel (0, 0) was drawn twice by one triangle.
+/// The fan now follows the triangle's exact facing (from its clip
+/// coordinates): every pixel is written at most once.
+#[test]
+fn a_sliver_cut_by_the_near_plane_is_drawn_once() {
+    use fixshade::raster::Cull;
+    use support::{full, lumas, Count, Tris};
+    let c = |x: i32, y: i32, z: i32, w: i32| clip_corner(Clip { x, y, z, w }, 0);
+    let tri = [
+        c(0, -82, -65025, 256),
+        c(650, 650, i32::MIN, 1),
+        c(i32::MIN, i32::MIN, i32::MIN, 1),
+    ];
+    for cull in [Cull::None, Cull::Back, Cull::Front] {
+        for t in [tri, [tri[0], tri[2], tri[1]]] {
+            let mut item = Tris {
+                space: ClipSpace::perspective([280, 280], 71),
+                cull,
+                ..Tris::screen(Count, vec![t])
+            };
+            let counts = lumas(&full(18, 33, Gray8::new(0), false, &mut [&mut item]));
+            assert!(counts.iter().all(|&n| n <= 1), "{cull:?} {counts:?}");
+        }
+    }
+}
+
+/// fuzz target `mesh`, crash-5167a126: a model matrix whose normal matrix has
+/// only subnormal elements: scaling its largest element to 16384 multiplied by
+/// `16384 / max` = infinity, so the Q14 normal rows became `i16::MAX`, and
+/// transforming a normal overflowed ("attempt to add with overflow",
+/// camera/mod.rs line 365). Each element is now divided by the largest
+/// first (at most 1 in magnitude).
+#[test]
+fn mesh_normal_matrix_of_subnormal_elements() {
+    fuzz::mesh::run(include_bytes!(
+        "../fuzz/regressions/mesh/crash-5167a126ce8b9c84b1e115695299a119ee61a2cd"
+    ));
+}

@@ -341,16 +341,16 @@ pub(crate) struct NormalRows {
 impl NormalRows {
     fn new(nm: &[[f32; 3]; 3]) -> Self {
         let max = nm.iter().flatten().fold(0.0f32, |m, v| m.max(v.abs()));
-        // largest element at 16384 (Q14 of 1): a rotation keeps unit length
-        let k = if max > 0.0 && max.is_finite() {
-            16384.0 / max
-        } else {
-            0.0
-        };
+        // largest element at 16384 (Q14 of 1): a rotation keeps unit length.
+        // Each element is divided by the largest first (|v / max| ≤ 1 even
+        // when max is subnormal, where 16384 / max would be infinite)
+        let ok = max > 0.0 && max.is_finite();
         let mut e = [[0i16; 3]; 3];
         for (er, mr) in e.iter_mut().zip(nm) {
             for (x, v) in er.iter_mut().zip(mr) {
-                *x = libm::roundf(v * k) as i16;
+                if ok {
+                    *x = libm::roundf((v / max).clamp(-1.0, 1.0) * 16384.0) as i16;
+                }
             }
         }
         NormalRows { e }

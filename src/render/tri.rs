@@ -300,31 +300,30 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
         return;
     };
     let a = screen(first);
-    // the fan's triangles against the polygon's winding: rounding the cut
-    // corners to sub-pixels can fold a nearly straight corner over, and the
-    // fan triangle at it then lies inside its neighbours, turned the other
-    // way (its pixels would be written twice); it is left out (the notch it
-    // would cut is smaller than a sub-pixel rounding)
+    // the fan's triangles against the triangle's facing (exact, from its
+    // clip coordinates): rounding the cut corners to sub-pixels can fold a
+    // nearly straight corner over, and the fan triangle at it then lies
+    // inside its neighbours, turned the other way (its pixels would be
+    // written twice); it is left out (the notch it would cut is smaller than
+    // a sub-pixel rounding). The rounded polygon's own winding cannot decide
+    // it: on a sliver, the folded piece can be as large as the rest.
     // (screen corners are clamped to the window, whose sides are below 2^15
     // sub-pixels: each product is below 2^30 and their difference fits an i32;
     // no 64-bit multiply on the M0)
+    let Some(front) = clip::facing::<PERSP>(c.map(|k| k.c)) else {
+        return;
+    };
     let area = |b: &ScreenCorner<V>, c: &ScreenCorner<V>| {
         let (ax, ay) = (a.s.x, a.s.y);
         (b.s.x - ax) * (c.s.y - ay) - (b.s.y - ay) * (c.s.x - ax)
     };
     const _: () = assert!(WINDOW_MAX - WINDOW_MIN < 1 << 15);
-    let fan = 1..vs.len().saturating_sub(1);
-    let mut total = 0i64;
-    for k in fan.clone() {
-        if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
-            total = total.saturating_add(i64::from(area(&screen(b), &screen(c))));
-        }
-    }
-    for k in fan {
+    for k in 1..vs.len().saturating_sub(1) {
         if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
             let (b, c) = (screen(b), screen(c));
+            // A > 0: clockwise on the screen (a back face)
             let s = area(&b, &c);
-            if s == 0 || total == 0 || (s > 0) == (total > 0) {
+            if s == 0 || (s < 0) == front {
                 f(&[a, b, c]);
             }
         }
