@@ -255,6 +255,19 @@ pub enum MeshError {
     NotFinite(&'static str),
     /// The named parameter is outside its documented range.
     OutOfRange(&'static str),
+    /// A vertex coordinate does not fit an `i16` at the chosen number of
+    /// fraction bits ([`to_compact`](crate::mesh::to_compact)).
+    PositionOutOfRange {
+        /// Index of the vertex.
+        vertex: usize,
+        /// The coordinate: 0 for x, 1 for y, 2 for z.
+        axis: u8,
+        /// The fraction bits asked for.
+        frac: u8,
+        /// The most fraction bits at which this coordinate fits (`None`: it
+        /// does not fit even at 0, `|p| ≥ 32767.5`).
+        fits: Option<u8>,
+    },
     /// The named parameters describe a degenerate configuration (zero-length
     /// direction, parallel vectors, empty volume).
     Degenerate(&'static str),
@@ -275,6 +288,19 @@ impl fmt::Display for MeshError {
             }
             Self::NotFinite(p) => write!(f, "{p}: NaN or infinite"),
             Self::OutOfRange(p) => write!(f, "{p}: out of range"),
+            Self::PositionOutOfRange {
+                vertex,
+                axis,
+                frac,
+                fits,
+            } => {
+                let c = ["x", "y", "z"].get(usize::from(*axis)).unwrap_or(&"?");
+                write!(f, "vertex {vertex}: {c} does not fit an i16 at frac {frac}")?;
+                match fits {
+                    Some(k) => write!(f, " (it fits at frac {k} or less)"),
+                    None => f.write_str(" (nor at frac 0: |value| ≥ 32767.5)"),
+                }
+            }
             Self::Degenerate(p) => write!(f, "{p}: degenerate"),
             Self::MissingAttribute(p) => write!(f, "the mesh has no {p}"),
         }

@@ -171,34 +171,50 @@ fn surface_fast_normal_map_newton_after_the_last_pixel() {
     ));
 }
 
-/// fuzz target `raster`, crash-806ef1a3: a sliver crossing the near plane
-/// (one corner in front, w = 256; two behind, one of them at
-/// `(i32::MIN, i32::MIN)`), clipped to the near plane and the window's
-/// corner: after rounding its cut corners to sub-pixels, the five-corner
-/// polygon folded over and its fan's two non-empty triangles had opposite
-/// windings of equal area, so the polygon's rounded winding (zero) could not
-/// tell the folded one, and pixel (0, 0) was drawn twice by one triangle.
-/// The fan now follows the triangle's exact facing (from its clip
-/// coordinates): every pixel is written at most once.
+/// fuzz targets `raster`, crash-806ef1a3 and crash-820c4833: slivers
+/// crossing the near plane (one corner in front; behind it, corners at
+/// `(i32::MIN, i32::MIN)` with `w = 1` or `w = i32::MIN`), clipped to the
+/// near plane and the window: after rounding their cut corners to
+/// sub-pixels, the polygons were no longer convex (in the first, the fan's
+/// two non-empty triangles had opposite windings of equal area, so the
+/// rounded polygon's winding, zero, could not tell the folded one; in the
+/// second, a corner bent inwards), and one pixel was drawn twice by one
+/// triangle. The rounded polygon is now made convex again in the triangle's
+/// exact facing before its fan is drawn: every pixel is written at most once,
+/// in either winding and under every culling.
 #[test]
-fn a_sliver_cut_by_the_near_plane_is_drawn_once() {
+fn slivers_cut_by_the_near_plane_are_drawn_once() {
     use fixshade::raster::Cull;
     use support::{full, lumas, Count, Tris};
     let c = |x: i32, y: i32, z: i32, w: i32| clip_corner(Clip { x, y, z, w }, 0);
-    let tri = [
-        c(0, -82, -65025, 256),
-        c(650, 650, i32::MIN, 1),
-        c(i32::MIN, i32::MIN, i32::MIN, 1),
+    let m = i32::MIN;
+    let cases = [
+        (
+            ClipSpace::perspective([280, 280], 71),
+            (18, 33),
+            [c(0, -82, -65025, 256), c(650, 650, m, 1), c(m, m, m, 1)],
+        ),
+        (
+            ClipSpace::perspective([289, 0], 1),
+            (20, 38),
+            [
+                c(-197, -192, -404_233_448, 256),
+                c(-835, 32382, 2_122_219_262, 152),
+                c(m, m, m, m),
+            ],
+        ),
     ];
-    for cull in [Cull::None, Cull::Back, Cull::Front] {
-        for t in [tri, [tri[0], tri[2], tri[1]]] {
-            let mut item = Tris {
-                space: ClipSpace::perspective([280, 280], 71),
-                cull,
-                ..Tris::screen(Count, vec![t])
-            };
-            let counts = lumas(&full(18, 33, Gray8::new(0), false, &mut [&mut item]));
-            assert!(counts.iter().all(|&n| n <= 1), "{cull:?} {counts:?}");
+    for (space, (w, h), tri) in cases {
+        for cull in [Cull::None, Cull::Back, Cull::Front] {
+            for t in [tri, [tri[0], tri[2], tri[1]]] {
+                let mut item = Tris {
+                    space,
+                    cull,
+                    ..Tris::screen(Count, vec![t])
+                };
+                let counts = lumas(&full(w, h, Gray8::new(0), false, &mut [&mut item]));
+                assert!(counts.iter().all(|&n| n <= 1), "{cull:?} {counts:?}");
+            }
         }
     }
 }

@@ -177,8 +177,10 @@ pub fn displace(
 ///
 /// # Errors
 ///
-/// [`MeshError::OutOfRange`] (`"frac"`) for `frac > 15`, (`"position"`) for
-/// a coordinate that does not fit an `i16` at `frac` bits;
+/// [`MeshError::OutOfRange`] (`"frac"`) for `frac > 15`;
+/// [`MeshError::PositionOutOfRange`] for a coordinate that does not fit an
+/// `i16` at `frac` bits (naming the vertex, the axis and the most fraction
+/// bits at which it fits);
 /// [`MeshError::NotFinite`] for a NaN or infinite position or normal;
 /// [`MeshError::BufferTooSmall`] for short inputs or outputs. The outputs may
 /// be partly written on error.
@@ -188,9 +190,14 @@ pub fn displace(
 /// let (mut p, mut n) = ([[0i16; 3]; 1], [[0i16; 3]; 1]);
 /// to_compact(&[[0.5, -1.0, 0.0]], &[[0.0, 1.0, 0.0]], 14, &mut p, &mut n)?;
 /// assert_eq!((p[0], n[0]), ([8192, -16384, 0], [0, 16384, 0]));
+/// let err = to_compact(&[[2.5, 0.0, 0.0]], &[[0.0; 3]], 14, &mut p, &mut n);
 /// assert_eq!(
-///     to_compact(&[[2.5, 0.0, 0.0]], &[[0.0; 3]], 14, &mut p, &mut n),
-///     Err(MeshError::OutOfRange("position"))
+///     err,
+///     Err(MeshError::PositionOutOfRange { vertex: 0, axis: 0, frac: 14, fits: Some(13) })
+/// );
+/// assert_eq!(
+///     err.unwrap_err().to_string(),
+///     "vertex 0: x does not fit an i16 at frac 14 (it fits at frac 13 or less)"
 /// );
 /// # Ok::<(), MeshError>(())
 /// ```
@@ -210,10 +217,11 @@ pub fn to_compact(
     check_len("out_normals", n, out_normals.len())?;
     let scale = f64::from(1u32 << frac);
     let fit = |x: f64| (-32768.5..32767.5).contains(&x);
-    for ((p, m), (op, on)) in positions
+    for (vertex, ((p, m), (op, on))) in positions
         .iter()
         .zip(normals)
         .zip(out_positions.iter_mut().zip(out_normals.iter_mut()))
+        .enumerate()
     {
         for c in 0..3 {
             let (pc, mc) = (f64::from(p[c]), f64::from(m[c]));
@@ -221,7 +229,12 @@ pub fn to_compact(
                 return Err(MeshError::NotFinite("position or normal"));
             }
             if !fit(pc * scale) {
-                return Err(MeshError::OutOfRange("position"));
+                return Err(MeshError::PositionOutOfRange {
+                    vertex,
+                    axis: c as u8,
+                    frac,
+                    fits: (0..frac).rev().find(|&k| fit(pc * f64::from(1u32 << k))),
+                });
             }
             op[c] = round_i16(pc * scale);
             on[c] = round_i16(mc * f64::from(NORMAL_ONE));
@@ -400,5 +413,35 @@ mod tests {
             to_compact(&[[0.0; 3]], &[[0.0; 3]], 16, &mut pc, &mut nc),
             Err(MeshError::OutOfRange("frac"))
         );
+    }
+
+    #[test]
+    fn a_coordinate_out_of_range_names_its_vertex_axis_and_fitting_frac() {
+        let (mut p, mut n) = ([[0i16; 3]; 3], [[0i16; 3]; 3]);
+        let pos = [[0.0; 3], [1.0, -1.0, 1.0], [0.5, 0.25, -9.0]];
+        // -9 fits at frac 11 (−18432), not 12 (−36864)
+        assert_eq!(
+            to_compact(&pos, &[[0.0; 3]; 3], 14, &mut p, &mut n),
+            Err(MeshError::PositionOutOfRange {
+                vertex: 2,
+                axis: 2,
+                frac: 14,
+                fits: Some(11)
+            })
+        );
+        assert_eq!(to_compact(&pos, &[[0.0; 3]; 3], 11, &mut p, &mut n), Ok(3));
+        assert_eq!(p[2][2], -18432);
+        let far = [[0.0, 40000.0, 0.0]];
+        let err = to_compact(&far, &[[0.0; 3]], 0, &mut p[..1], &mut n[..1]).unwrap_err();
+        assert_eq!(
+            err,
+            MeshError::PositionOutOfRange {
+                vertex: 0,
+                axis: 1,
+                frac: 0,
+                fits: None
+            }
+        );
+        assert!(std::format!("{err}").contains("nor at frac 0"), "{err}");
     }
 }

@@ -284,6 +284,16 @@ pub(crate) fn draw_clipped<K: Kernel, const PERSP: bool>(
 /// Calls `f` with the screen triangles (a fan) of the clip-space triangle `c`
 /// clipped to the near plane (`PERSP`: a perspective clip space) and the
 /// set-up window.
+///
+/// The clipped polygon is convex, but rounding its cut corners to sub-pixels
+/// can bend a nearly straight corner inwards or fold a sliver over, and a fan
+/// over such a polygon has overlapping triangles (pixels written twice). So
+/// the rounded polygon is made convex again in the triangle's exact facing
+/// (from its clip coordinates): a corner that turns the other way, or not at
+/// all, is removed (it lies within a sub-pixel rounding of the line through
+/// its neighbours), until every corner turns the same way. If what remains
+/// still winds around more than once (a polygon of a few sub-pixels), it is
+/// dropped. The fan's triangles are then disjoint.
 #[inline]
 pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     c: &[ClipCorner<V>; 3],
@@ -292,40 +302,68 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
 ) {
     let poly = Polygon::clipped::<PERSP>(c, space);
     let vs = poly.vertices();
-    let screen = |p: &ClipCorner<V>| ScreenCorner {
-        s: clip::screen::<PERSP>(space, p.c),
-        v: p.v,
+    let Some(front) = clip::facing::<PERSP>(c.map(|k| k.c)) else {
+        return;
     };
     let Some(first) = vs.first() else {
         return;
     };
-    let a = screen(first);
-    // the fan's triangles against the triangle's facing (exact, from its
-    // clip coordinates): rounding the cut corners to sub-pixels can fold a
-    // nearly straight corner over, and the fan triangle at it then lies
-    // inside its neighbours, turned the other way (its pixels would be
-    // written twice); it is left out (the notch it would cut is smaller than
-    // a sub-pixel rounding). The rounded polygon's own winding cannot decide
-    // it: on a sliver, the folded piece can be as large as the rest.
-    // (screen corners are clamped to the window, whose sides are below 2^15
-    // sub-pixels: each product is below 2^30 and their difference fits an i32;
-    // no 64-bit multiply on the M0)
-    let Some(front) = clip::facing::<PERSP>(c.map(|k| k.c)) else {
+    let screen = |p: &ClipCorner<V>| ScreenCorner {
+        s: clip::screen::<PERSP>(space, p.c),
+        v: p.v,
+    };
+    let mut p = [screen(first); clip::MAX];
+    for (q, v) in p.iter_mut().zip(vs) {
+        *q = screen(v);
+    }
+    let mut n = vs.len().min(clip::MAX);
+    // whether a → b → c turns as the triangle faces (A > 0: clockwise on the
+    // screen, a back face). Screen corners are clamped to the window, whose
+    // sides are below 2^15 sub-pixels: each product is below 2^30 and their
+    // difference fits an i32 (no 64-bit multiply on the M0)
+    const _: () = assert!(WINDOW_MAX - WINDOW_MIN < 1 << 15);
+    let turns = |a: &ScreenCorner<V>, b: &ScreenCorner<V>, c: &ScreenCorner<V>| {
+        let s = (b.s.x - a.s.x) * (c.s.y - a.s.y) - (b.s.y - a.s.y) * (c.s.x - a.s.x);
+        if front {
+            s < 0
+        } else {
+            s > 0
+        }
+    };
+    // remove the corners that turn the wrong way, one at a time (each removal
+    // changes its neighbours' turns)
+    'convex: while n >= 3 {
+        for i in 0..n {
+            let prev = if i == 0 { n - 1 } else { i - 1 };
+            let next = if i + 1 < n { i + 1 } else { 0 };
+            if let (Some(a), Some(b), Some(c)) = (p.get(prev), p.get(i), p.get(next)) {
+                if !turns(a, b, c) {
+                    for j in i..n - 1 {
+                        if let Some(&q) = p.get(j + 1) {
+                            if let Some(d) = p.get_mut(j) {
+                                *d = q;
+                            }
+                        }
+                    }
+                    n -= 1;
+                    continue 'convex;
+                }
+            }
+        }
+        break;
+    }
+    let p = p.get(..n).unwrap_or(&[]);
+    let (Some(a), Some(b)) = (p.first(), p.get(1)) else {
         return;
     };
-    let area = |b: &ScreenCorner<V>, c: &ScreenCorner<V>| {
-        let (ax, ay) = (a.s.x, a.s.y);
-        (b.s.x - ax) * (c.s.y - ay) - (b.s.y - ay) * (c.s.x - ax)
-    };
-    const _: () = assert!(WINDOW_MAX - WINDOW_MIN < 1 << 15);
-    for k in 1..vs.len().saturating_sub(1) {
-        if let (Some(b), Some(c)) = (vs.get(k), vs.get(k + 1)) {
-            let (b, c) = (screen(b), screen(c));
-            // A > 0: clockwise on the screen (a back face)
-            let s = area(&b, &c);
-            if s == 0 || (s < 0) == front {
-                f(&[a, b, c]);
-            }
+    // every corner on the same side of the first edge: the fan from `a`
+    // spans less than half a turn (winds once)
+    if n < 3 || !p.iter().skip(2).all(|c| turns(a, b, c)) {
+        return;
+    }
+    for k in 1..n - 1 {
+        if let (Some(&b), Some(&c)) = (p.get(k), p.get(k + 1)) {
+            f(&[*a, b, c]);
         }
     }
 }
