@@ -3,14 +3,14 @@
 #
 #   bash fuzz/run.sh                   # CI: replay every kept input of every target:
 #                                      # fuzz/regressions/<t>/ (crashes found and fixed)
-#                                      # and fuzz/corpus/<t>/ (the committed corpus)
+#                                      # and fuzz/corpus/<t>.tar.gz (the committed corpus)
 #   bash fuzz/run.sh TARGET...         # only these targets
 #   FUZZ_EXPLORE=1 bash fuzz/run.sh    # and then fuzz each target from its corpus: a fixed
 #                                      # number of executions from FUZZ_SEED (20211), or
 #                                      # FUZZ_SECONDS=600 with a random seed (printed;
 #                                      # FUZZ_SECONDS alone explores too)
 #   FUZZ_GROW=1 bash fuzz/run.sh       # explore, then merge what found new coverage into
-#                                      # fuzz/corpus/<t>/ (libFuzzer -merge=1; commit it)
+#                                      # fuzz/corpus/<t>.tar.gz (libFuzzer -merge=1; commit it)
 #
 # Why CI replays and does not explore: libFuzzer's path through the inputs depends on
 # the binary itself (comparison values are hashed by code address), and the binary
@@ -19,7 +19,8 @@
 # inputs on one machine, but another clone found crashes this one did not: CI could
 # fail on an unchanged tree. Replaying fixed files is the same everywhere; exploring
 # is a developer's step, and what it finds is kept in fuzz/regressions/<t>/ and as a
-# test in tests/fuzz_regressions.rs, what it covers in fuzz/corpus/<t>/ (FUZZ_GROW).
+# test in tests/fuzz_regressions.rs, what it covers in fuzz/corpus/<t>.tar.gz (FUZZ_GROW;
+# an archive per target: thousands of small inputs, about 1.4 MB in all).
 #
 # Builds the targets as `cargo fuzz build -s none` does (libFuzzer with
 # SanitizerCoverage, no sanitizer: works on stable Rust; cargo-fuzz need not be
@@ -54,21 +55,26 @@ for t in "${targets[@]}"; do
     status=1
     continue
   fi
-  mkdir -p "corpus/$t" "artifacts/$t"
-  kept=(regressions/"$t"/* corpus/"$t"/*)
+  mkdir -p corpus "artifacts/$t"
+  unpacked="$(mktemp -d)"
+  if [ -f "corpus/$t.tar.gz" ]; then
+    tar -xzf "corpus/$t.tar.gz" -C "$unpacked"
+  fi
+  mkdir -p "$unpacked/$t"
+  kept=(regressions/"$t"/* "$unpacked/$t"/*)
   log="$(mktemp)"
   start="$(date +%s)"
   # every kept input run once (libFuzzer runs file arguments one by one)
   if [ "${#kept[@]}" -gt 0 ] && ! "$bin" "${kept[@]}" >"$log" 2>&1; then
     grep -v '^ \+\(at \|[0-9]\+: \)' "$log" | tail -40 >&2
-    echo "FAIL fuzz $t: a kept input of fuzz/regressions/$t or fuzz/corpus/$t crashes" >&2
+    echo "FAIL fuzz $t: a kept input of fuzz/regressions/$t or fuzz/corpus/$t.tar.gz crashes" >&2
     status=1
-    rm -f "$log"
+    rm -rf "$log" "$unpacked"
     continue
   fi
   echo "ok   fuzz $t: ${#kept[@]} kept inputs replayed in $(($(date +%s) - start)) s, no crash"
   if [ -z "${FUZZ_EXPLORE:-}${FUZZ_GROW:-}${secs}" ]; then
-    rm -f "$log"
+    rm -rf "$log" "$unpacked"
     continue
   fi
   work="$(mktemp -d)"
@@ -88,15 +94,18 @@ for t in "${targets[@]}"; do
     n="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")"
     echo "ok   fuzz $t: explored, $n executions ($what) in $(($(date +%s) - start)) s, no crash"
     if [ -n "${FUZZ_GROW:-}" ]; then
-      before="$(ls "corpus/$t" | wc -l)"
-      "$bin" -merge=1 "corpus/$t" "$work" >"$log" 2>&1
-      echo "     fuzz $t: corpus/$t grew from $before to $(ls "corpus/$t" | wc -l) inputs"
+      before="$(ls "$unpacked/$t" | wc -l)"
+      "$bin" -merge=1 "$unpacked/$t" "$work" >"$log" 2>&1
+      # a reproducible archive: sorted names, no times or owners
+      tar --sort=name --mtime=@0 --owner=0 --group=0 --numeric-owner -cf - -C "$unpacked" "$t" \
+        | gzip -n -9 >"corpus/$t.tar.gz"
+      echo "     fuzz $t: corpus/$t.tar.gz grew from $before to $(ls "$unpacked/$t" | wc -l) inputs"
     fi
   else
     grep -v '^ \+\(at \|[0-9]\+: \)' "$log" | tail -40 >&2
     echo "FAIL fuzz $t ($what): crash (input in fuzz/artifacts/$t/; keep it in fuzz/regressions/$t and as a test in tests/fuzz_regressions.rs)" >&2
     status=1
   fi
-  rm -rf "$work" "$log"
+  rm -rf "$work" "$log" "$unpacked"
 done
 exit "$status"
