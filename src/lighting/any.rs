@@ -5,7 +5,7 @@ use super::light::{Incident, LightColors, LightSource, PointLight, SpotLight};
 use super::{Attenuation, ColorTerms, DirectionalLight, Material};
 use crate::color::Rgb;
 use crate::error::ParamError;
-use crate::num::{Point3, Scalar, Vec3};
+use crate::num::{Mat4, Point3, Scalar, Vec3};
 
 /// Any light kind, chosen at run time (costs a branch per light and point).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,6 +47,13 @@ impl<S: Scalar> LightSource<S> for AnyLight<S> {
             Self::Directional(l) => LightSource::color_terms(l, material),
             Self::Point(l) => LightSource::color_terms(l, material),
             Self::Spot(l) => LightSource::color_terms(l, material),
+        }
+    }
+    fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
+        match self {
+            Self::Directional(l) => LightSource::transform(l, m),
+            Self::Point(l) => LightSource::transform(l, m),
+            Self::Spot(l) => LightSource::transform(l, m),
         }
     }
 }

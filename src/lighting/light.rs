@@ -8,7 +8,7 @@
 use crate::color::Rgb;
 use crate::error::{direction, finite, non_negative, non_negative3, ParamError};
 use crate::lighting::{AnyLight, Material};
-use crate::num::{point_from_f32, point_sub, Point3, Vec3};
+use crate::num::{point_from_f32, point_sub, Mat4, Point3, Vec3};
 use crate::num::{Exponent, Flag, GeoScalar, Off, On, Scalar};
 use core::marker::PhantomData;
 
@@ -208,6 +208,41 @@ pub trait LightSource<S: Scalar> {
         let _ = material;
         None
     }
+    /// Moves the light by `m` (world to eye coordinates: the camera's view), as
+    /// OpenGL transforms `GL_POSITION` and `GL_SPOT_DIRECTION` by the model-view
+    /// matrix: a position by the whole matrix, a direction by its upper-left
+    /// 3×3 and normalised again. Call [`LightSource::prepare`] afterwards (as
+    /// [`Lighting::viewed`](crate::lighting::Lighting::viewed) does).
+    ///
+    /// # Errors
+    ///
+    /// [`ParamError::ZeroDirection`] when `m` maps a direction to zero,
+    /// [`ParamError::NotFinite`] for a non-finite result (the light is then
+    /// unchanged).
+    fn transform(&mut self, m: &Mat4) -> Result<(), ParamError>;
+}
+
+/// `d` (a unit vector in the tier) through the upper-left 3×3 of `m`,
+/// normalised again.
+fn transform_direction<S: Scalar>(
+    name: &'static str,
+    d: Vec3<S>,
+    m: &Mat4,
+) -> Result<Vec3<S>, ParamError> {
+    Ok(Vec3::from_f32(direction(
+        name,
+        m.transform_vector(d.to_f32()),
+    )?))
+}
+
+/// Position `p` through `m` (divided by the homogeneous `w`).
+fn transform_position<S: Scalar>(p: Point3<S>, m: &Mat4) -> Result<Point3<S>, ParamError> {
+    let [x, y, z, w] = m.transform_point([p.x, p.y, p.z].map(S::geo_to_f32));
+    let q = [x / w, y / w, z / w];
+    for c in q {
+        finite("position", c)?;
+    }
+    Ok(point_from_f32::<S>(q))
 }
 
 /// What receives each light's [`Incident`] from [`LightSet::for_each`] (a trait
@@ -252,6 +287,9 @@ pub trait LightSet<S: Scalar> {
     /// Hands each light's [`LightSource::color_terms`] for `material` to `f`
     /// (construction time only).
     fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms));
+    /// See [`LightSource::transform`] (on an error, the lights before the
+    /// failing one are moved).
+    fn transform(&mut self, m: &Mat4) -> Result<(), ParamError>;
 }
 
 macro_rules! light_set_for_source {
@@ -280,6 +318,9 @@ macro_rules! light_set_for_source {
                     f(t)
                 }
             }
+            fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
+                LightSource::transform(self, m)
+            }
         }
     )*};
 }
@@ -306,6 +347,9 @@ macro_rules! light_set_for_container {
             fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms)) {
                 self.iter().for_each(|l| l.for_each_color_terms(material, f));
             }
+            fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
+                self.iter_mut().try_for_each(|l| l.transform(m))
+            }
         }
     )*};
 }
@@ -328,6 +372,10 @@ macro_rules! light_set_tuple {
             }
             fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms)) {
                 $(self.$idx.for_each_color_terms(material, f);)*
+            }
+            fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
+                $(self.$idx.transform(m)?;)*
+                Ok(())
             }
         }
     };
@@ -395,6 +443,10 @@ impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
     }
     fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
         Some(ColorTerms::new(&self.colors, material, 1.0, false))
+    }
+    fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
+        self.dir = transform_direction("direction", self.dir, m)?;
+        Ok(())
     }
     #[inline(always)]
     fn incident(&self, _p: &Point3<S>) -> Incident<'_, S> {
@@ -622,6 +674,10 @@ impl<S: Scalar> LightSource<S> for PointLight<S> {
     fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
         Some(self.terms(material, false))
     }
+    fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
+        self.pos = transform_position::<S>(self.pos, m)?;
+        Ok(())
+    }
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
         let (l, att) = self.towards(p);
@@ -697,6 +753,12 @@ impl<S: Scalar> LightSource<S> for SpotLight<S> {
     }
     fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
         Some(self.point.terms(material, true))
+    }
+    fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
+        let axis = transform_direction("spot axis", self.axis, m)?;
+        LightSource::transform(&mut self.point, m)?;
+        self.axis = axis;
+        Ok(())
     }
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {

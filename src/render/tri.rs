@@ -332,25 +332,26 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     };
     // remove the corners that turn the wrong way, one at a time (each removal
     // changes its neighbours' turns)
-    'convex: while n >= 3 {
-        for i in 0..n {
+    while n >= 3 {
+        let wrong = (0..n).find(|&i| {
             let prev = if i == 0 { n - 1 } else { i - 1 };
             let next = if i + 1 < n { i + 1 } else { 0 };
-            if let (Some(a), Some(b), Some(c)) = (p.get(prev), p.get(i), p.get(next)) {
-                if !turns(a, b, c) {
-                    for j in i..n - 1 {
-                        if let Some(&q) = p.get(j + 1) {
-                            if let Some(d) = p.get_mut(j) {
-                                *d = q;
-                            }
-                        }
-                    }
-                    n -= 1;
-                    continue 'convex;
+            match (p.get(prev), p.get(i), p.get(next)) {
+                (Some(a), Some(b), Some(c)) => !turns(a, b, c),
+                _ => false,
+            }
+        });
+        let Some(i) = wrong else {
+            break;
+        };
+        for j in i..n - 1 {
+            if let Some(&q) = p.get(j + 1) {
+                if let Some(d) = p.get_mut(j) {
+                    *d = q;
                 }
             }
         }
-        break;
+        n -= 1;
     }
     let p = p.get(..n).unwrap_or(&[]);
     let (Some(a), Some(b)) = (p.first(), p.get(1)) else {
