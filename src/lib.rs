@@ -46,7 +46,7 @@
 //! // camera, light and material
 //! let camera = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, Viewport::new(0, 0, 240, 240)?)?
 //!     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
-//! let light = DirectionalLight::<Q14>::white([1.0, 1.0, 1.0])?;
+//! let light = DirectionalLight::<Q14>::white([1.0, 1.0, 1.0])?; // world coordinates
 //! let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.6, 32.0);
 //! let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&red)?);
 //!
@@ -56,9 +56,11 @@
 //! let mut depth = [0u16; 240 * 8];
 //! let mut buffers: MeshBuffers<_, { N.0 }, { bins_len(N.1, 30) }, 64> = MeshBuffers::new();
 //!
-//! // once per frame: transform, light and bin the mesh, then draw band by band
+//! // once per frame: the lights seen from the camera; transform, light and bin
+//! // the mesh, then draw band by band
+//! let lit = lighting.viewed(camera.view())?;
 //! let transform = camera.mesh_transform(&Mat4::rotate_y(0.3), SPHERE.frac)?;
-//! let shader = Shader::new(PhongShading, &lighting, Linear);
+//! let shader = Shader::new(PhongShading, &lit, Linear);
 //! let mut sphere = MeshDraw::new(layout, SPHERE.mesh(), &transform, shader, buffers.memory())?;
 //! let mut display = Checksum::new(Size::new(240, 240)); // any DrawTarget: a display driver, the simulator
 //! Bands::new(layout, &mut strip, Some(&mut depth))?.render(&mut display, Rgb565::BLACK, &mut [&mut sphere])?;
