@@ -43,14 +43,12 @@ pub(crate) mod rsqrt;
 mod vector;
 pub(crate) mod wide;
 
-pub use float::{F32Fast, RampF32, F32_LIMIT};
-pub use geo::{GeoScalar, InvQuadratic16};
+pub use float::{F32Fast, F32_LIMIT};
+pub use geo::GeoScalar;
 pub use matrix::Mat4;
 pub(crate) use matrix::{cross3, dot3, sub3};
 pub use pow::Exponent;
-pub use q14::RampQ14;
 pub use q14::Q14;
-pub use q30::RampQ30;
 pub use q30::Q30;
 pub(crate) use vector::point_sub;
 pub use vector::{point_from_f32, Point3, Vec3};
