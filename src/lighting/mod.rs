@@ -47,9 +47,9 @@ mod viewer;
 
 pub use any::{AnyLight, LightDesc, LightKind};
 pub use illuminate::{BackFaces, DirectionalTerms, Illuminate, SeparateSpecular};
+pub(crate) use light::{ColorTerms, Incident, IncidentVisitor};
 pub use light::{
-    Attenuation, ColorTerms, DirectionalLight, Incident, IncidentVisitor, LightColors, LightSet,
-    LightSource, PointLight, Prepared, SpotLight,
+    Attenuation, DirectionalLight, LightColors, LightSet, PointLight, Prepared, SpotLight,
 };
 pub use material::{AmbientSource, Material, MaterialDesc};
 pub use model::{BlinnPhong, Full, Lambert, Model, Phong, Specular, Terms};
