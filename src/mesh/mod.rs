@@ -47,7 +47,7 @@ pub use crate::error::MeshError;
 pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
 pub use displace::{displace, to_compact, weld_by_position};
-pub use normals::{face_normals, normals_to_tier, positions_to_geo16, vertex_normals, Weighting};
+pub use normals::{face_normals, vertex_normals, Weighting};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts, MAX_ICOSPHERE_LEVEL};
 pub use tangents::{tangents_to_q14, vertex_tangents};
 pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
