@@ -497,10 +497,6 @@ impl From<ColorMaterialMode> for ColorMaterial {
     }
 }
 
-/// The lighting [`GlScene::back_lighting`] returns: a GL lighting (no fog) of
-/// the back faces.
-pub type GlBackLighting<S, L, M, V> = BackFaces<Lighting<S, L, M, V, NoFog>>;
-
 /// The OpenGL lighting state of one draw: the enabled lights (eye coordinates, see
 /// [`GlLight::transformed`]), the front and back materials, the light model and
 /// `GL_COLOR_MATERIAL`. [`GlScene::lighting`] turns it into a [`Lighting`] of any
@@ -578,7 +574,9 @@ impl<'a> GlScene<'a> {
     /// (`Cull::Front`) and the front faces with [`GlScene::lighting`]
     /// (`Cull::Back`). Without two-sided lighting OpenGL lights back faces like
     /// front faces: draw every face with [`GlScene::lighting`].
-    pub fn back_lighting<S, L, M, V>(&self) -> Result<GlBackLighting<S, L, M, V>, ParamError>
+    pub fn back_lighting<S, L, M, V>(
+        &self,
+    ) -> Result<BackFaces<Lighting<S, L, M, V, NoFog>>, ParamError>
     where
         S: Scalar,
         L: GlLightSet<S>,

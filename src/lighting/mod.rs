@@ -47,10 +47,10 @@ mod viewer;
 
 pub use any::{AnyLight, LightDesc, LightKind};
 pub use illuminate::{BackFaces, DirectionalTerms, Illuminate, SeparateSpecular};
-pub(crate) use light::{ColorTerms, Incident, IncidentVisitor};
 pub use light::{
     Attenuation, DirectionalLight, LightColors, LightSet, PointLight, Prepared, SpotLight,
 };
+pub(crate) use light::{ColorTerms, Incident, IncidentVisitor};
 pub use material::{AmbientSource, Material, MaterialDesc};
 pub use model::{BlinnPhong, Full, Lambert, Model, Phong, Specular, Terms};
 pub use viewer::{FogModel, InfiniteViewer, LinearFog, LocalViewer, NoFog, Viewer};

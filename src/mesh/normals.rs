@@ -251,7 +251,6 @@ fn add(acc: &mut [f32; 3], w: [f64; 3]) {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
