@@ -461,38 +461,22 @@ pub enum GlFace {
 
 /// `glEnable(GL_COLOR_MATERIAL)` with `glColorMaterial(face, mode)`: the vertex
 /// colour replaces the material colour `mode` names on `face`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+///
+/// The default is OpenGL's: both faces, `GL_AMBIENT_AND_DIFFUSE`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct GlColorMaterial {
     /// The faces.
     pub face: GlFace,
-    /// The material colour replaced (OpenGL's default: `GL_AMBIENT_AND_DIFFUSE`).
-    pub mode: ColorMaterialMode,
+    /// The material colour replaced (OpenGL's default:
+    /// [`ColorMaterial::AmbientAndDiffuse`]; [`ColorMaterial::Off`] replaces none).
+    pub mode: ColorMaterial,
 }
 
-/// `glColorMaterial`'s mode (the [`ColorMaterial`] modes other than `Off`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum ColorMaterialMode {
-    /// `GL_EMISSION`.
-    Emission,
-    /// `GL_AMBIENT`.
-    Ambient,
-    /// `GL_DIFFUSE`.
-    Diffuse,
-    /// `GL_SPECULAR`.
-    Specular,
-    /// `GL_AMBIENT_AND_DIFFUSE`.
-    #[default]
-    AmbientAndDiffuse,
-}
-
-impl From<ColorMaterialMode> for ColorMaterial {
-    fn from(m: ColorMaterialMode) -> Self {
-        match m {
-            ColorMaterialMode::Emission => Self::Emission,
-            ColorMaterialMode::Ambient => Self::Ambient,
-            ColorMaterialMode::Diffuse => Self::Diffuse,
-            ColorMaterialMode::Specular => Self::Specular,
-            ColorMaterialMode::AmbientAndDiffuse => Self::AmbientAndDiffuse,
+impl Default for GlColorMaterial {
+    fn default() -> Self {
+        Self {
+            face: GlFace::default(),
+            mode: ColorMaterial::AmbientAndDiffuse,
         }
     }
 }
@@ -589,7 +573,7 @@ impl<'a> GlScene<'a> {
     /// The `GL_COLOR_MATERIAL` mode on `face`.
     pub fn color_material_on(&self, face: GlFace) -> ColorMaterial {
         match self.color_material {
-            Some(cm) if cm.face == face || cm.face == GlFace::FrontAndBack => cm.mode.into(),
+            Some(cm) if cm.face == face || cm.face == GlFace::FrontAndBack => cm.mode,
             _ => ColorMaterial::Off,
         }
     }
