@@ -45,7 +45,7 @@ mod textured;
 pub use crate::color::{Dithered, Encoder, Gamma, Linear};
 pub use incremental::{DirectionalLighting, IncrementalModel};
 pub use normalmap::NormalMapped;
-pub use quadratic::{QuadraticModel, QuadraticTier};
+pub use quadratic::QuadraticModel;
 pub use textured::Textured;
 
 use crate::color::OutputColor;
@@ -96,7 +96,8 @@ pub struct GeneralPhongShading;
 pub struct IncrementalPhongShading;
 
 /// Per-pixel Phong shading by re-anchored quadratic interpolation along each
-/// span (see [`QuadraticModel`], [`QuadraticTier`]; the lighting: one `Lighting` of `K` directional lights):
+/// span (see [`QuadraticModel`]; the tiers: the `Q14` tiers, `f32` and
+/// [`F32Fast`](crate::num::F32Fast); the lighting: one `Lighting` of `K` directional lights):
 /// the lighting is evaluated exactly at anchors 4–32 pixels apart (segment
 /// lengths from bounds on the third derivatives, so the interpolation adds at
 /// most 0.3 + 0.3 steps of the 8-bit output), each encoded colour channel
