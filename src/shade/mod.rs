@@ -43,7 +43,7 @@ mod segment;
 mod textured;
 
 pub use crate::color::{Dithered, Encoder, Gamma, Linear};
-pub use incremental::{DirectionalLighting, IncrementalModel};
+pub use incremental::IncrementalModel;
 pub use normalmap::NormalMapped;
 pub use quadratic::QuadraticModel;
 pub use textured::Textured;
@@ -90,8 +90,9 @@ pub struct PhongShading;
 pub struct GeneralPhongShading;
 
 /// Per-pixel Phong shading computed incrementally along each span: the Q14 fast
-/// path for directional lights and a viewer at infinity (see
-/// [`IncrementalModel`] and [`DirectionalLighting`]).
+/// path for directional lights and a viewer at infinity: the lighting is a
+/// `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>` with `M` an
+/// [`IncrementalModel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct IncrementalPhongShading;
 
