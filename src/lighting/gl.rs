@@ -26,7 +26,7 @@
 //! | OpenGL | fixshade |
 //! |---|---|
 //! | `glLightfv(GL_LIGHTi, …)`, position and spot direction through the modelview | [`GlLight`], [`GlLight::transformed`] |
-//! | `GL_POSITION` w = 0 / w ≠ 0, `GL_SPOT_CUTOFF` 180 / 0..=90 | [`DirectionalLight`] / [`PointLight`] / [`SpotLight`] ([`FromGlLight`]) |
+//! | `GL_POSITION` w = 0 / w ≠ 0, `GL_SPOT_CUTOFF` 180 / 0..=90 | [`DirectionalLight`] / [`PointLight`] / [`SpotLight`] ([`GlLight::to_light`]) |
 //! | `GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION` | [`Attenuation`](crate::lighting::Attenuation) (`1/a` folded into the colours) |
 //! | `GL_SPOT_EXPONENT`, `GL_SHININESS` (real, 0..=128) | [`Exponent`](crate::num::Exponent) |
 //! | `glMaterialfv(GL_FRONT / GL_BACK, …)` | [`GlMaterial`] → [`Material::signed`] |
@@ -195,8 +195,10 @@ impl GlLight {
         LightColors::signed(rgb(self.ambient), rgb(self.diffuse), rgb(self.specular))
     }
 
-    /// The light as the fixshade light type of its kind, or an error if it is of
-    /// another kind (see [`FromGlLight`]).
+    /// The light as the fixshade light type of its kind: `L` is
+    /// [`DirectionalLight`] (`w = 0`), [`PointLight`] (`w ≠ 0`, cutoff 180),
+    /// [`SpotLight`] (`w ≠ 0`, cutoff 0..=90) or [`AnyLight`] (any); a light of
+    /// another kind is a [`ParamError::LightKind`].
     ///
     /// ```
     /// use fixshade::lighting::gl::GlLight;
@@ -214,14 +216,21 @@ impl GlLight {
     }
 }
 
-/// A light type that an OpenGL light converts to: [`DirectionalLight`] (`w = 0`),
-/// [`PointLight`] (`w ≠ 0`, cutoff 180), [`SpotLight`] (`w ≠ 0`, cutoff 0..=90),
-/// or [`AnyLight`] (any). A light of another kind is a
-/// [`ParamError::LightKind`].
-pub trait FromGlLight: Sized {
-    /// The light of `light`'s parameters.
-    fn from_gl_light(light: &GlLight) -> Result<Self, ParamError>;
+/// The light types an OpenGL light converts to (see [`GlLight::to_light`]):
+/// sealed, not re-exported (issue 18).
+mod from_gl {
+    use super::{GlLight, ParamError};
+
+    /// A light type that an OpenGL light converts to: `DirectionalLight`
+    /// (`w = 0`), `PointLight` (`w ≠ 0`, cutoff 180), `SpotLight` (`w ≠ 0`,
+    /// cutoff 0..=90), or `AnyLight` (any). A light of another kind is a
+    /// `ParamError::LightKind`.
+    pub trait FromGlLight: Sized {
+        /// The light of `light`'s parameters.
+        fn from_gl_light(light: &GlLight) -> Result<Self, ParamError>;
+    }
 }
+use from_gl::FromGlLight;
 
 impl<S: Scalar> FromGlLight for AnyLight<S> {
     fn from_gl_light(light: &GlLight) -> Result<Self, ParamError> {
@@ -258,7 +267,8 @@ from_gl_kind!(
 );
 
 /// A light set built from the enabled OpenGL lights: one light type
-/// ([`FromGlLight`]) for exactly one light, `[L; K]` for exactly `K` lights,
+/// ([`DirectionalLight`], [`PointLight`], [`SpotLight`] or [`AnyLight`], see
+/// [`GlLight::to_light`]) for exactly one light, `[L; K]` for exactly `K` lights,
 /// `heapless::Vec<L, K>` for up to `K` (OpenGL guarantees 8).
 pub trait GlLightSet<S: Scalar>: LightSet<S> + Sized {
     /// The set of `lights`; [`ParamError::LightCount`] when their number does not
