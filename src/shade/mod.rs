@@ -111,14 +111,18 @@ pub struct IncrementalPhongShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadraticPhongShading;
 
-/// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`],
-/// [`GeneralPhongShading`], [`IncrementalPhongShading`],
-/// [`QuadraticPhongShading`], or one of them [`Textured`] or
-/// [`NormalMapped`].
-pub trait Mode: Copy + core::fmt::Debug {
-    /// A short name for reports.
-    const NAME: &'static str;
+/// The name of a shading mode in a shader's `Debug` output: sealed, not
+/// re-exported (issue 18).
+mod mode {
+    /// A shading mode: `FlatShading`, `GouraudShading`, `PhongShading`,
+    /// `GeneralPhongShading`, `IncrementalPhongShading`,
+    /// `QuadraticPhongShading`, or one of them `Textured` or `NormalMapped`.
+    pub trait Mode: Copy + core::fmt::Debug {
+        /// A short name for reports.
+        const NAME: &'static str;
+    }
 }
+pub(crate) use mode::Mode;
 
 impl Mode for FlatShading {
     const NAME: &'static str = "flat";
@@ -157,13 +161,13 @@ pub trait ModeState<I: Illuminate, C> {
     fn state(self, lighting: &I) -> Self::State;
 }
 
-impl<M: Mode + ModeState<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
+impl<M: ModeState<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<M: Mode + ModeState<I, C>, I: Illuminate, E: Copy, C> Copy for Shader<'_, M, I, E, C> {}
+impl<M: ModeState<I, C>, I: Illuminate, E: Copy, C> Copy for Shader<'_, M, I, E, C> {}
 
 impl<M: Mode + ModeState<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt::Debug
     for Shader<'_, M, I, E, C>
@@ -176,9 +180,7 @@ impl<M: Mode + ModeState<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt
     }
 }
 
-impl<'l, M: Mode + ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor>
-    Shader<'l, M, I, E, C>
-{
+impl<'l, M: ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'l, M, I, E, C> {
     /// A shader of mode `mode` lighting with `lighting`, writing pixels through
     /// `encoder`.
     pub fn new(mode: M, lighting: &'l I, encoder: E) -> Self {
