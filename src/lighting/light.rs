@@ -185,7 +185,7 @@ pub struct Incident<'a, S> {
 }
 
 /// One light source.
-pub(crate) trait LightSource<S: Scalar> {
+pub trait LightSource<S: Scalar> {
     /// Whether the light needs the surface position (point and spot lights).
     const NEEDS_POSITION: bool;
     /// Multiplies colours with the material and precomputes what is constant for a
@@ -243,19 +243,14 @@ pub trait LightSet<S: Scalar> {
     fn directional(&self) -> Option<(Vec3<S>, &Prepared<S>)> {
         None
     }
-    /// Multiplies each light's colours with the material and precomputes what
-    /// is constant for a viewer direction `view` (`None` for a local viewer).
+    /// See [`LightSource::prepare`].
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>);
     /// The sum of the lights' point-independent ambient contributions.
     fn constant_ambient(&self) -> Rgb<S>;
-    /// Hands each light's incident light at `p` to `visitor` (the per-pixel sum
-    /// of the lighting equation; crate-internal types).
-    #[doc(hidden)]
+    /// Hands each light's [`Incident`] at `p` to `visitor`.
     fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V);
-    /// Hands each light's colour terms for `material` to `f` (construction
-    /// time only, for the range check of
-    /// [`Lighting::checked`](crate::lighting::Lighting::checked); crate-internal types).
-    #[doc(hidden)]
+    /// Hands each light's [`LightSource::color_terms`] for `material` to `f`
+    /// (construction time only).
     fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms));
 }
 
@@ -379,7 +374,7 @@ impl<S: Scalar> DirectionalLight<S> {
     }
 
     /// The light's colours times the material's, and the halfway vector, as set by
-    /// the last [`LightSet::prepare`].
+    /// the last [`LightSource::prepare`].
     pub fn prepared(&self) -> &Prepared<S> {
         &self.pre
     }

@@ -48,7 +48,8 @@ mod viewer;
 pub use any::{AnyLight, LightDesc, LightKind};
 pub use illuminate::{BackFaces, DirectionalTerms, Illuminate, SeparateSpecular};
 pub use light::{
-    Attenuation, DirectionalLight, LightColors, LightSet, PointLight, Prepared, SpotLight,
+    Attenuation, ColorTerms, DirectionalLight, Incident, IncidentVisitor, LightColors, LightSet,
+    LightSource, PointLight, Prepared, SpotLight,
 };
 pub(crate) use light::{ColorTerms, Incident, IncidentVisitor};
 pub use material::{AmbientSource, Material, MaterialDesc};
