@@ -568,6 +568,8 @@ impl<'a> GlScene<'a> {
     /// (`Cull::Front`) and the front faces with [`GlScene::lighting`]
     /// (`Cull::Back`). Without two-sided lighting OpenGL lights back faces like
     /// front faces: draw every face with [`GlScene::lighting`].
+    // the type the removed `GlBackLighting` alias named (issue 18)
+    #[allow(clippy::type_complexity)]
     pub fn back_lighting<S, L, M, V>(
         &self,
     ) -> Result<BackFaces<Lighting<S, L, M, V, NoFog>>, ParamError>

@@ -51,7 +51,6 @@ pub use light::{
     Attenuation, ColorTerms, DirectionalLight, Incident, IncidentVisitor, LightColors, LightSet,
     LightSource, PointLight, Prepared, SpotLight,
 };
-pub(crate) use light::{ColorTerms, Incident, IncidentVisitor};
 pub use material::{AmbientSource, Material, MaterialDesc};
 pub use model::{BlinnPhong, Full, Lambert, Model, Phong, Specular, Terms};
 pub use viewer::{FogModel, InfiniteViewer, LinearFog, LocalViewer, NoFog, Viewer};
