@@ -55,8 +55,7 @@ use fixshade::camera::{
 };
 use fixshade::color::{Encoder, Linear, Rgb};
 use fixshade::lighting::gl::{
-    ColorMaterialMode, GlColorMaterial, GlFace, GlLight, GlLightModel, GlMaterial, GlScene,
-    GlViewer,
+    GlColorMaterial, GlFace, GlLight, GlLightModel, GlMaterial, GlScene, GlViewer,
 };
 use fixshade::lighting::{
     AnyLight, BlinnPhong, ColorMaterial, Illuminate, InfiniteViewer, LightDesc, LightKind,
@@ -193,11 +192,11 @@ fn color_material(v: &Value) -> Option<GlColorMaterial> {
             _ => GlFace::FrontAndBack,
         },
         mode: match v["mode"].as_str().unwrap() {
-            "emission" => ColorMaterialMode::Emission,
-            "ambient" => ColorMaterialMode::Ambient,
-            "diffuse" => ColorMaterialMode::Diffuse,
-            "specular" => ColorMaterialMode::Specular,
-            "ambient_and_diffuse" => ColorMaterialMode::AmbientAndDiffuse,
+            "emission" => ColorMaterial::Emission,
+            "ambient" => ColorMaterial::Ambient,
+            "diffuse" => ColorMaterial::Diffuse,
+            "specular" => ColorMaterial::Specular,
+            "ambient_and_diffuse" => ColorMaterial::AmbientAndDiffuse,
             m => panic!("unknown colour material mode {m}"),
         },
     })

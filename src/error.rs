@@ -387,8 +387,8 @@ impl core::error::Error for TextureError {}
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum RenderError<E = core::convert::Infallible> {
-    /// The frame is empty or larger than
-    /// `framebuffer::MAX_SIZE` (1024), or a band has no rows.
+    /// The frame is empty or larger than 1024 pixels a side, or a band has no
+    /// rows.
     Size,
     /// A caller-owned buffer is too small.
     BufferTooSmall {

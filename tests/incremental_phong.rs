@@ -14,7 +14,12 @@ use fixshade::color::OutputColor;
 use fixshade::lighting::DirectionalLight;
 use fixshade::prelude::*;
 use fixshade::raster::ATTR_FRAC;
-use fixshade::shade::{DirectionalLighting, IncrementalPhongShading, Linear, Shader};
+use fixshade::shade::{IncrementalPhongShading, Linear, Shader};
+
+/// The lightings `IncrementalPhongShading` accepts: `K` directional lights in
+/// an array, a viewer at infinity, no fog.
+type DirectionalLighting<const NW: u8, const K: usize, M> =
+    Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>;
 use proptest::prelude::*;
 
 /// The values the pipeline hands the incremental span kernel for a vertex of

@@ -106,7 +106,8 @@ fn uv_spheres_are_closed_outward_and_exact() {
 
 #[test]
 fn icospheres_are_closed_outward_and_exact() {
-    for level in 0..=MAX_ICOSPHERE_LEVEL {
+    // 4: the highest level `icosphere` accepts
+    for level in 0..=4 {
         for (c, r) in [([0.0; 3], 1.0), ([3.0, -2.0, 10.0], 0.25)] {
             check_sphere(&ico(level, c, r), c, r);
         }
@@ -198,15 +199,6 @@ fn cube_vertex_normals_by_angle_are_diagonals() {
         );
     }
     // to a tier
-    let mut q = [fixshade::num::Vec3::<fixshade::num::Q14>::default(); 8];
-    assert_eq!(normals_to_tier(&n, &mut q), Ok(8));
-    assert!((q[7].x.to_f32() - k).abs() < 1e-4);
-    assert_eq!(
-        normals_to_tier(&n, &mut q[..3]),
-        Err(MeshError::BufferTooSmall {
-            which: "dst",
-            needed: 8,
-            got: 3
-        })
-    );
+    let q = fixshade::num::Vec3::<fixshade::num::Q14>::from_f32(n[7]);
+    assert!((q.x.to_f32() - k).abs() < 1e-4);
 }

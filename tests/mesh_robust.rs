@@ -142,8 +142,7 @@ proptest! {
         }
         let mut f = vec![[0.0f32; 3]; out_len];
         let _ = face_normals(&pos, &tris, &mut f);
-        let mut q = vec![Vec3::<Q14>::default(); out_len];
-        let _ = normals_to_tier(&pos, &mut q);
+        let _: Vec<Vec3<Q14>> = pos.iter().map(|&n| Vec3::from_f32(n)).collect();
     }
 
     #[test]

@@ -9,7 +9,10 @@
 #[path = "common/seeded.rs"]
 mod seeded;
 use fixshade::num::Vec3;
-use fixshade::num::{F32Fast, Geo16, Scalar, F32_LIMIT, Q14, Q30};
+use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
+
+/// The range of the float tiers (±10⁹, documented in `fixshade::num`).
+const F32_LIMIT: f32 = 1.0e9;
 use proptest::prelude::*;
 
 /// A tier together with the extreme values of its representation.

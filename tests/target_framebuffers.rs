@@ -13,9 +13,12 @@ use fixshade::error::{Error, RenderError};
 use fixshade::prelude::*;
 use fixshade::render::{
     bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
-    MAX_SIZE,
 };
 use support::{corner, full, Solid, Tris, S};
+
+/// The largest frame width and height the renderer accepts (documented on
+/// `Layout::new`).
+const MAX_SIZE: u32 = 1024;
 
 fn tri(p: [(i32, i32, i32); 3]) -> [fixshade::render::Corner; 3] {
     p.map(|(x, y, z)| corner(x * S, y * S, z, 0))

@@ -23,7 +23,7 @@ use embedded_graphics_core::primitives::Rectangle;
 use crate::error::RenderError;
 
 /// The largest frame width and height the renderer accepts: 1024.
-pub const MAX_SIZE: u32 = 1024;
+pub(crate) const MAX_SIZE: u32 = 1024;
 
 /// The band layout of a frame: `width` × `height` pixels drawn `band_rows`
 /// rows at a time (the whole height for a full frame).
@@ -39,7 +39,7 @@ impl Layout {
     ///
     /// # Errors
     ///
-    /// [`RenderError::Size`] unless `1 ≤ width, height ≤ MAX_SIZE` and
+    /// [`RenderError::Size`] unless `1 ≤ width, height ≤ 1024` and
     /// `band_rows ≥ 1`.
     pub fn banded(width: u32, height: u32, band_rows: u32) -> Result<Layout, RenderError> {
         if !(1..=MAX_SIZE).contains(&width) || !(1..=MAX_SIZE).contains(&height) || band_rows == 0 {

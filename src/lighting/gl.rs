@@ -26,7 +26,7 @@
 //! | OpenGL | fixshade |
 //! |---|---|
 //! | `glLightfv(GL_LIGHTi, …)`, position and spot direction through the modelview | [`GlLight`], [`GlLight::transformed`] |
-//! | `GL_POSITION` w = 0 / w ≠ 0, `GL_SPOT_CUTOFF` 180 / 0..=90 | [`DirectionalLight`] / [`PointLight`] / [`SpotLight`] ([`FromGlLight`]) |
+//! | `GL_POSITION` w = 0 / w ≠ 0, `GL_SPOT_CUTOFF` 180 / 0..=90 | [`DirectionalLight`] / [`PointLight`] / [`SpotLight`] ([`GlLight::to_light`]) |
 //! | `GL_CONSTANT/LINEAR/QUADRATIC_ATTENUATION` | [`Attenuation`](crate::lighting::Attenuation) (`1/a` folded into the colours) |
 //! | `GL_SPOT_EXPONENT`, `GL_SHININESS` (real, 0..=128) | [`Exponent`](crate::num::Exponent) |
 //! | `glMaterialfv(GL_FRONT / GL_BACK, …)` | [`GlMaterial`] → [`Material::signed`] |
@@ -195,8 +195,10 @@ impl GlLight {
         LightColors::signed(rgb(self.ambient), rgb(self.diffuse), rgb(self.specular))
     }
 
-    /// The light as the fixshade light type of its kind, or an error if it is of
-    /// another kind (see [`FromGlLight`]).
+    /// The light as the fixshade light type of its kind: `L` is
+    /// [`DirectionalLight`] (`w = 0`), [`PointLight`] (`w ≠ 0`, cutoff 180),
+    /// [`SpotLight`] (`w ≠ 0`, cutoff 0..=90) or [`AnyLight`] (any); a light of
+    /// another kind is a [`ParamError::LightKind`].
     ///
     /// ```
     /// use fixshade::lighting::gl::GlLight;
@@ -214,14 +216,21 @@ impl GlLight {
     }
 }
 
-/// A light type that an OpenGL light converts to: [`DirectionalLight`] (`w = 0`),
-/// [`PointLight`] (`w ≠ 0`, cutoff 180), [`SpotLight`] (`w ≠ 0`, cutoff 0..=90),
-/// or [`AnyLight`] (any). A light of another kind is a
-/// [`ParamError::LightKind`].
-pub trait FromGlLight: Sized {
-    /// The light of `light`'s parameters.
-    fn from_gl_light(light: &GlLight) -> Result<Self, ParamError>;
+/// The light types an OpenGL light converts to (see [`GlLight::to_light`]):
+/// sealed, not re-exported (issue 18).
+mod from_gl {
+    use super::{GlLight, ParamError};
+
+    /// A light type that an OpenGL light converts to: `DirectionalLight`
+    /// (`w = 0`), `PointLight` (`w ≠ 0`, cutoff 180), `SpotLight` (`w ≠ 0`,
+    /// cutoff 0..=90), or `AnyLight` (any). A light of another kind is a
+    /// `ParamError::LightKind`.
+    pub trait FromGlLight: Sized {
+        /// The light of `light`'s parameters.
+        fn from_gl_light(light: &GlLight) -> Result<Self, ParamError>;
+    }
 }
+use from_gl::FromGlLight;
 
 impl<S: Scalar> FromGlLight for AnyLight<S> {
     fn from_gl_light(light: &GlLight) -> Result<Self, ParamError> {
@@ -258,7 +267,8 @@ from_gl_kind!(
 );
 
 /// A light set built from the enabled OpenGL lights: one light type
-/// ([`FromGlLight`]) for exactly one light, `[L; K]` for exactly `K` lights,
+/// ([`DirectionalLight`], [`PointLight`], [`SpotLight`] or [`AnyLight`], see
+/// [`GlLight::to_light`]) for exactly one light, `[L; K]` for exactly `K` lights,
 /// `heapless::Vec<L, K>` for up to `K` (OpenGL guarantees 8).
 pub trait GlLightSet<S: Scalar>: LightSet<S> + Sized {
     /// The set of `lights`; [`ParamError::LightCount`] when their number does not
@@ -461,45 +471,25 @@ pub enum GlFace {
 
 /// `glEnable(GL_COLOR_MATERIAL)` with `glColorMaterial(face, mode)`: the vertex
 /// colour replaces the material colour `mode` names on `face`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+///
+/// The default is OpenGL's: both faces, `GL_AMBIENT_AND_DIFFUSE`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct GlColorMaterial {
     /// The faces.
     pub face: GlFace,
-    /// The material colour replaced (OpenGL's default: `GL_AMBIENT_AND_DIFFUSE`).
-    pub mode: ColorMaterialMode,
+    /// The material colour replaced (OpenGL's default:
+    /// [`ColorMaterial::AmbientAndDiffuse`]; [`ColorMaterial::Off`] replaces none).
+    pub mode: ColorMaterial,
 }
 
-/// `glColorMaterial`'s mode (the [`ColorMaterial`] modes other than `Off`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum ColorMaterialMode {
-    /// `GL_EMISSION`.
-    Emission,
-    /// `GL_AMBIENT`.
-    Ambient,
-    /// `GL_DIFFUSE`.
-    Diffuse,
-    /// `GL_SPECULAR`.
-    Specular,
-    /// `GL_AMBIENT_AND_DIFFUSE`.
-    #[default]
-    AmbientAndDiffuse,
-}
-
-impl From<ColorMaterialMode> for ColorMaterial {
-    fn from(m: ColorMaterialMode) -> Self {
-        match m {
-            ColorMaterialMode::Emission => Self::Emission,
-            ColorMaterialMode::Ambient => Self::Ambient,
-            ColorMaterialMode::Diffuse => Self::Diffuse,
-            ColorMaterialMode::Specular => Self::Specular,
-            ColorMaterialMode::AmbientAndDiffuse => Self::AmbientAndDiffuse,
+impl Default for GlColorMaterial {
+    fn default() -> Self {
+        Self {
+            face: GlFace::default(),
+            mode: ColorMaterial::AmbientAndDiffuse,
         }
     }
 }
-
-/// The lighting [`GlScene::back_lighting`] returns: a GL lighting (no fog) of
-/// the back faces.
-pub type GlBackLighting<S, L, M, V> = BackFaces<Lighting<S, L, M, V, NoFog>>;
 
 /// The OpenGL lighting state of one draw: the enabled lights (eye coordinates, see
 /// [`GlLight::transformed`]), the front and back materials, the light model and
@@ -578,7 +568,11 @@ impl<'a> GlScene<'a> {
     /// (`Cull::Front`) and the front faces with [`GlScene::lighting`]
     /// (`Cull::Back`). Without two-sided lighting OpenGL lights back faces like
     /// front faces: draw every face with [`GlScene::lighting`].
-    pub fn back_lighting<S, L, M, V>(&self) -> Result<GlBackLighting<S, L, M, V>, ParamError>
+    // the type the removed `GlBackLighting` alias named (issue 18)
+    #[allow(clippy::type_complexity)]
+    pub fn back_lighting<S, L, M, V>(
+        &self,
+    ) -> Result<BackFaces<Lighting<S, L, M, V, NoFog>>, ParamError>
     where
         S: Scalar,
         L: GlLightSet<S>,
@@ -591,7 +585,7 @@ impl<'a> GlScene<'a> {
     /// The `GL_COLOR_MATERIAL` mode on `face`.
     pub fn color_material_on(&self, face: GlFace) -> ColorMaterial {
         match self.color_material {
-            Some(cm) if cm.face == face || cm.face == GlFace::FrontAndBack => cm.mode.into(),
+            Some(cm) if cm.face == face || cm.face == GlFace::FrontAndBack => cm.mode,
             _ => ColorMaterial::Off,
         }
     }

@@ -3,9 +3,7 @@
 
 use super::error::check_len;
 use crate::error::MeshError;
-use crate::num::Vec3;
 use crate::num::{cross3, dot3, sub3};
-use crate::num::{Geo16, Scalar, Q14};
 
 /// How [`vertex_normals`] weights the faces around a vertex.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -251,65 +249,6 @@ fn add(acc: &mut [f32; 3], w: [f64; 3]) {
     for (a, w) in acc.iter_mut().zip(w) {
         *a += w as f32;
     }
-}
-
-/// `p` in Q16.16, saturating at ±32768, NaN → 0.
-pub(crate) fn geo16(p: [f32; 3]) -> Vec3<Geo16> {
-    let c = <Q14 as Scalar>::geo_from_f32;
-    Vec3::new(c(p[0]), c(p[1]), c(p[2]))
-}
-
-/// Converts `f32` normals to tier `S` with [`Vec3::from_f32`] (saturating, NaN →
-/// 0), into `dst[..src.len()]`; returns `src.len()`.
-///
-/// # Errors
-///
-/// [`MeshError::BufferTooSmall`] when `dst.len() < src.len()`.
-///
-/// ```
-/// use fixshade::mesh::normals_to_tier;
-/// use fixshade::num::{Scalar, Q14};
-/// use fixshade::num::Vec3;
-/// let mut dst = [Vec3::<Q14>::default(); 1];
-/// normals_to_tier(&[[0.0, 0.6, 0.8]], &mut dst)?;
-/// assert_eq!(dst[0].y, Q14::from_f32(0.6));
-/// # Ok::<(), fixshade::mesh::MeshError>(())
-/// ```
-pub fn normals_to_tier<S: Scalar>(
-    src: &[[f32; 3]],
-    dst: &mut [Vec3<S>],
-) -> Result<usize, MeshError> {
-    check_len("dst", src.len(), dst.len())?;
-    for (d, &s) in dst.iter_mut().zip(src) {
-        *d = Vec3::from_f32(s);
-    }
-    Ok(src.len())
-}
-
-/// Converts `f32` positions to [`Geo16`] (Q16.16, the input of the fixed-point
-/// vertex stage), saturating at ±32768, NaN → 0, into `dst[..src.len()]`;
-/// returns `src.len()`.
-///
-/// # Errors
-///
-/// [`MeshError::BufferTooSmall`] when `dst.len() < src.len()`.
-///
-/// ```
-/// use fixshade::mesh::positions_to_geo16;
-/// use fixshade::num::Geo16;
-/// use fixshade::num::Vec3;
-/// let mut dst = [Vec3::new(Geo16::ZERO, Geo16::ZERO, Geo16::ZERO); 1];
-/// positions_to_geo16(&[[1.5, -2.0, 1.0e9]], &mut dst)?;
-/// assert_eq!(dst[0].x, Geo16::from_num(1.5));
-/// assert_eq!(dst[0].z, Geo16::MAX);
-/// # Ok::<(), fixshade::mesh::MeshError>(())
-/// ```
-pub fn positions_to_geo16(src: &[[f32; 3]], dst: &mut [Vec3<Geo16>]) -> Result<usize, MeshError> {
-    check_len("dst", src.len(), dst.len())?;
-    for (d, &s) in dst.iter_mut().zip(src) {
-        *d = geo16(s);
-    }
-    Ok(src.len())
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use core::f64::consts::PI;
 
 /// The highest subdivision level [`icosphere`] accepts: 4 (2562 vertices, 5120
 /// triangles).
-pub const MAX_ICOSPHERE_LEVEL: u32 = 4;
+pub(crate) const MAX_ICOSPHERE_LEVEL: u32 = 4;
 
 /// `(vertices, triangles)` of [`uv_sphere`] with `stacks` bands of latitude and
 /// `slices` of longitude: `(2 + (stacks − 1)·slices, 2·slices·(stacks − 1))`
@@ -35,7 +35,7 @@ pub const fn uv_sphere_counts(stacks: usize, slices: usize) -> (usize, usize) {
 }
 
 /// `(vertices, triangles)` of [`icosphere`] at subdivision `level`:
-/// `(10·4^level + 2, 20·4^level)`. Levels above [`MAX_ICOSPHERE_LEVEL`] give
+/// `(10·4^level + 2, 20·4^level)`. Levels above 4 give
 /// `(0, 0)`.
 ///
 /// ```
@@ -228,7 +228,7 @@ const ICO_FACES: [[u16; 3]; 20] = [
 ];
 
 /// Writes an icosphere: the icosahedron with every triangle split into four
-/// `level` times (0..=[`MAX_ICOSPHERE_LEVEL`]), new vertices pushed out to the
+/// `level` times (0..=4), new vertices pushed out to the
 /// sphere. Returns `(vertices, triangles)`, equal to [`icosphere_counts`].
 ///
 /// Each edge midpoint is created once and shared by the two triangles of the

@@ -65,7 +65,7 @@ fn inv_quadratic(k: &[f32; 3], d: f32) -> Option<f32> {
 
 /// The range of the float tiers: conversions from `f32` clamp to ±`F32_LIMIT`, so
 /// that the products of the lighting equation (at most four factors) stay finite.
-pub const F32_LIMIT: f32 = 1.0e9;
+pub(crate) const F32_LIMIT: f32 = 1.0e9;
 
 /// The float tier with a fast inverse square root for normalisation and light
 /// directions: micromath's bit-trick seed (about 3.4 % off on its own) refined by

@@ -8,8 +8,8 @@
 //! |---|---|---|---|---|
 //! | [`Q14<NEWTON>`](Q14) | `i32` holding Q2.14 | 16×16→32 bit (one `MULS` on a Cortex-M0) | [−2, 2) | inverse square root: 48-entry seed + `NEWTON` steps |
 //! | [`Q30<NEWTON>`](Q30) | `i32` holding Q2.30 | 32×32→64 bit | [−2, 2) | inverse square root: 48-entry seed + `NEWTON` steps |
-//! | `f32` | IEEE single | FPU (or soft float) | ±[`F32_LIMIT`] | exact (`libm`) |
-//! | [`F32Fast`] | IEEE single | FPU | ±[`F32_LIMIT`] | micromath inverse square root |
+//! | `f32` | IEEE single | FPU (or soft float) | ±10⁹ | exact (`libm`) |
+//! | [`F32Fast`] | IEEE single | FPU | ±10⁹ | micromath inverse square root |
 //!
 //! Geometry (positions, distances for attenuation and fog) needs range rather than
 //! precision, so every tier names a separate [`Scalar::Geo`] type: the fixed tiers
@@ -43,14 +43,12 @@ pub(crate) mod rsqrt;
 mod vector;
 pub(crate) mod wide;
 
-pub use float::{F32Fast, RampF32, F32_LIMIT};
-pub use geo::{GeoScalar, InvQuadratic16};
+pub use float::F32Fast;
+pub use geo::GeoScalar;
 pub use matrix::Mat4;
 pub(crate) use matrix::{cross3, dot3, sub3};
 pub use pow::Exponent;
-pub use q14::RampQ14;
 pub use q14::Q14;
-pub use q30::RampQ30;
 pub use q30::Q30;
 pub(crate) use vector::point_sub;
 pub use vector::{point_from_f32, Point3, Vec3};

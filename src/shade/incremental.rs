@@ -16,8 +16,10 @@ pub trait IncrementalModel: Model {}
 impl IncrementalModel for Lambert {}
 impl IncrementalModel for BlinnPhong {}
 
-/// The lighting configurations [`IncrementalPhongShading`] accepts.
-pub type DirectionalLighting<const NW: u8, const K: usize, M> =
+/// The lighting configurations [`IncrementalPhongShading`] accepts:
+/// `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>` (a viewer at infinity,
+/// no fog).
+pub(crate) type DirectionalLighting<const NW: u8, const K: usize, M> =
     Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M, InfiniteViewer<Q14<NW>>, NoFog>;
 
 /// The precomputed constants of [`IncrementalPhongShading`] for `K` directional

@@ -43,9 +43,9 @@ mod segment;
 mod textured;
 
 pub use crate::color::{Dithered, Encoder, Gamma, Linear};
-pub use incremental::{DirectionalLighting, IncrementalModel};
+pub use incremental::IncrementalModel;
 pub use normalmap::NormalMapped;
-pub use quadratic::{QuadraticModel, QuadraticTier};
+pub use quadratic::QuadraticModel;
 pub use textured::Textured;
 
 use crate::color::OutputColor;
@@ -90,13 +90,15 @@ pub struct PhongShading;
 pub struct GeneralPhongShading;
 
 /// Per-pixel Phong shading computed incrementally along each span: the Q14 fast
-/// path for directional lights and a viewer at infinity (see
-/// [`IncrementalModel`] and [`DirectionalLighting`]).
+/// path for directional lights and a viewer at infinity: the lighting is a
+/// `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>` with `M` an
+/// [`IncrementalModel`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct IncrementalPhongShading;
 
 /// Per-pixel Phong shading by re-anchored quadratic interpolation along each
-/// span (see [`QuadraticModel`], [`QuadraticTier`]; the lighting: one `Lighting` of `K` directional lights):
+/// span (see [`QuadraticModel`]; the tiers: the `Q14` tiers, `f32` and
+/// [`F32Fast`](crate::num::F32Fast); the lighting: one `Lighting` of `K` directional lights):
 /// the lighting is evaluated exactly at anchors 4–32 pixels apart (segment
 /// lengths from bounds on the third derivatives, so the interpolation adds at
 /// most 0.3 + 0.3 steps of the 8-bit output), each encoded colour channel
@@ -109,14 +111,18 @@ pub struct IncrementalPhongShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadraticPhongShading;
 
-/// A shading mode: [`FlatShading`], [`GouraudShading`], [`PhongShading`],
-/// [`GeneralPhongShading`], [`IncrementalPhongShading`],
-/// [`QuadraticPhongShading`], or one of them [`Textured`] or
-/// [`NormalMapped`].
-pub trait Mode: Copy + core::fmt::Debug {
-    /// A short name for reports.
-    const NAME: &'static str;
+/// The name of a shading mode in a shader's `Debug` output: sealed, not
+/// re-exported (issue 18).
+mod mode {
+    /// A shading mode: `FlatShading`, `GouraudShading`, `PhongShading`,
+    /// `GeneralPhongShading`, `IncrementalPhongShading`,
+    /// `QuadraticPhongShading`, or one of them `Textured` or `NormalMapped`.
+    pub trait Mode: Copy + core::fmt::Debug {
+        /// A short name for reports.
+        const NAME: &'static str;
+    }
 }
+pub(crate) use mode::Mode;
 
 impl Mode for FlatShading {
     const NAME: &'static str = "flat";
@@ -155,13 +161,13 @@ pub trait ModeState<I: Illuminate, C> {
     fn state(self, lighting: &I) -> Self::State;
 }
 
-impl<M: Mode + ModeState<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
+impl<M: ModeState<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<M: Mode + ModeState<I, C>, I: Illuminate, E: Copy, C> Copy for Shader<'_, M, I, E, C> {}
+impl<M: ModeState<I, C>, I: Illuminate, E: Copy, C> Copy for Shader<'_, M, I, E, C> {}
 
 impl<M: Mode + ModeState<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt::Debug
     for Shader<'_, M, I, E, C>
@@ -174,9 +180,7 @@ impl<M: Mode + ModeState<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt
     }
 }
 
-impl<'l, M: Mode + ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor>
-    Shader<'l, M, I, E, C>
-{
+impl<'l, M: ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'l, M, I, E, C> {
     /// A shader of mode `mode` lighting with `lighting`, writing pixels through
     /// `encoder`.
     pub fn new(mode: M, lighting: &'l I, encoder: E) -> Self {

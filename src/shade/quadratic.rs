@@ -30,7 +30,8 @@ impl QuadraticModel for Phong {}
 /// The number tiers [`QuadraticPhongShading`] works in: the `Q14` tiers
 /// (anchors in 32-bit integer arithmetic, the Cortex-M0 path) and `f32`,
 /// [`F32Fast`] (anchors in `f32`, the Cortex-M4F path). The per-pixel work is
-/// integer arithmetic in every tier.
+/// integer arithmetic in every tier. Crate-internal: implemented for exactly
+/// these tiers, not re-exported (issue 18).
 pub trait QuadraticTier: Scalar {
     /// Whether the anchors are evaluated in `f32`.
     const FLOAT: bool;

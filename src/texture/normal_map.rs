@@ -3,7 +3,7 @@
 //!
 //! A [`NormalMap`] borrows `'static` (or any) texels of a power-of-two size,
 //! 1 … 4096 texels a side. Each texel is a tangent-space unit normal in Q14
-//! ([`NormalTexel`], `[x, y, z]`, `16384` = 1.0; `x` along the tangent `T`
+//! (an `[i16; 3]`, `[x, y, z]`, `16384` = 1.0; `x` along the tangent `T`
 //! (increasing `u`), `y` along the bitangent `B`, `z` along the surface normal:
 //! the flat normal is `[0, 0, 16384]`).
 //!
@@ -51,11 +51,8 @@
 use super::{TexCoord, Wrap};
 use crate::error::TextureError;
 
-/// One texel of a [`NormalMap`]: a tangent-space unit normal, Q14 per component.
-pub type NormalTexel = [i16; 3];
-
 /// The flat normal `(0, 0, 1)`: a map of it shades like no map at all.
-pub const FLAT_NORMAL: NormalTexel = [0, 0, 1 << 14];
+pub const FLAT_NORMAL: [i16; 3] = [0, 0, 1 << 14];
 
 /// The largest `|x² + y² + z² − 2^28|` of a texel [`NormalMap::new`] accepts
 /// (`2^15`: a length within `1 ± 6.1·10⁻⁵`). Rounding each component of a
@@ -65,7 +62,7 @@ const UNIT_TOLERANCE: u32 = 1 << 15;
 
 /// Whether `t` is a unit normal within [`UNIT_TOLERANCE`] (exact, in 64-bit
 /// integers).
-pub(crate) const fn is_unit_texel(t: NormalTexel) -> bool {
+pub(crate) const fn is_unit_texel(t: [i16; 3]) -> bool {
     let (x, y, z) = (t[0] as i64, t[1] as i64, t[2] as i64);
     let d = x * x + y * y + z * z - (1 << 28);
     d.unsigned_abs() <= UNIT_TOLERANCE as u64
@@ -74,7 +71,7 @@ pub(crate) const fn is_unit_texel(t: NormalTexel) -> bool {
 /// A tangent-space normal map over borrowed texels (see the [module docs](crate::texture)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NormalMap<'a> {
-    texels: &'a [NormalTexel],
+    texels: &'a [[i16; 3]],
     w_log2: u8,
     h_log2: u8,
     wrap: Wrap,
@@ -116,7 +113,7 @@ impl<'a> NormalMap<'a> {
     /// );
     /// ```
     pub fn new(
-        texels: &'a [NormalTexel],
+        texels: &'a [[i16; 3]],
         w_log2: u8,
         h_log2: u8,
         wrap: Wrap,
@@ -165,13 +162,13 @@ impl<'a> NormalMap<'a> {
     }
 
     /// The texels (exactly `width · height`).
-    pub fn texels(&self) -> &'a [NormalTexel] {
+    pub fn texels(&self) -> &'a [[i16; 3]] {
         self.texels
     }
 
     /// Texel `(x, y)` (any integers: wrapped or clamped by the map's mode).
     #[inline(always)]
-    pub fn texel(&self, x: i32, y: i32) -> NormalTexel {
+    pub fn texel(&self, x: i32, y: i32) -> [i16; 3] {
         let s = self.nearest(0);
         match self.wrap {
             Wrap::Repeat => s.get::<true>(x, y),
@@ -181,14 +178,14 @@ impl<'a> NormalMap<'a> {
 
     /// The texel containing the point `c` (nearest sampling).
     #[inline]
-    pub fn sample(&self, c: TexCoord) -> NormalTexel {
+    pub fn sample(&self, c: TexCoord) -> [i16; 3] {
         self.sample_fixed(c.u, c.v, crate::texture::TEX_FRAC)
     }
 
     /// The texel containing the point `(u, v)` given with `frac` fraction bits
     /// (`frac ≥` [`NormalMap::MAX_LOG2_SIZE`]; 12 for the mesh's Q12 texture coordinates).
     #[inline(always)]
-    pub fn sample_fixed(&self, u: i32, v: i32, frac: u32) -> NormalTexel {
+    pub fn sample_fixed(&self, u: i32, v: i32, frac: u32) -> [i16; 3] {
         let s = self.nearest(frac);
         match self.wrap {
             Wrap::Repeat => s.get::<true>(u, v),
@@ -216,7 +213,7 @@ impl<'a> NormalMap<'a> {
 /// [`NormalMap::nearest`]).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Nearest<'a> {
-    texels: &'a [NormalTexel],
+    texels: &'a [[i16; 3]],
     su: u32,
     sv: u32,
     wm: i32,
@@ -227,7 +224,7 @@ pub(crate) struct Nearest<'a> {
 impl Nearest<'_> {
     /// The texel containing `(u, v)`: wrapped (`REPEAT`) or clamped.
     #[inline(always)]
-    pub(crate) fn get<const REPEAT: bool>(&self, u: i32, v: i32) -> NormalTexel {
+    pub(crate) fn get<const REPEAT: bool>(&self, u: i32, v: i32) -> [i16; 3] {
         let (x, y) = (u >> self.su, v >> self.sv);
         let (x, y) = if REPEAT {
             (x & self.wm, y & self.hm)
@@ -249,7 +246,7 @@ impl Nearest<'_> {
 /// assert_eq!(normal_texel([0.0, 0.0, 2.0]), Ok([0, 0, 16384]));
 /// assert_eq!(normal_texel([1.0, 0.0, 1.0]), Ok([11585, 0, 11585]));
 /// ```
-pub fn normal_texel(n: [f32; 3]) -> Result<NormalTexel, TextureError> {
+pub fn normal_texel(n: [f32; 3]) -> Result<[i16; 3], TextureError> {
     if n.iter().any(|v| !v.is_finite()) {
         return Err(TextureError::NotFinite("normal"));
     }
@@ -280,7 +277,7 @@ pub fn normal_texel(n: [f32; 3]) -> Result<NormalTexel, TextureError> {
 /// assert!(NormalMap::new(&texels, 1, 0, Wrap::Repeat).is_ok());
 /// # Ok::<(), fixshade::error::TextureError>(())
 /// ```
-pub fn normalize_texels(texels: &mut [NormalTexel]) -> Result<(), TextureError> {
+pub fn normalize_texels(texels: &mut [[i16; 3]]) -> Result<(), TextureError> {
     if texels.contains(&[0; 3]) {
         return Err(TextureError::Degenerate("texel"));
     }
@@ -318,7 +315,7 @@ pub fn bump_to_normals(
     h_log2: u8,
     wrap: Wrap,
     scale: f32,
-    out: &mut [NormalTexel],
+    out: &mut [[i16; 3]],
 ) -> Result<(), TextureError> {
     let needed = texel_count(w_log2, h_log2)?;
     for got in [heights.len(), out.len()] {
@@ -410,7 +407,7 @@ mod tests {
     #[test]
     fn wrap_and_clamp_at_the_edges() {
         // texel i holds [i, 0, 16384] (unit within the tolerance)
-        let t: [NormalTexel; 8] = core::array::from_fn(|i| [i as i16, 0, 16384]);
+        let t: [[i16; 3]; 8] = core::array::from_fn(|i| [i as i16, 0, 16384]);
         let r = NormalMap::new(&t, 2, 1, Wrap::Repeat).unwrap();
         let c = NormalMap::new(&t, 2, 1, Wrap::Clamp).unwrap();
         assert_eq!(r.texel(-1, 0)[0], 3);
@@ -430,7 +427,7 @@ mod tests {
     }
 
     /// The texel's exact unit vector (f64).
-    fn unit(t: NormalTexel) -> [f64; 3] {
+    fn unit(t: [i16; 3]) -> [f64; 3] {
         t.map(|c| f64::from(c) / 16384.0)
     }
 

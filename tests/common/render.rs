@@ -1112,7 +1112,7 @@ fn directional<const NW: u8>(
 
 /// Builds one `MeshDraw` per object with [`fixshade::shade::IncrementalPhongShading`]
 /// in `Q14<NW>` (every object Phong-shaded, lit by the scene's `K` directional
-/// lights as an array: `DirectionalLighting<NW, K, M>`) for a frame of
+/// lights as an array: `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>`) for a frame of
 /// `layout` and hands them to `f`; `None` unless the scene has one or two
 /// directional lights only and Lambert or Blinn-Phong materials.
 pub fn with_incremental_draws<const NW: u8, C: OutputColor, R>(

@@ -21,7 +21,7 @@ use fixshade::render::{
     bins_len, CachedVertex, Carry, FullFrame, Layout, MeshDraw, MeshMemory, RefineBuffers,
 };
 use fixshade::shade::{GeneralPhongShading, Kernel};
-use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, NormalTexel};
+use fixshade::texture::{bump_to_normals, normal_texel, NormalMap};
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
 
 /// Side of a panel in pixels.
@@ -221,7 +221,7 @@ pub fn normal_map() -> Image {
     const AMP: f64 = 0.035;
     let high = sf::displaced_sphere(160, 200, AMP, sf::tiles);
     let high_c = Compact::from_host(&high);
-    let baked: Vec<NormalTexel> = sf::bake_normal_map(&high, (512, 256))
+    let baked: Vec<[i16; 3]> = sf::bake_normal_map(&high, (512, 256))
         .into_iter()
         .map(|n| normal_texel(n.map(|c| c as f32)).unwrap())
         .collect();

@@ -17,7 +17,7 @@ use fixshade::prelude::*;
 use fixshade::render::{
     Bands, CachedVertex, Carry, DrawBand, Layout, MeshDraw, MeshMemory, RenderError,
 };
-use fixshade::shade::{DirectionalLighting, GeneralPhongShading, Kernel};
+use fixshade::shade::{GeneralPhongShading, Kernel};
 use fixshade::standard;
 
 /// Frame width and height (240).
@@ -120,7 +120,7 @@ where
 
 /// The lighting of `blinn_phong_inc`: one directional light in an array, as
 /// `IncrementalPhongShading` requires.
-pub fn inc_lighting() -> Result<DirectionalLighting<2, 1, BlinnPhong>, ParamError> {
+pub fn inc_lighting() -> Result<Lighting<Q14, [Dir; 1], BlinnPhong>, ParamError> {
     Ok(
         Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
             [standard::light()?],
@@ -202,7 +202,7 @@ configs! {
         = standard::blinn::<Q14>(), GouraudShading;
     blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>
         = standard::blinn::<Q14>(), GeneralPhongShading;
-    blinn_phong_inc: [i16; 3], DirectionalLighting<2, 1, BlinnPhong>
+    blinn_phong_inc: [i16; 3], Lighting<Q14, [Dir; 1], BlinnPhong>
         = inc_lighting(), IncrementalPhongShading;
     flat: [i16; 3], Lighting<Q14, Dir, Lambert>
         = standard::lambert::<Q14>(), FlatShading;

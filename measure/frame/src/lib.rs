@@ -30,7 +30,7 @@ use fixshade::render::{
     bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, MeshDraw,
     MeshMemory, Refine, RefineBuffers, RenderError,
 };
-use fixshade::shade::{DirectionalLighting, GeneralPhongShading, Kernel};
+use fixshade::shade::{GeneralPhongShading, Kernel};
 use fixshade::standard;
 
 /// The sphere's mesh view, validated at compile time (`MeshData::mesh` called
@@ -247,7 +247,7 @@ where
 
 /// The lighting of `blinn_phong_inc`: one directional light in an array, as
 /// `IncrementalPhongShading` requires.
-pub fn inc_lighting() -> Result<DirectionalLighting<2, 1, BlinnPhong>, ParamError> {
+pub fn inc_lighting() -> Result<Lighting<Q14, [Dir; 1], BlinnPhong>, ParamError> {
     Ok(
         Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
             [standard::light()?],
@@ -348,7 +348,7 @@ configs! {
         = standard::blinn::<Q14>(), GouraudShading => draw_full, draw_bands;
     blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>, GeneralPhongShading
         = standard::blinn::<Q14>(), GeneralPhongShading => draw_full, draw_bands;
-    blinn_phong_inc: [i16; 3], DirectionalLighting<2, 1, BlinnPhong>, IncrementalPhongShading
+    blinn_phong_inc: [i16; 3], Lighting<Q14, [Dir; 1], BlinnPhong>, IncrementalPhongShading
         = inc_lighting(), IncrementalPhongShading => draw_full, draw_bands;
     flat: [i16; 3], Lighting<Q14, Dir, Lambert>, FlatShading
         = standard::lambert::<Q14>(), FlatShading => draw_full, draw_bands;
