@@ -118,9 +118,6 @@ pub mod raster;
 pub mod reference;
 pub mod render;
 pub mod shade;
-// The measured scene of measure/, firmware/, fuzz/ and the tests (issue 8): a
-// fixture of this repository, not API (issue 18).
-#[doc(hidden)]
 pub mod standard;
 pub mod texture;
 
