@@ -302,71 +302,99 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
 ) {
     let poly = Polygon::clipped::<PERSP>(c, space);
     let vs = poly.vertices();
-    let Some(front) = clip::facing::<PERSP>(c.map(|k| k.c)) else {
-        return;
-    };
-    let Some(first) = vs.first() else {
-        return;
-    };
-    let screen = |p: &ClipCorner<V>| ScreenCorner {
-        s: clip::screen::<PERSP>(space, p.c),
-        v: p.v,
-    };
-    let mut p = [screen(first); clip::MAX];
-    for (q, v) in p.iter_mut().zip(vs) {
-        *q = screen(v);
+    let mut clips = [Clip::default(); clip::MAX];
+    for (q, v) in clips.iter_mut().zip(vs) {
+        *q = v.c;
     }
-    let mut n = vs.len().min(clip::MAX);
+    let Some((s, keep, n)) = outline::<PERSP>(c.map(|k| k.c), &clips, vs.len(), space) else {
+        return;
+    };
+    let corner = |k: usize| {
+        let i = usize::from(*keep.get(k)?);
+        Some(ScreenCorner {
+            s: *s.get(i)?,
+            v: vs.get(i)?.v,
+        })
+    };
+    let Some(a) = corner(0) else {
+        return;
+    };
+    for k in 1..n.saturating_sub(1) {
+        if let (Some(b), Some(c)) = (corner(k), corner(k + 1)) {
+            f(&[a, b, c]);
+        }
+    }
+}
+
+/// The screen positions of the clipped polygon `clips[..n]` of the
+/// triangle `tri` and the corners of its convex fan ([`convex`]); `None` for
+/// a triangle of zero area. Not generic over the values: one copy per
+/// projection.
+#[inline(never)]
+fn outline<const PERSP: bool>(
+    tri: [Clip; 3],
+    clips: &[Clip; clip::MAX],
+    n: usize,
+    space: &ClipSpace,
+) -> Option<([Screen; clip::MAX], [u8; clip::MAX], usize)> {
+    let front = clip::facing::<PERSP>(tri)?;
+    let mut s = [Screen::default(); clip::MAX];
+    for (q, c) in s.iter_mut().zip(clips.iter().take(n)) {
+        *q = clip::screen::<PERSP>(space, *c);
+    }
+    let (keep, n) = convex(&s, n, front);
+    Some((s, keep, n))
+}
+
+/// The corners of the rounded polygon `s[..n]` that keep it convex in the
+/// facing `front` (see [`pieces`]), as indices into `s`, and their number (0:
+/// nothing to draw). Not generic: one copy serves every kernel.
+#[inline(never)]
+fn convex(s: &[Screen; clip::MAX], n: usize, front: bool) -> ([u8; clip::MAX], usize) {
+    // indices masked to the array (a power of two): no bounds checks
+    const M: usize = clip::MAX - 1;
+    const _: () = assert!(clip::MAX.is_power_of_two() && clip::MAX <= 256);
+    let mut keep: [u8; clip::MAX] = core::array::from_fn(|i| i as u8);
+    let mut n = n.min(clip::MAX);
+    let pt = |keep: &[u8; clip::MAX], k: usize| s[usize::from(keep[k & M]) & M];
     // whether a → b → c turns as the triangle faces (A > 0: clockwise on the
     // screen, a back face). Screen corners are clamped to the window, whose
     // sides are below 2^15 sub-pixels: each product is below 2^30 and their
     // difference fits an i32 (no 64-bit multiply on the M0)
     const _: () = assert!(WINDOW_MAX - WINDOW_MIN < 1 << 15);
-    let turns = |a: &ScreenCorner<V>, b: &ScreenCorner<V>, c: &ScreenCorner<V>| {
-        let s = (b.s.x - a.s.x) * (c.s.y - a.s.y) - (b.s.y - a.s.y) * (c.s.x - a.s.x);
+    let turns = |a: Screen, b: Screen, c: Screen| {
+        let t = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
         if front {
-            s < 0
+            t < 0
         } else {
-            s > 0
+            t > 0
         }
     };
-    // remove the corners that turn the wrong way, one at a time (each removal
-    // changes its neighbours' turns)
-    while n >= 3 {
-        let wrong = (0..n).find(|&i| {
-            let prev = if i == 0 { n - 1 } else { i - 1 };
-            let next = if i + 1 < n { i + 1 } else { 0 };
-            match (p.get(prev), p.get(i), p.get(next)) {
-                (Some(a), Some(b), Some(c)) => !turns(a, b, c),
-                _ => false,
+    // walk round the polygon; a corner that turns the wrong way is removed and
+    // its predecessor checked again, until n corners in a row turn right
+    let (mut i, mut good) = (0, 0);
+    while n >= 3 && good < n {
+        let prev = if i == 0 { n - 1 } else { i - 1 };
+        let next = if i + 1 < n { i + 1 } else { 0 };
+        if turns(pt(&keep, prev), pt(&keep, i), pt(&keep, next)) {
+            good += 1;
+            i = next;
+        } else {
+            for j in i..n - 1 {
+                keep[j & M] = keep[(j + 1) & M];
             }
-        });
-        let Some(i) = wrong else {
-            break;
-        };
-        for j in i..n - 1 {
-            if let Some(&q) = p.get(j + 1) {
-                if let Some(d) = p.get_mut(j) {
-                    *d = q;
-                }
-            }
+            n -= 1;
+            good = 0;
+            i = if prev < n { prev } else { 0 };
         }
-        n -= 1;
     }
-    let p = p.get(..n).unwrap_or(&[]);
-    let (Some(a), Some(b)) = (p.first(), p.get(1)) else {
-        return;
-    };
-    // every corner on the same side of the first edge: the fan from `a`
+    // every corner on the same side of the first edge: the fan from the first
     // spans less than half a turn (winds once)
-    if n < 3 || !p.iter().skip(2).all(|c| turns(a, b, c)) {
-        return;
+    let (a, b) = (pt(&keep, 0), pt(&keep, 1));
+    if n < 3 || !(2..n).all(|k| turns(a, b, pt(&keep, k))) {
+        return (keep, 0);
     }
-    for k in 1..n - 1 {
-        if let (Some(&b), Some(&c)) = (p.get(k), p.get(k + 1)) {
-            f(&[*a, b, c]);
-        }
-    }
+    (keep, n)
 }
 
 /// The rows `(first, last)` of a triangle whose corners are inside the window
