@@ -6,7 +6,7 @@
 //! × 16 stacks (362 vertices, 720 triangles) at the origin; view = translation
 //! by (0, 0, −5); orthographic projection ±1/0.85 on x and y, near 1, far 10;
 //! one white directional light towards (1, 1, 1) with ambient, diffuse and
-//! specular intensity 1; viewer at infinity; material ambient
+//! specular intensity 1; no global ambient light; viewer at infinity; material ambient
 //! (0.08, 0.01, 0.01), diffuse (0.8, 0.1, 0.1), specular white, shininess 32;
 //! depth test on; back faces culled.
 
@@ -80,12 +80,14 @@ pub fn light<S: Scalar>() -> Result<DirectionalLight<S>, ParamError> {
     )
 }
 
-/// The lighting with Blinn-Phong specular.
+/// The lighting with Blinn-Phong specular (no global ambient light: the
+/// scene's ambient comes from its light).
 pub fn blinn<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, BlinnPhong>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?))
+    Ok(Lighting::new(light()?, Material::new(&material())?).with_global_ambient_f32([0.0; 3]))
 }
 
-/// The lighting without specular (ambient + Lambert diffuse).
+/// The lighting without specular (ambient + Lambert diffuse; no global
+/// ambient light).
 pub fn lambert<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, Lambert>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?))
+    Ok(Lighting::new(light()?, Material::new(&material())?).with_global_ambient_f32([0.0; 3]))
 }

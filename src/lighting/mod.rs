@@ -182,17 +182,25 @@ where
     model: PhantomData<M>,
 }
 
+/// OpenGL's default `GL_LIGHT_MODEL_AMBIENT` (without alpha).
+const GL_GLOBAL_AMBIENT: [f32; 3] = [0.2; 3];
+
 impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
-    /// Lights and a material, the viewer at infinity on +z, no fog and no global
-    /// ambient light. The lights are taken in eye coordinates; lights placed in
-    /// the world are seen through the camera with [`Lighting::viewed`].
+    /// Lights and a material with OpenGL's defaults for the rest: the viewer
+    /// at infinity on +z (`GL_LIGHT_MODEL_LOCAL_VIEWER` false), no fog, and a
+    /// global ambient light of 0.2 (`GL_LIGHT_MODEL_AMBIENT`), multiplied
+    /// with the material's ambient colour; [`Lighting::with_global_ambient_f32`]
+    /// changes it (`[0.0; 3]`: none). The lights are taken in eye coordinates;
+    /// lights placed in the world are seen through the camera with
+    /// [`Lighting::viewed`].
     pub fn new(lights: L, material: Material<S>) -> Self {
-        Self::with_parts(
+        Self::build(
             lights,
             material,
-            Rgb::BLACK,
+            GL_GLOBAL_AMBIENT,
             InfiniteViewer::default(),
             NoFog,
+            ColorMaterial::Off,
         )
     }
 }
