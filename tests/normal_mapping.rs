@@ -343,7 +343,8 @@ fn light_descs() -> Vec<(&'static str, LightDesc)> {
 /// flat map, per triangle.
 fn flat_equals_phong<S: Scalar, M: Model>(desc: &LightDesc, tris: &[Tri]) -> usize {
     let light = AnyLight::<S>::new(desc).unwrap();
-    let lit = Lighting::<S, _, M>::new([light], Material::new(&material()).unwrap());
+    let lit = Lighting::<S, _, M>::new([light], Material::new(&material()).unwrap())
+        .with_global_ambient_f32([0.0; 3]);
     let flat = [FLAT_NORMAL; 4];
     let map = NormalMap::new(&flat, 1, 1, Wrap::Repeat).unwrap();
     let mut compared = 0;
@@ -393,7 +394,8 @@ fn general_error<S: Scalar, M: Model>(
     tris: &[Tri],
 ) -> (u32, usize) {
     let light = AnyLight::<S>::new(desc).unwrap();
-    let lit = Lighting::<S, _, M>::new([light], Material::new(mat).unwrap());
+    let lit = Lighting::<S, _, M>::new([light], Material::new(mat).unwrap())
+        .with_global_ambient_f32([0.0; 3]);
     let map = NormalMap::new(texels, log2, log2, Wrap::Repeat).unwrap();
     let lights = [*desc];
     let reference = Reference {
@@ -586,7 +588,8 @@ fn fast_error<const NW: u8, M: fixshade::shade::IncrementalModel>(
     // one directional light (not an array): `PhongShading.normal_mapped` picks
     // the fast kernel
     let light = DirectionalLight::<Q14<NW>>::white(dir).unwrap();
-    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(mat).unwrap());
+    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(mat).unwrap())
+        .with_global_ambient_f32([0.0; 3]);
     let map = NormalMap::new(texels, log2, log2, wrap).unwrap();
     let (a, d, s, l, h) = coefficients::<M>(&desc, mat);
     let spec = M::SPECULAR == fixshade::lighting::Specular::BlinnPhong;
@@ -832,7 +835,8 @@ mod mesh {
         flat_mesh(&standard::blinn::<f32>().unwrap());
         for (_, d) in light_descs() {
             let light = AnyLight::<Q14>::new(&d).unwrap();
-            let lit = Lighting::<Q14, _, Phong>::new([light], Material::new(&material()).unwrap());
+            let lit = Lighting::<Q14, _, Phong>::new([light], Material::new(&material()).unwrap())
+                .with_global_ambient_f32([0.0; 3]);
             flat_mesh(&lit);
         }
     }
@@ -848,8 +852,10 @@ mod mesh {
         let (uv, tg) = uv_tangents();
         let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
         let mat = || Material::new(&standard::material()).unwrap();
-        let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat());
-        let array = Lighting::<Q14, _, BlinnPhong>::new([light], mat());
+        let lit =
+            Lighting::<Q14, _, BlinnPhong>::new(light, mat()).with_global_ambient_f32([0.0; 3]);
+        let array =
+            Lighting::<Q14, _, BlinnPhong>::new([light], mat()).with_global_ambient_f32([0.0; 3]);
         let flat = [FLAT_NORMAL; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
         let inc = render(
@@ -928,10 +934,10 @@ mod mesh {
         }
         let mat = || Material::new(&standard::material()).unwrap();
         let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new([light], mat()));
-        same!(Lighting::<Q14, _, Phong>::new(light, mat()));
+        same!(Lighting::<Q14, _, BlinnPhong>::new([light], mat()).with_global_ambient_f32([0.0; 3]));
+        same!(Lighting::<Q14, _, Phong>::new(light, mat()).with_global_ambient_f32([0.0; 3]));
         let point = AnyLight::<Q14>::new(&light_descs()[1].1).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new(point, mat()));
+        same!(Lighting::<Q14, _, BlinnPhong>::new(point, mat()).with_global_ambient_f32([0.0; 3]));
         same!(standard::blinn::<Q30>().unwrap());
         same!(standard::blinn::<f32>().unwrap());
     }

@@ -193,7 +193,8 @@ where
         )
         .unwrap()
     });
-    let lighting = Lighting::<S, _, M>::new(dl, Material::new(&mat).ok()?);
+    let lighting =
+        Lighting::<S, _, M>::new(dl, Material::new(&mat).ok()?).with_global_ambient_f32([0.0; 3]);
     let dirs: Vec<[f32; 3]> = lighting
         .lights()
         .iter()

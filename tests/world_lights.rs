@@ -5,10 +5,12 @@
 //! world coordinates (the viewer at infinity behind the camera), within the
 //! tier's stated bound (1 LSB for Q14 and f32 below n = 64, README
 //! "Accuracy"). Without `viewed`, the lamp moves with the camera: the same
-//! check fails, which the last test asserts.
+//! check fails, which the last test asserts. And `Lighting::new` has
+//! OpenGL's global ambient light (issue 20 item 3).
 
 use fixshade::lighting::{
-    AmbientSource, AnyLight, BlinnPhong, LightDesc, LightKind, Lighting, Material, MaterialDesc,
+    AmbientSource, AnyLight, BlinnPhong, DirectionalLight, LightDesc, LightKind, Lighting,
+    Material, MaterialDesc,
 };
 use fixshade::num::{point_from_f32, Mat4, Vec3, Q14};
 use fixshade::reference::{ModelDesc, Reference, ViewerDesc};
@@ -86,7 +88,8 @@ fn worst(view_lights: bool) -> (u32, String) {
     let descs = lamp();
     let mat = material();
     let lights: [AnyLight<Q14>; 3] = descs.map(|d| AnyLight::new(&d).unwrap());
-    let world = Lighting::<Q14, _, BlinnPhong>::new(lights, Material::new(&mat).unwrap());
+    let world = Lighting::<Q14, _, BlinnPhong>::new(lights, Material::new(&mat).unwrap())
+        .with_global_ambient_f32([0.0; 3]);
     let mut worst = (0, String::new());
     for (eye, view) in cameras() {
         let lit = if view_lights {
@@ -157,7 +160,8 @@ fn a_singular_view_is_refused() {
     let world = Lighting::<Q14, _, BlinnPhong>::new(
         AnyLight::<Q14>::new(&lamp()[0]).unwrap(),
         Material::new(&material()).unwrap(),
-    );
+    )
+    .with_global_ambient_f32([0.0; 3]);
     let flat = Mat4 {
         m: [
             [1.0, 0.0, 0.0, 0.0],
@@ -170,4 +174,40 @@ fn a_singular_view_is_refused() {
     assert!(world.viewed(&flat).is_ok());
     let zero = Mat4 { m: [[0.0; 4]; 4] };
     assert!(world.viewed(&zero).is_err());
+}
+
+/// `Lighting::new` follows OpenGL's `GL_LIGHT_MODEL_AMBIENT` default (0.2):
+/// a surface facing away from the only light shows 0.2 × the material's
+/// ambient colour, in every tier, and `with_global_ambient_f32([0.0; 3])`
+/// makes it black (the README example's `ka = 0.1` is visible).
+#[test]
+fn lighting_new_has_opengls_global_ambient() {
+    fn check<S: fixshade::num::Scalar>(name: &str) {
+        // LightColors::white(): no ambient of its own (OpenGL's light 0)
+        let light = DirectionalLight::<S>::white([0.0, 0.0, 1.0]).unwrap();
+        let mat =
+            MaterialDesc::classic([1.0, 0.5, 0.25], AmbientSource::Object, 0.8, 0.7, 0.6, 32.0);
+        let lit = Lighting::<S, _, BlinnPhong>::new(light, Material::new(&mat).unwrap());
+        let (p, away) = (
+            point_from_f32::<S>([0.0; 3]),
+            Vec3::from_f32([0.0, 0.0, -1.0]),
+        );
+        let got = lit.shade(&p, away).to_unorm(8);
+        let want = [1.0f64, 0.5, 0.25].map(|c| (0.2 * 0.8 * c * 255.0).round() as i32);
+        for k in 0..3 {
+            assert!(
+                (got[k] as i32 - want[k]).abs() <= 1,
+                "{name}: {got:?} vs {want:?}"
+            );
+        }
+        assert!(got[0] >= 40, "{name}: the ambient is visible: {got:?}");
+        let none = lit
+            .with_global_ambient_f32([0.0; 3])
+            .shade(&p, away)
+            .to_unorm(8);
+        assert_eq!(none, [0; 3], "{name}");
+    }
+    check::<Q14>("Q14");
+    check::<f32>("f32");
+    check::<fixshade::num::Q30>("Q30");
 }

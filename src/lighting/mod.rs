@@ -418,7 +418,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// let mat = Material::new(&MaterialDesc { diffuse: [0.3; 3], ..MaterialDesc::default() }).unwrap();
     /// let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat).checked().unwrap();
     /// let c = lit.shade(&Lighting::<Q14, DirectionalLight<Q14>>::origin(), Vec3::from_f32([0.0, 0.0, 1.0]));
-    /// assert_eq!(c.to_rgb888().r(), 191); // 0.75
+    /// // 0.75, plus OpenGL's global ambient 0.2 × the default material ambient 0.2
+    /// assert_eq!(c.to_rgb888().r(), 201); // 0.79
     /// // on a material of 1.0 the product 2.5 does not
     /// let mat = Material::new(&MaterialDesc { diffuse: [1.0; 3], ..MaterialDesc::default() }).unwrap();
     /// let err = Lighting::<Q14, _, BlinnPhong>::new(light, mat).checked().unwrap_err();
