@@ -321,7 +321,7 @@ impl core::error::Error for MeshError {}
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum TextureError {
-    /// A side's `log2` exceeds [`MAX_LOG2_SIZE`](crate::texture::MAX_LOG2_SIZE)
+    /// A side's `log2` exceeds [`Texture::MAX_LOG2_SIZE`](crate::texture::Texture::MAX_LOG2_SIZE)
     /// (a texture) or [`NormalMap::MAX_LOG2_SIZE`](crate::texture::NormalMap::MAX_LOG2_SIZE).
     TooLarge {
         /// The `log2` given.

@@ -48,13 +48,9 @@ pub fn transform() -> Result<MeshTransform<Orthographic>, ParamError> {
     camera()?.mesh_transform(&Mat4::IDENTITY, SPHERE.frac)
 }
 
-/// The camera converted for integer per-frame transforms (once, in `f32`).
-pub fn fixed_camera() -> Result<FixedCamera<Orthographic>, ParamError> {
-    FixedCamera::new(&camera()?)
-}
-
-/// The sphere's transform built in integers from [`fixed_camera`] (what a
-/// Cortex-M0 does every frame: no soft float).
+/// The sphere's transform built in integers from the camera converted once
+/// (`FixedCamera::new(&camera()?)`): what a Cortex-M0 does every frame, no
+/// soft float.
 pub fn fixed_transform(
     c: &FixedCamera<Orthographic>,
 ) -> Result<MeshTransform<Orthographic>, ParamError> {

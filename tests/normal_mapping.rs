@@ -26,7 +26,7 @@ use fixshade::raster::SUBPIXEL_BITS;
 use fixshade::reference::{self, ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{draw_triangle, BandView, Corner, DrawBand};
 use fixshade::shade::{GeneralPhongShading, VertexIn};
-use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, Wrap, FLAT_NORMAL};
+use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, Wrap};
 
 const FB: u32 = 64;
 
@@ -345,7 +345,7 @@ fn flat_equals_phong<S: Scalar, M: Model>(desc: &LightDesc, tris: &[Tri]) -> usi
     let light = AnyLight::<S>::new(desc).unwrap();
     let lit = Lighting::<S, _, M>::new([light], Material::new(&material()).unwrap())
         .with_global_ambient_f32([0.0; 3]);
-    let flat = [FLAT_NORMAL; 4];
+    let flat = [NormalMap::FLAT; 4];
     let map = NormalMap::new(&flat, 1, 1, Wrap::Repeat).unwrap();
     let mut compared = 0;
     for t in tris {
@@ -688,7 +688,7 @@ fn fast_path_against_the_reference_worst_cases() {
     // the spans whose L, H shrink fastest)
     let mut tris: Vec<Tri> = (0..10).map(|_| random_tri(&mut r, 0.15)).collect();
     tris.extend((0..6).map(|_| random_tri(&mut r, 0.5)));
-    let flat = vec![FLAT_NORMAL; 4];
+    let flat = vec![NormalMap::FLAT; 4];
     let maps = [(bumpy_texels(), 4u8), (extreme_texels(), 3u8), (flat, 1u8)];
     // the light: frontal (highlight centres on the flat map), oblique, grazing
     // (nearly in the tangent plane of most triangles), behind
@@ -816,7 +816,7 @@ mod mesh {
     /// flat map.
     fn flat_mesh<S: Scalar, I: Illuminate<Scalar = S>>(lit: &I) {
         let (uv, tg) = uv_tangents();
-        let flat = [FLAT_NORMAL; 1];
+        let flat = [NormalMap::FLAT; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
         let a = render(Shader::new(GeneralPhongShading, lit, Linear), &uv, &tg);
         let b = render(
@@ -856,7 +856,7 @@ mod mesh {
             Lighting::<Q14, _, BlinnPhong>::new(light, mat()).with_global_ambient_f32([0.0; 3]);
         let array =
             Lighting::<Q14, _, BlinnPhong>::new([light], mat()).with_global_ambient_f32([0.0; 3]);
-        let flat = [FLAT_NORMAL; 1];
+        let flat = [NormalMap::FLAT; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
         let inc = render(
             Shader::new(IncrementalPhongShading, &array, Linear),
@@ -1018,7 +1018,7 @@ fn nm_perturb(c: &NmCase, amount: f64, rng: &mut worst_case::Rng) -> NmCase {
 /// (`common::worst_case`). Prints the worst per path.
 #[test]
 fn targeted_worst_case_search() {
-    let flat = vec![FLAT_NORMAL; 4];
+    let flat = vec![NormalMap::FLAT; 4];
     let maps = [(bumpy_texels(), 4u8), (extreme_texels(), 3u8), (flat, 1u8)];
     let starts = nm_starts(24, 21);
     let desc = |c: &NmCase| LightDesc {

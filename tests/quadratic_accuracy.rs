@@ -331,7 +331,7 @@ where
         'a,
         QuadraticPhongShading,
         Lighting<S, [DirectionalLight<S>; 1], M>,
-        Gamma<'t, 1024>,
+        &'t GammaTable<1024>,
         Gray8,
     >: Kernel<Color = Gray8, Varyings = [i32; N], Triangle = ()>,
 {
@@ -388,7 +388,7 @@ where
         }
     }
     let table = GammaTable::<1024>::new(Transfer::Power(2.2)).unwrap();
-    if let Some((px, normals)) = run::<S, 1, N, M, Gray8, Gamma<'_, 1024>>(c, Gamma(&table)) {
+    if let Some((px, normals)) = run::<S, 1, N, M, Gray8, &GammaTable<1024>>(c, &table) {
         for (k, (p, n)) in px.iter().zip(&normals).enumerate() {
             if near_terminator(c, *n) {
                 continue;

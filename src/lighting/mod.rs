@@ -47,10 +47,12 @@ mod viewer;
 
 pub use any::{AnyLight, LightDesc, LightKind};
 pub use illuminate::{BackFaces, DirectionalTerms, Illuminate, SeparateSpecular};
-pub use light::{
-    Attenuation, ColorTerms, DirectionalLight, Incident, IncidentVisitor, LightColors, LightSet,
-    LightSource, PointLight, Prepared, SpotLight,
-};
+pub use light::{Attenuation, DirectionalLight, LightColors, LightSet, PointLight, SpotLight};
+// The machinery of `LightSet` (each light's incident terms, its colours
+// prepared for a material, the visitor that sums them): public in their
+// module, not nameable outside the crate (the crate's lights, arrays,
+// `heapless::Vec` and tuples implement `LightSet`).
+pub(crate) use light::{ColorTerms, Incident, IncidentVisitor};
 pub use material::{AmbientSource, Material, MaterialDesc};
 pub use model::{BlinnPhong, Full, Lambert, Model, Phong, Specular, Terms};
 pub use viewer::{FogModel, InfiniteViewer, LinearFog, LocalViewer, NoFog, Viewer};

@@ -42,7 +42,7 @@ mod quadratic;
 mod segment;
 mod textured;
 
-pub use crate::color::{Dithered, Encoder, Gamma, Linear};
+pub use crate::color::{Dithered, Encoder, Linear};
 pub use incremental::IncrementalModel;
 pub use normalmap::NormalMapped;
 pub use quadratic::QuadraticModel;
