@@ -77,13 +77,20 @@ pub fn light<S: Scalar>() -> Result<DirectionalLight<S>, ParamError> {
 }
 
 /// The lighting with Blinn-Phong specular (no global ambient light: the
-/// scene's ambient comes from its light).
+/// scene's ambient comes from its light). Its light is in eye coordinates
+/// ([`Lighting::eye_space`]): the camera's view is a translation, which
+/// leaves a directional light's direction as it is, so the frame needs no
+/// per-frame `Lighting::viewed`.
 pub fn blinn<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, BlinnPhong>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?).with_global_ambient_f32([0.0; 3]))
+    Ok(Lighting::new(light()?, Material::new(&material())?)
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space())
 }
 
 /// The lighting without specular (ambient + Lambert diffuse; no global
-/// ambient light).
+/// ambient light; the light in eye coordinates, as [`blinn`]'s).
 pub fn lambert<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, Lambert>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?).with_global_ambient_f32([0.0; 3]))
+    Ok(Lighting::new(light()?, Material::new(&material())?)
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space())
 }

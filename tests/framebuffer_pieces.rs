@@ -52,7 +52,9 @@ fn lighting() -> Lighting<f32, Lights, BlinnPhong> {
     .map(|d| AnyLight::new(d).unwrap())
     .collect();
     let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.5, 32.0);
-    Lighting::new(lights, Material::new(&red).unwrap()).with_global_ambient_f32([0.1; 3])
+    Lighting::new(lights, Material::new(&red).unwrap())
+        .eye_space()
+        .with_global_ambient_f32([0.1; 3])
 }
 
 fn ortho() -> MeshTransform<Orthographic> {
@@ -161,7 +163,8 @@ fn fast_per_pixel_kernels_same_pixels_however_the_frame_is_split() {
     let array: Lighting<Q14, [_; 1], BlinnPhong> = Lighting::new(
         [fixshade::standard::light::<Q14>().unwrap()],
         Material::new(&fixshade::standard::material()).unwrap(),
-    );
+    )
+    .eye_space();
     assert_same(
         "picked incremental",
         &ortho(),

@@ -200,7 +200,8 @@ impl<K: Kernel> DrawBand<K::Color> for One<K> {
             &self.kernel,
             &self.corners,
             Cull::None,
-        );
+        )
+        .expect("the kernel draws (Kernel::check)");
     }
 }
 
@@ -344,6 +345,7 @@ fn light_descs() -> Vec<(&'static str, LightDesc)> {
 fn flat_equals_phong<S: Scalar, M: Model>(desc: &LightDesc, tris: &[Tri]) -> usize {
     let light = AnyLight::<S>::new(desc).unwrap();
     let lit = Lighting::<S, _, M>::new([light], Material::new(&material()).unwrap())
+        .eye_space()
         .with_global_ambient_f32([0.0; 3]);
     let flat = [NormalMap::FLAT; 4];
     let map = NormalMap::new(&flat, 1, 1, Wrap::Repeat).unwrap();
@@ -395,6 +397,7 @@ fn general_error<S: Scalar, M: Model>(
 ) -> (u32, usize) {
     let light = AnyLight::<S>::new(desc).unwrap();
     let lit = Lighting::<S, _, M>::new([light], Material::new(mat).unwrap())
+        .eye_space()
         .with_global_ambient_f32([0.0; 3]);
     let map = NormalMap::new(texels, log2, log2, Wrap::Repeat).unwrap();
     let lights = [*desc];
@@ -589,6 +592,7 @@ fn fast_error<const NW: u8, M: fixshade::shade::IncrementalModel>(
     // the fast kernel
     let light = DirectionalLight::<Q14<NW>>::white(dir).unwrap();
     let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(mat).unwrap())
+        .eye_space()
         .with_global_ambient_f32([0.0; 3]);
     let map = NormalMap::new(texels, log2, log2, wrap).unwrap();
     let (a, d, s, l, h) = coefficients::<M>(&desc, mat);
@@ -836,6 +840,7 @@ mod mesh {
         for (_, d) in light_descs() {
             let light = AnyLight::<Q14>::new(&d).unwrap();
             let lit = Lighting::<Q14, _, Phong>::new([light], Material::new(&material()).unwrap())
+                .eye_space()
                 .with_global_ambient_f32([0.0; 3]);
             flat_mesh(&lit);
         }
@@ -852,10 +857,12 @@ mod mesh {
         let (uv, tg) = uv_tangents();
         let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
         let mat = || Material::new(&standard::material()).unwrap();
-        let lit =
-            Lighting::<Q14, _, BlinnPhong>::new(light, mat()).with_global_ambient_f32([0.0; 3]);
-        let array =
-            Lighting::<Q14, _, BlinnPhong>::new([light], mat()).with_global_ambient_f32([0.0; 3]);
+        let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]);
+        let array = Lighting::<Q14, _, BlinnPhong>::new([light], mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]);
         let flat = [NormalMap::FLAT; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
         let inc = render(
@@ -934,10 +941,16 @@ mod mesh {
         }
         let mat = || Material::new(&standard::material()).unwrap();
         let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new([light], mat()).with_global_ambient_f32([0.0; 3]));
-        same!(Lighting::<Q14, _, Phong>::new(light, mat()).with_global_ambient_f32([0.0; 3]));
+        same!(Lighting::<Q14, _, BlinnPhong>::new([light], mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]));
+        same!(Lighting::<Q14, _, Phong>::new(light, mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]));
         let point = AnyLight::<Q14>::new(&light_descs()[1].1).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new(point, mat()).with_global_ambient_f32([0.0; 3]));
+        same!(Lighting::<Q14, _, BlinnPhong>::new(point, mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]));
         same!(standard::blinn::<Q30>().unwrap());
         same!(standard::blinn::<f32>().unwrap());
     }

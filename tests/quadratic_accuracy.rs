@@ -193,8 +193,9 @@ where
         )
         .unwrap()
     });
-    let lighting =
-        Lighting::<S, _, M>::new(dl, Material::new(&mat).ok()?).with_global_ambient_f32([0.0; 3]);
+    let lighting = Lighting::<S, _, M>::new(dl, Material::new(&mat).ok()?)
+        .eye_space()
+        .with_global_ambient_f32([0.0; 3]);
     let dirs: Vec<[f32; 3]> = lighting
         .lights()
         .iter()

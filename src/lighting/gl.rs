@@ -619,6 +619,7 @@ impl<'a> GlScene<'a> {
             NoFog,
             self.color_material_on(face),
         )
+        .eye_space()
         .checked()
     }
 }

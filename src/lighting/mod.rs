@@ -181,6 +181,10 @@ where
     ambient_base: Rgb<S>,
     viewer: V,
     fog: F,
+    /// The lights are in eye coordinates ([`Lighting::viewed`],
+    /// [`Lighting::eye_space`]); `false`: world coordinates, not yet seen
+    /// through a camera (the renderer refuses them).
+    eye: bool,
     model: PhantomData<M>,
 }
 
@@ -192,9 +196,21 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
     /// at infinity on +z (`GL_LIGHT_MODEL_LOCAL_VIEWER` false), no fog, and a
     /// global ambient light of 0.2 (`GL_LIGHT_MODEL_AMBIENT`), multiplied
     /// with the material's ambient colour; [`Lighting::with_global_ambient_f32`]
-    /// changes it (`[0.0; 3]`: none). The lights are taken in eye coordinates;
-    /// lights placed in the world are seen through the camera with
-    /// [`Lighting::viewed`].
+    /// changes it (`[0.0; 3]`: none).
+    ///
+    /// The lights are in **world coordinates**: before the renderer draws with
+    /// this lighting, see them through the camera with [`Lighting::viewed`]
+    /// (once per frame for a moving camera); [`MeshDraw::new`] and
+    /// [`draw_triangle`] refuse a lighting that was not
+    /// ([`RenderError::WorldLights`]), rather than light the scene from the
+    /// wrong side. Lights given in eye coordinates (OpenGL's `GL_POSITION`
+    /// after the camera's matrix, a lamp that moves with the camera) say so
+    /// with [`Lighting::eye_space`]; [`GlScene::lighting`] does.
+    ///
+    /// [`MeshDraw::new`]: crate::render::MeshDraw::new
+    /// [`draw_triangle`]: crate::render::draw_triangle
+    /// [`RenderError::WorldLights`]: crate::error::RenderError::WorldLights
+    /// [`GlScene::lighting`]: crate::lighting::gl::GlScene::lighting
     pub fn new(lights: L, material: Material<S>) -> Self {
         Self::build(
             lights,
@@ -208,7 +224,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
 }
 
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting<S, L, M, V, F> {
-    /// Every part at once.
+    /// Every part at once (the lights in world coordinates, as
+    /// [`Lighting::new`]).
     pub fn with_parts(
         lights: L,
         material: Material<S>,
@@ -253,8 +270,47 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             ambient_base,
             viewer,
             fog,
+            eye: false,
             model: PhantomData,
         }
+    }
+
+    /// [`Lighting::build`] with the lights in eye coordinates if `eye` (the
+    /// `with_*` methods keep the coordinates of the lighting they start from).
+    fn remake<M2: Model, V2: Viewer<S>, F2: FogModel<S>>(
+        eye: bool,
+        lights: L,
+        material: Material<S>,
+        global_ambient: [f32; 3],
+        viewer: V2,
+        fog: F2,
+        color_material: ColorMaterial,
+    ) -> Lighting<S, L, M2, V2, F2> {
+        let mut l = Lighting::build(
+            lights,
+            material,
+            global_ambient,
+            viewer,
+            fog,
+            color_material,
+        );
+        l.eye = eye;
+        l
+    }
+
+    /// The same lighting with its lights taken as given, in eye coordinates
+    /// (the eye at the origin looking down −z): OpenGL's `GL_POSITION` set
+    /// after the camera's matrix, or a lamp that moves with the camera. See
+    /// [`Lighting::new`].
+    pub fn eye_space(mut self) -> Self {
+        self.eye = true;
+        self
+    }
+
+    /// Whether the lights are in eye coordinates ([`Lighting::viewed`] or
+    /// [`Lighting::eye_space`]); the renderer draws only with such a lighting.
+    pub fn is_eye_space(&self) -> bool {
+        self.eye
     }
 
     /// The same configuration with a global ambient light `Ia` (OpenGL's
@@ -266,7 +322,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// [`Lighting::with_global_ambient`] from `f32` channels (any sign), multiplied
     /// with the material's ambient colour before it is converted to the tier.
     pub fn with_global_ambient_f32(self, ambient: [f32; 3]) -> Self {
-        Self::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             ambient,
@@ -286,7 +343,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// its upper-left 3×3, normalised again — what OpenGL does to `GL_POSITION`
     /// and `GL_SPOT_DIRECTION` when they are set after the camera's matrix
     /// (`gl::GlLight::transformed` for parameter sets). Without it, lights are
-    /// taken as given, in eye coordinates. Directions and positions move in
+    /// taken as given ([`Lighting::eye_space`]). Directions and positions move in
     /// the tier's precision (a Q14 direction within one unit of the
     /// `f64` result); costs a few hundred `f32` operations per light (soft float
     /// on a core without an FPU) and prepares the lights again.
@@ -318,19 +375,22 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     {
         let mut lights = self.lights.clone();
         lights.transform(view)?;
-        Ok(Self::build(
+        let mut l = Self::build(
             lights,
             self.material,
             self.global_ambient,
             self.viewer,
             self.fog,
             self.color_material,
-        ))
+        );
+        l.eye = true;
+        Ok(l)
     }
 
     /// The same configuration with another viewer.
     pub fn with_viewer<V2: Viewer<S>>(self, viewer: V2) -> Lighting<S, L, M, V2, F> {
-        Lighting::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
@@ -342,7 +402,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The same configuration with fog.
     pub fn with_fog<F2: FogModel<S>>(self, fog: F2) -> Lighting<S, L, M, V, F2> {
-        Lighting::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
@@ -354,7 +415,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The same configuration with another material model.
     pub fn with_model<M2: Model>(self) -> Lighting<S, L, M2, V, F> {
-        Lighting::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
@@ -366,7 +428,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The same lights and viewer with another material.
     pub fn with_material(self, material: Material<S>) -> Self {
-        Self::build(
+        Self::remake(
+            self.eye,
             self.lights,
             material,
             self.global_ambient,
@@ -379,7 +442,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// The same configuration with `GL_COLOR_MATERIAL` in mode `mode`: the vertex
     /// colour given to [`Lighting::shade_parts`] replaces that material colour.
     pub fn with_color_material(self, mode: ColorMaterial) -> Self {
-        Self::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
