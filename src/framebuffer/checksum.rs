@@ -29,6 +29,10 @@ use embedded_graphics_core::Pixel;
 /// b.fill_contiguous(&area, [Rgb565::BLUE, Rgb565::RED, Rgb565::RED, Rgb565::RED]).unwrap();
 /// assert_ne!(a.value(), b.value());
 /// assert_eq!(a.pixels(), 4);
+/// // fill_solid and clear hand over an endless stream: the area's pixels count
+/// a.fill_solid(&area, Rgb565::RED).unwrap();
+/// a.clear(Rgb565::RED).unwrap();
+/// assert_eq!(a.pixels(), 12);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Checksum<C> {
@@ -85,12 +89,15 @@ where
         Ok(())
     }
 
+    /// The first `area`-size colours of `colors` (the `DrawTarget` contract:
+    /// more are ignored, so an endless iterator is fine).
     fn fill_contiguous<I: IntoIterator<Item = C>>(
         &mut self,
-        _area: &Rectangle,
+        area: &Rectangle,
         colors: I,
     ) -> Result<(), Infallible> {
-        self.fill_contiguous_raw(colors);
+        let n = area.size.width as usize * area.size.height as usize;
+        self.fill_contiguous_raw(colors.into_iter().take(n));
         Ok(())
     }
 }
