@@ -3,7 +3,7 @@
 use core::convert::Infallible;
 
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{OriginDimensions, Size};
+use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::raw::RawData;
 use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
@@ -89,16 +89,27 @@ where
         Ok(())
     }
 
-    /// The first `area`-size colours of `colors` (the `DrawTarget` contract:
-    /// more are ignored, so an endless iterator is fine).
+    /// Every colour of `colors` (the renderer hands exactly the area's; a
+    /// longer iterator is counted to its end).
     fn fill_contiguous<I: IntoIterator<Item = C>>(
         &mut self,
-        area: &Rectangle,
+        _area: &Rectangle,
         colors: I,
     ) -> Result<(), Infallible> {
-        let n = area.size.width as usize * area.size.height as usize;
-        self.fill_contiguous_raw(colors.into_iter().take(n));
+        self.fill_contiguous_raw(colors);
         Ok(())
+    }
+
+    /// The area's pixels of `color` (the default hands `fill_contiguous` an
+    /// endless iterator).
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
+        let n = area.size.width as usize * area.size.height as usize;
+        self.fill_contiguous_raw(core::iter::repeat_n(color, n));
+        Ok(())
+    }
+
+    fn clear(&mut self, color: C) -> Result<(), Infallible> {
+        self.fill_solid(&Rectangle::new(Point::zero(), self.size), color)
     }
 }
 
