@@ -55,7 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         0.7,
         40.0,
     );
-    let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&gold)?);
+    let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&gold)?).eye_space();
 
     let layout = Layout::banded(SIZE, SIZE, ROWS)?;
     let mut strip = [Rgb565::BLACK; (SIZE * ROWS) as usize];

@@ -647,7 +647,8 @@ fn draw_one<K: Kernel<Color = Rgb888, Varyings = [i32; N]>, const N: usize>(
     kernel: &K,
     cull: Cull,
 ) {
-    draw_triangle(band, &g.space, kernel, &corners(g, t), cull);
+    draw_triangle(band, &g.space, kernel, &corners(g, t), cull)
+        .expect("the kernel draws (Kernel::check)");
 }
 
 /// `--mesh-as-triangles`: draw mesh objects triangle by triangle (with their
@@ -1270,7 +1271,8 @@ fn render_reference(sc: &Scene, geos: &[Geometry]) -> (Vec<Rgb888>, Vec<u8>) {
                             near,
                         },
                     };
-                    draw_triangle(band, &g.space, &kernel, &corners(g, idx), cull);
+                    draw_triangle(band, &g.space, &kernel, &corners(g, idx), cull)
+                        .expect("the kernel draws (Kernel::check)");
                 }
             }
         }

@@ -143,7 +143,7 @@ pub mod prelude {
     pub use crate::raster::Cull;
     pub use crate::render::{bins_len, Bands, FullFrame, Layout, MeshBuffers, MeshDraw};
     pub use crate::shade::{
-        Dithered, FlatShading, Gamma, GouraudShading, IncrementalPhongShading, Kernel, Linear,
+        Dithered, FlatShading, GouraudShading, IncrementalPhongShading, Kernel, Linear,
         PhongShading, QuadraticPhongShading, Shader,
     };
     pub use embedded_graphics_core::geometry::Size;

@@ -6,7 +6,7 @@
 //! × 16 stacks (362 vertices, 720 triangles) at the origin; view = translation
 //! by (0, 0, −5); orthographic projection ±1/0.85 on x and y, near 1, far 10;
 //! one white directional light towards (1, 1, 1) with ambient, diffuse and
-//! specular intensity 1; viewer at infinity; material ambient
+//! specular intensity 1; no global ambient light; viewer at infinity; material ambient
 //! (0.08, 0.01, 0.01), diffuse (0.8, 0.1, 0.1), specular white, shininess 32;
 //! depth test on; back faces culled.
 
@@ -48,13 +48,9 @@ pub fn transform() -> Result<MeshTransform<Orthographic>, ParamError> {
     camera()?.mesh_transform(&Mat4::IDENTITY, SPHERE.frac)
 }
 
-/// The camera converted for integer per-frame transforms (once, in `f32`).
-pub fn fixed_camera() -> Result<FixedCamera<Orthographic>, ParamError> {
-    FixedCamera::new(&camera()?)
-}
-
-/// The sphere's transform built in integers from [`fixed_camera`] (what a
-/// Cortex-M0 does every frame: no soft float).
+/// The sphere's transform built in integers from the camera converted once
+/// (`FixedCamera::new(&camera()?)`): what a Cortex-M0 does every frame, no
+/// soft float.
 pub fn fixed_transform(
     c: &FixedCamera<Orthographic>,
 ) -> Result<MeshTransform<Orthographic>, ParamError> {
@@ -80,12 +76,21 @@ pub fn light<S: Scalar>() -> Result<DirectionalLight<S>, ParamError> {
     )
 }
 
-/// The lighting with Blinn-Phong specular.
+/// The lighting with Blinn-Phong specular (no global ambient light: the
+/// scene's ambient comes from its light). Its light is in eye coordinates
+/// ([`Lighting::eye_space`]): the camera's view is a translation, which
+/// leaves a directional light's direction as it is, so the frame needs no
+/// per-frame `Lighting::viewed`.
 pub fn blinn<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, BlinnPhong>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?))
+    Ok(Lighting::new(light()?, Material::new(&material())?)
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space())
 }
 
-/// The lighting without specular (ambient + Lambert diffuse).
+/// The lighting without specular (ambient + Lambert diffuse; no global
+/// ambient light; the light in eye coordinates, as [`blinn`]'s).
 pub fn lambert<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, Lambert>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?))
+    Ok(Lighting::new(light()?, Material::new(&material())?)
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space())
 }

@@ -211,6 +211,7 @@ fn unbounded_attenuation_range_errors() {
         let lighting = |lights: [LightDesc; 2], ambient: f32| {
             let l = lights.map(|d| AnyLight::<S>::signed(&d).unwrap());
             Lighting::<S, _, Lambert>::new(l, mat)
+                .eye_space()
                 .with_global_ambient(fixshade::color::Rgb::from_f32([ambient; 3]))
         };
         let unbounded = [0.0, 1.0, 0.0];

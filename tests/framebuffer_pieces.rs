@@ -22,7 +22,7 @@ use fixshade::lighting::{
     AmbientSource, AnyLight, BlinnPhong, LightDesc, LightKind, Lighting, Material, MaterialDesc,
 };
 use fixshade::raster::Cull;
-use fixshade::shade::{Gamma, GouraudShading, Kernel, Linear, PhongShading, Shader};
+use fixshade::shade::{GouraudShading, Kernel, Linear, PhongShading, Shader};
 use fixshade::standard::SPHERE;
 use support::mesh_frame;
 
@@ -52,7 +52,9 @@ fn lighting() -> Lighting<f32, Lights, BlinnPhong> {
     .map(|d| AnyLight::new(d).unwrap())
     .collect();
     let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.5, 32.0);
-    Lighting::new(lights, Material::new(&red).unwrap()).with_global_ambient_f32([0.1; 3])
+    Lighting::new(lights, Material::new(&red).unwrap())
+        .eye_space()
+        .with_global_ambient_f32([0.1; 3])
 }
 
 fn ortho() -> MeshTransform<Orthographic> {
@@ -123,11 +125,7 @@ fn assert_same<K: Kernel<Color = Rgb565> + Copy, P: Projection>(
 fn gouraud_gamma_same_pixels_however_the_frame_is_split() {
     let l = lighting();
     let table = GammaTable::<1024>::new(Transfer::Srgb).unwrap();
-    assert_same(
-        "gouraud",
-        &ortho(),
-        Shader::new(GouraudShading, &l, Gamma(&table)),
-    );
+    assert_same("gouraud", &ortho(), Shader::new(GouraudShading, &l, &table));
 }
 
 #[test]
@@ -143,7 +141,7 @@ fn perspective_same_pixels_however_the_frame_is_split() {
     assert_same(
         "perspective gouraud",
         &persp(),
-        Shader::new(GouraudShading, &l, Gamma(&table)),
+        Shader::new(GouraudShading, &l, &table),
     );
     assert_same(
         "perspective phong",
@@ -165,7 +163,8 @@ fn fast_per_pixel_kernels_same_pixels_however_the_frame_is_split() {
     let array: Lighting<Q14, [_; 1], BlinnPhong> = Lighting::new(
         [fixshade::standard::light::<Q14>().unwrap()],
         Material::new(&fixshade::standard::material()).unwrap(),
-    );
+    )
+    .eye_space();
     assert_same(
         "picked incremental",
         &ortho(),

@@ -146,7 +146,7 @@ proptest! {
         use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
         let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, n);
         let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
-        let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap());
+        let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap()).eye_space().with_global_ambient_f32([0.0; 3]);
         // the values the pipeline gives the kernel: N, N·L, N·H (Q14, ATTR_FRAC bits)
         let (start, end) = (varyings(&lighting, a), varyings(&lighting, b));
         let step: [i32; 5] = core::array::from_fn(|i| ((end[i] as i64 - start[i] as i64) / len as i64) as i32);
@@ -188,6 +188,7 @@ fn negative_base_colour_clamps_to_black() {
     let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, 16.0);
     let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap())
+        .eye_space()
         .with_global_ambient(Rgb::from_f32([-0.8, -0.8, -0.8]));
     let lights = [LightDesc {
         kind: LightKind::Directional { towards_light: l },
@@ -293,7 +294,9 @@ fn phong_shading_picks_the_incremental_kernel() {
         let array: DirectionalLighting<2, 1, M> = Lighting::new(
             [standard::light::<Q14>().unwrap()],
             Material::new(&standard::material()).unwrap(),
-        );
+        )
+        .eye_space()
+        .with_global_ambient_f32([0.0; 3]);
         for rows in [240, 8] {
             let a = frame(
                 Shader::<_, _, _, C>::new(PhongShading, picked, Linear),
@@ -368,7 +371,9 @@ fn span_error(s: &Span) -> Option<(f64, u32)> {
     use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
     let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, s.n);
     let light = DirectionalLight::<Q14<2>>::white(s.l).ok()?;
-    let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).ok()?);
+    let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).ok()?)
+        .eye_space()
+        .with_global_ambient_f32([0.0; 3]);
     let (ld, hd) = (light.direction(), lighting.lights()[0].prepared().half?);
     let attrs = |v: [f32; 3]| {
         let n = Vec3::<Q14<2>>::from_f32(v).normalize();

@@ -129,9 +129,15 @@ fn nothing_leaks_behind_the_surface() {
                 let light = DirectionalLight::<S>::white(l).unwrap();
                 let pt = point_from_f32::<S>([0.0; 3]);
                 let nrm = Vec3::<S>::from_f32([0.0, 0.0, 1.0]);
-                let base = Lighting::<S, _, Phong>::new(light, ambient).shade(&pt, nrm);
-                let phong = Lighting::<S, _, Phong>::new(light, mat).shade(&pt, nrm);
-                let blinn = Lighting::<S, _, BlinnPhong>::new(light, mat).shade(&pt, nrm);
+                let base = Lighting::<S, _, Phong>::new(light, ambient)
+                    .with_global_ambient_f32([0.0; 3])
+                    .shade(&pt, nrm);
+                let phong = Lighting::<S, _, Phong>::new(light, mat)
+                    .with_global_ambient_f32([0.0; 3])
+                    .shade(&pt, nrm);
+                let blinn = Lighting::<S, _, BlinnPhong>::new(light, mat)
+                    .with_global_ambient_f32([0.0; 3])
+                    .shade(&pt, nrm);
                 assert_eq!(phong, base, "{} n={n} l={l:?}", S::NAME);
                 assert_eq!(blinn, base, "{} n={n} l={l:?}", S::NAME);
             }
@@ -156,7 +162,8 @@ fn extreme_shininess() {
             let lit = Lighting::<S, _, BlinnPhong>::new(
                 DirectionalLight::<S>::white([0.0, 0.0, 1.0]).unwrap(),
                 Material::new(&m).unwrap(),
-            );
+            )
+            .with_global_ambient_f32([0.0; 3]);
             let pt = point_from_f32::<S>([0.0; 3]);
             let at_peak = lit.shade(&pt, Vec3::from_f32([0.0, 0.0, 1.0])).to_unorm(8);
             assert_eq!(at_peak, [255; 3], "{} n={n}", S::NAME);
@@ -198,10 +205,12 @@ fn bright_sums_clamp() {
             ..Default::default()
         })
         .unwrap();
-        let c = Lighting::<S, _, BlinnPhong>::new(lights, m).shade(
-            &point_from_f32::<S>([0.0; 3]),
-            Vec3::from_f32([0.0, 0.0, 1.0]),
-        );
+        let c = Lighting::<S, _, BlinnPhong>::new(lights, m)
+            .with_global_ambient_f32([0.0; 3])
+            .shade(
+                &point_from_f32::<S>([0.0; 3]),
+                Vec3::from_f32([0.0, 0.0, 1.0]),
+            );
         assert_eq!(c.to_unorm(8), [255; 3], "{}", S::NAME);
         assert_eq!(
             c.to_rgb565(),
@@ -234,6 +243,7 @@ fn light_at_the_surface_and_far_away() {
             )
             .unwrap();
             let c = Lighting::<S, _, Full>::new(light, m)
+                .with_global_ambient_f32([0.0; 3])
                 .shade(&pt, nrm)
                 .to_unorm(8);
             assert!(c.iter().all(|&x| x <= 255), "{}", S::NAME);
@@ -272,7 +282,8 @@ fn unnormalised_and_tiny_normals() {
         let lit = Lighting::<S, _, BlinnPhong>::new(
             AnyLight::<S>::new(&light_desc).unwrap(),
             Material::new(&desc).unwrap(),
-        );
+        )
+        .with_global_ambient_f32([0.0; 3]);
         let pt = point_from_f32::<S>([0.0; 3]);
         for scale in [1.9f32, 1.0, 0.3, 0.01, 1.0e-3] {
             let n = Vec3::<S>::from_f32([0.3 * scale, -0.2 * scale, 0.9 * scale]);
@@ -320,7 +331,9 @@ fn grazing_angles_and_cone_edges() {
         let nrm = Vec3::<S>::from_f32([0.0, 0.0, 1.0]);
         for z in [-1.0e-3f32, -1.0e-7, 0.0, 1.0e-7, 1.0e-3] {
             if let Ok(l) = DirectionalLight::<S>::white([1.0, 0.0, z]) {
-                let c = Lighting::<S, _, Full>::new(l, m).shade(&pt, nrm);
+                let c = Lighting::<S, _, Full>::new(l, m)
+                    .with_global_ambient_f32([0.0; 3])
+                    .shade(&pt, nrm);
                 assert!(c.to_unorm(8).iter().all(|&x| x <= 255));
             }
         }
@@ -335,7 +348,9 @@ fn grazing_angles_and_cone_edges() {
                 LightColors::white(),
             )
             .unwrap();
-            let c = Lighting::<S, _, Full>::new(s, m).shade(&pt, nrm);
+            let c = Lighting::<S, _, Full>::new(s, m)
+                .with_global_ambient_f32([0.0; 3])
+                .shade(&pt, nrm);
             assert!(c.to_unorm(8).iter().all(|&x| x <= 255));
         }
     }
@@ -379,7 +394,7 @@ proptest! {
             let Ok(m) = Material::<S>::new(&desc) else { return };
             for kind in kinds {
                 let Ok(light) = AnyLight::<S>::new(&LightDesc { kind, ambient: col, diffuse: col, specular: col }) else { continue };
-                let lit = Lighting::<S, _, Full>::new([light, light], m);
+                let lit = Lighting::<S, _, Full>::new([light, light], m).with_global_ambient_f32([0.0; 3]);
                 let c = lit.shade_normalizing(&point_from_f32::<S>(p), Vec3::from_f32(nrm));
                 let _ = c.to_rgb565();
                 if let Ok(v) = LocalViewer::<S>::new(eye) {

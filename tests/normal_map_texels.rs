@@ -141,7 +141,8 @@ where
 fn fast<const NW: u8, M: IncrementalModel>(map: NormalMap<'_>, what: &str) -> usize {
     let light = DirectionalLight::<Q14<NW>>::white([-0.3, 0.5, 0.8]).unwrap();
     // one directional light: `PhongShading.normal_mapped` picks the fast kernel
-    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(&standard::material()).unwrap());
+    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(&standard::material()).unwrap())
+        .eye_space();
     both(
         Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &lit, Linear),
         what,
@@ -153,7 +154,8 @@ where
     Lighting<S, [DirectionalLight<S>; 1], M>: Illuminate<Scalar = S>,
 {
     let light = DirectionalLight::<S>::white([-0.3, 0.5, 0.8]).unwrap();
-    let lit = Lighting::<S, _, M>::new([light], Material::new(&standard::material()).unwrap());
+    let lit = Lighting::<S, _, M>::new([light], Material::new(&standard::material()).unwrap())
+        .eye_space();
     both(
         Shader::new(GeneralPhongShading.normal_mapped(map), &lit, Linear),
         what,

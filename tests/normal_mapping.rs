@@ -26,7 +26,7 @@ use fixshade::raster::SUBPIXEL_BITS;
 use fixshade::reference::{self, ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{draw_triangle, BandView, Corner, DrawBand};
 use fixshade::shade::{GeneralPhongShading, VertexIn};
-use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, Wrap, FLAT_NORMAL};
+use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, Wrap};
 
 const FB: u32 = 64;
 
@@ -200,7 +200,8 @@ impl<K: Kernel> DrawBand<K::Color> for One<K> {
             &self.kernel,
             &self.corners,
             Cull::None,
-        );
+        )
+        .expect("the kernel draws (Kernel::check)");
     }
 }
 
@@ -343,8 +344,10 @@ fn light_descs() -> Vec<(&'static str, LightDesc)> {
 /// flat map, per triangle.
 fn flat_equals_phong<S: Scalar, M: Model>(desc: &LightDesc, tris: &[Tri]) -> usize {
     let light = AnyLight::<S>::new(desc).unwrap();
-    let lit = Lighting::<S, _, M>::new([light], Material::new(&material()).unwrap());
-    let flat = [FLAT_NORMAL; 4];
+    let lit = Lighting::<S, _, M>::new([light], Material::new(&material()).unwrap())
+        .eye_space()
+        .with_global_ambient_f32([0.0; 3]);
+    let flat = [NormalMap::FLAT; 4];
     let map = NormalMap::new(&flat, 1, 1, Wrap::Repeat).unwrap();
     let mut compared = 0;
     for t in tris {
@@ -393,7 +396,9 @@ fn general_error<S: Scalar, M: Model>(
     tris: &[Tri],
 ) -> (u32, usize) {
     let light = AnyLight::<S>::new(desc).unwrap();
-    let lit = Lighting::<S, _, M>::new([light], Material::new(mat).unwrap());
+    let lit = Lighting::<S, _, M>::new([light], Material::new(mat).unwrap())
+        .eye_space()
+        .with_global_ambient_f32([0.0; 3]);
     let map = NormalMap::new(texels, log2, log2, Wrap::Repeat).unwrap();
     let lights = [*desc];
     let reference = Reference {
@@ -586,7 +591,9 @@ fn fast_error<const NW: u8, M: fixshade::shade::IncrementalModel>(
     // one directional light (not an array): `PhongShading.normal_mapped` picks
     // the fast kernel
     let light = DirectionalLight::<Q14<NW>>::white(dir).unwrap();
-    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(mat).unwrap());
+    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(mat).unwrap())
+        .eye_space()
+        .with_global_ambient_f32([0.0; 3]);
     let map = NormalMap::new(texels, log2, log2, wrap).unwrap();
     let (a, d, s, l, h) = coefficients::<M>(&desc, mat);
     let spec = M::SPECULAR == fixshade::lighting::Specular::BlinnPhong;
@@ -685,7 +692,7 @@ fn fast_path_against_the_reference_worst_cases() {
     // the spans whose L, H shrink fastest)
     let mut tris: Vec<Tri> = (0..10).map(|_| random_tri(&mut r, 0.15)).collect();
     tris.extend((0..6).map(|_| random_tri(&mut r, 0.5)));
-    let flat = vec![FLAT_NORMAL; 4];
+    let flat = vec![NormalMap::FLAT; 4];
     let maps = [(bumpy_texels(), 4u8), (extreme_texels(), 3u8), (flat, 1u8)];
     // the light: frontal (highlight centres on the flat map), oblique, grazing
     // (nearly in the tangent plane of most triangles), behind
@@ -813,7 +820,7 @@ mod mesh {
     /// flat map.
     fn flat_mesh<S: Scalar, I: Illuminate<Scalar = S>>(lit: &I) {
         let (uv, tg) = uv_tangents();
-        let flat = [FLAT_NORMAL; 1];
+        let flat = [NormalMap::FLAT; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
         let a = render(Shader::new(GeneralPhongShading, lit, Linear), &uv, &tg);
         let b = render(
@@ -832,7 +839,9 @@ mod mesh {
         flat_mesh(&standard::blinn::<f32>().unwrap());
         for (_, d) in light_descs() {
             let light = AnyLight::<Q14>::new(&d).unwrap();
-            let lit = Lighting::<Q14, _, Phong>::new([light], Material::new(&material()).unwrap());
+            let lit = Lighting::<Q14, _, Phong>::new([light], Material::new(&material()).unwrap())
+                .eye_space()
+                .with_global_ambient_f32([0.0; 3]);
             flat_mesh(&lit);
         }
     }
@@ -848,9 +857,13 @@ mod mesh {
         let (uv, tg) = uv_tangents();
         let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
         let mat = || Material::new(&standard::material()).unwrap();
-        let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat());
-        let array = Lighting::<Q14, _, BlinnPhong>::new([light], mat());
-        let flat = [FLAT_NORMAL; 1];
+        let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]);
+        let array = Lighting::<Q14, _, BlinnPhong>::new([light], mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]);
+        let flat = [NormalMap::FLAT; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
         let inc = render(
             Shader::new(IncrementalPhongShading, &array, Linear),
@@ -928,10 +941,16 @@ mod mesh {
         }
         let mat = || Material::new(&standard::material()).unwrap();
         let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new([light], mat()));
-        same!(Lighting::<Q14, _, Phong>::new(light, mat()));
+        same!(Lighting::<Q14, _, BlinnPhong>::new([light], mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]));
+        same!(Lighting::<Q14, _, Phong>::new(light, mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]));
         let point = AnyLight::<Q14>::new(&light_descs()[1].1).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new(point, mat()));
+        same!(Lighting::<Q14, _, BlinnPhong>::new(point, mat())
+            .eye_space()
+            .with_global_ambient_f32([0.0; 3]));
         same!(standard::blinn::<Q30>().unwrap());
         same!(standard::blinn::<f32>().unwrap());
     }
@@ -1012,7 +1031,7 @@ fn nm_perturb(c: &NmCase, amount: f64, rng: &mut worst_case::Rng) -> NmCase {
 /// (`common::worst_case`). Prints the worst per path.
 #[test]
 fn targeted_worst_case_search() {
-    let flat = vec![FLAT_NORMAL; 4];
+    let flat = vec![NormalMap::FLAT; 4];
     let maps = [(bumpy_texels(), 4u8), (extreme_texels(), 3u8), (flat, 1u8)];
     let starts = nm_starts(24, 21);
     let desc = |c: &NmCase| LightDesc {

@@ -193,7 +193,9 @@ where
         )
         .unwrap()
     });
-    let lighting = Lighting::<S, _, M>::new(dl, Material::new(&mat).ok()?);
+    let lighting = Lighting::<S, _, M>::new(dl, Material::new(&mat).ok()?)
+        .eye_space()
+        .with_global_ambient_f32([0.0; 3]);
     let dirs: Vec<[f32; 3]> = lighting
         .lights()
         .iter()
@@ -330,7 +332,7 @@ where
         'a,
         QuadraticPhongShading,
         Lighting<S, [DirectionalLight<S>; 1], M>,
-        Gamma<'t, 1024>,
+        &'t GammaTable<1024>,
         Gray8,
     >: Kernel<Color = Gray8, Varyings = [i32; N], Triangle = ()>,
 {
@@ -387,7 +389,7 @@ where
         }
     }
     let table = GammaTable::<1024>::new(Transfer::Power(2.2)).unwrap();
-    if let Some((px, normals)) = run::<S, 1, N, M, Gray8, Gamma<'_, 1024>>(c, Gamma(&table)) {
+    if let Some((px, normals)) = run::<S, 1, N, M, Gray8, &GammaTable<1024>>(c, &table) {
         for (k, (p, n)) in px.iter().zip(&normals).enumerate() {
             if near_terminator(c, *n) {
                 continue;

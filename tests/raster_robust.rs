@@ -113,7 +113,8 @@ impl DrawBand<Gray8> for One<'_> {
     fn draw_band(&mut self, band: &mut BandView<'_, Gray8>) {
         let r = band.rows();
         self.check.rows.set((r.start, r.end));
-        draw_triangle(band, &self.space, &self.check, &self.tri, self.cull);
+        draw_triangle(band, &self.space, &self.check, &self.tri, self.cull)
+            .expect("the kernel draws (Kernel::check)");
     }
 }
 

@@ -66,6 +66,7 @@ fn draw_all<S: Scalar>(pos: [[f32; 3]; 3], light: [f32; 3], flat: bool) -> Vec<R
     .unwrap();
     let fog = LinearFog::<S>::new(1.0, 50_000.0, [0.2, 0.3, 0.4]).unwrap();
     let lit = Lighting::<S, _, BlinnPhong>::new(lights, m)
+        .eye_space()
         .with_global_ambient(Rgb::splat(S::from_f32(0.1)))
         .with_viewer(LocalViewer::<S>::new([0.0; 3]).unwrap())
         .with_fog(fog);

@@ -70,7 +70,7 @@ fn texture_of(words: Vec<u16>, lw: u8, lh: u8, wrap: Wrap) -> Texture<'static> {
 fn full_light() -> Lighting<Q14, DirectionalLight<Q14>, Lambert> {
     let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
     let m = MaterialDesc::classic([1.0; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
-    Lighting::new(light, Material::new(&m).unwrap())
+    Lighting::new(light, Material::new(&m).unwrap()).eye_space()
 }
 
 const LAMBERT_DIR: [f32; 3] = [-0.3, 0.5, 0.8];
@@ -81,14 +81,14 @@ fn lambert_material() -> MaterialDesc {
 
 fn lambert() -> Lighting<Q14, DirectionalLight<Q14>, Lambert> {
     let light = DirectionalLight::<Q14>::white(LAMBERT_DIR).unwrap();
-    Lighting::new(light, Material::new(&lambert_material()).unwrap())
+    Lighting::new(light, Material::new(&lambert_material()).unwrap()).eye_space()
 }
 
 fn blinn(kd: f32) -> Lighting<Q14, DirectionalLight<Q14>, BlinnPhong> {
     let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
     let ka = if kd == 0.0 { 0.0 } else { 0.1 };
     let m = MaterialDesc::classic([0.9, 0.6, 0.3], AmbientSource::Object, ka, kd, 0.7, 8.0);
-    Lighting::new(light, Material::new(&m).unwrap())
+    Lighting::new(light, Material::new(&m).unwrap()).eye_space()
 }
 
 /// One model unit per pixel, y up in the model (as the measure kernels).
@@ -297,7 +297,8 @@ struct Tris<K> {
 impl<K: Kernel> DrawBand<K::Color> for Tris<K> {
     fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
         for t in &self.tris {
-            draw_triangle(band, &self.space, &self.kernel, t, Cull::None);
+            draw_triangle(band, &self.space, &self.kernel, t, Cull::None)
+                .expect("the kernel draws (Kernel::check)");
         }
     }
 }
@@ -418,7 +419,8 @@ fn separate_specular_adds_after_modulation() {
     // Gouraud does, or per pixel, as OpenGL's separate specular does, agree)
     let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
     let m = MaterialDesc::classic([0.9, 0.6, 0.3], AmbientSource::Object, 0.1, 0.5, 0.4, 8.0);
-    let soft: Lighting<Q14, _, BlinnPhong> = Lighting::new(light, Material::new(&m).unwrap());
+    let soft: Lighting<Q14, _, BlinnPhong> =
+        Lighting::new(light, Material::new(&m).unwrap()).eye_space();
     let white = texture_of(vec![0xFFFF; 16], 2, 2, Wrap::Repeat);
     let sum = render(Shader::new(GouraudShading, &soft, Linear), &g, &ortho(), W);
     for filter in [Filter::Nearest, Filter::Bilinear] {
@@ -454,7 +456,8 @@ fn modulation_is_within_one_step_of_the_f64_product() {
     for level in [0.0f32, 0.1, 0.33, 0.5, 0.77, 0.9, 1.0] {
         let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
         let m = MaterialDesc::classic([level; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
-        let lit: Lighting<Q14, _, Lambert> = Lighting::new(light, Material::new(&m).unwrap());
+        let lit: Lighting<Q14, _, Lambert> =
+            Lighting::new(light, Material::new(&m).unwrap()).eye_space();
         for filter in [Filter::Nearest, Filter::Bilinear] {
             let px = render(tex_shader(&lit, tex, filter), &g, &ortho(), W);
             for y in 0..32 {
@@ -1241,7 +1244,8 @@ fn targeted_modulation_search() {
                 DirectionalLight::<Q14>::white([tilt.sin() as f32, 0.0, tilt.cos() as f32]).ok()?;
             let m =
                 MaterialDesc::classic([level as f32; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
-            let lit: Lighting<Q14, _, Lambert> = Lighting::new(light, Material::new(&m).ok()?);
+            let lit: Lighting<Q14, _, Lambert> =
+                Lighting::new(light, Material::new(&m).ok()?).eye_space();
             let px = render(tex_shader(&lit, tex, filter), &g, &ortho(), W);
             // the primary level the lighting gives (exactly: N = (0, 0, 1))
             let p = f64::from(level as f32) * tilt.cos();

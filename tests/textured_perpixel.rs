@@ -9,7 +9,7 @@ use fixshade::prelude::*;
 use fixshade::render::{CachedVertex, MeshMemory};
 use fixshade::shade::GeneralPhongShading;
 use fixshade::shade::Kernel;
-use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap, FLAT_NORMAL};
+use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
 
 const N: (usize, usize) = textured_sphere_counts(12, 16);
 static SPHERE: TexturedMeshData<{ N.0 }, { N.1 }> = TexturedMeshData::uv_sphere(12, 16, 14);
@@ -54,7 +54,7 @@ fn draw<K: Kernel<Color = Rgb565>>(kernel: K) -> Vec<Rgb565> {
 }
 
 static WHITE: [u16; 16] = [0xFFFF; 16];
-static FLAT: [[i16; 3]; 4] = [FLAT_NORMAL; 4];
+static FLAT: [[i16; 3]; 4] = [NormalMap::FLAT; 4];
 
 /// Asserts that `a` equals `b`, saying where and by how much not.
 fn same(a: &[Rgb565], b: &[Rgb565], what: &str) {

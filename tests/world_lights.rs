@@ -5,10 +5,12 @@
 //! world coordinates (the viewer at infinity behind the camera), within the
 //! tier's stated bound (1 LSB for Q14 and f32 below n = 64, README
 //! "Accuracy"). Without `viewed`, the lamp moves with the camera: the same
-//! check fails, which the last test asserts.
+//! check fails, which the last test asserts. And `Lighting::new` has
+//! OpenGL's global ambient light (issue 20 item 3).
 
 use fixshade::lighting::{
-    AmbientSource, AnyLight, BlinnPhong, LightDesc, LightKind, Lighting, Material, MaterialDesc,
+    AmbientSource, AnyLight, BlinnPhong, DirectionalLight, LightDesc, LightKind, Lighting,
+    Material, MaterialDesc,
 };
 use fixshade::num::{point_from_f32, Mat4, Vec3, Q14};
 use fixshade::reference::{ModelDesc, Reference, ViewerDesc};
@@ -86,7 +88,8 @@ fn worst(view_lights: bool) -> (u32, String) {
     let descs = lamp();
     let mat = material();
     let lights: [AnyLight<Q14>; 3] = descs.map(|d| AnyLight::new(&d).unwrap());
-    let world = Lighting::<Q14, _, BlinnPhong>::new(lights, Material::new(&mat).unwrap());
+    let world = Lighting::<Q14, _, BlinnPhong>::new(lights, Material::new(&mat).unwrap())
+        .with_global_ambient_f32([0.0; 3]);
     let mut worst = (0, String::new());
     for (eye, view) in cameras() {
         let lit = if view_lights {
@@ -157,7 +160,8 @@ fn a_singular_view_is_refused() {
     let world = Lighting::<Q14, _, BlinnPhong>::new(
         AnyLight::<Q14>::new(&lamp()[0]).unwrap(),
         Material::new(&material()).unwrap(),
-    );
+    )
+    .with_global_ambient_f32([0.0; 3]);
     let flat = Mat4 {
         m: [
             [1.0, 0.0, 0.0, 0.0],
@@ -170,4 +174,135 @@ fn a_singular_view_is_refused() {
     assert!(world.viewed(&flat).is_ok());
     let zero = Mat4 { m: [[0.0; 4]; 4] };
     assert!(world.viewed(&zero).is_err());
+}
+
+/// `Lighting::new` follows OpenGL's `GL_LIGHT_MODEL_AMBIENT` default (0.2):
+/// a surface facing away from the only light shows 0.2 × the material's
+/// ambient colour, in every tier, and `with_global_ambient_f32([0.0; 3])`
+/// makes it black (the README example's `ka = 0.1` is visible).
+#[test]
+fn lighting_new_has_opengls_global_ambient() {
+    fn check<S: fixshade::num::Scalar>(name: &str) {
+        // LightColors::white(): no ambient of its own (OpenGL's light 0)
+        let light = DirectionalLight::<S>::white([0.0, 0.0, 1.0]).unwrap();
+        let mat =
+            MaterialDesc::classic([1.0, 0.5, 0.25], AmbientSource::Object, 0.8, 0.7, 0.6, 32.0);
+        let lit = Lighting::<S, _, BlinnPhong>::new(light, Material::new(&mat).unwrap());
+        let (p, away) = (
+            point_from_f32::<S>([0.0; 3]),
+            Vec3::from_f32([0.0, 0.0, -1.0]),
+        );
+        let got = lit.shade(&p, away).to_unorm(8);
+        let want = [1.0f64, 0.5, 0.25].map(|c| (0.2 * 0.8 * c * 255.0).round() as i32);
+        for k in 0..3 {
+            assert!(
+                (got[k] as i32 - want[k]).abs() <= 1,
+                "{name}: {got:?} vs {want:?}"
+            );
+        }
+        assert!(got[0] >= 40, "{name}: the ambient is visible: {got:?}");
+        let none = lit
+            .with_global_ambient_f32([0.0; 3])
+            .shade(&p, away)
+            .to_unorm(8);
+        assert_eq!(none, [0; 3], "{name}");
+    }
+    check::<Q14>("Q14");
+    check::<f32>("f32");
+    check::<fixshade::num::Q30>("Q30");
+}
+
+/// World coordinates are the default, and the renderer refuses lights that
+/// were not seen through the camera instead of drawing them lit from the
+/// wrong side: `MeshDraw::new` and `draw_triangle` return
+/// `RenderError::WorldLights` for a `Lighting::new` used as it is, and draw
+/// after `viewed` (a camera circling the sphere: the lit side follows the
+/// world's lamp) or `eye_space`.
+#[test]
+fn the_renderer_refuses_lights_not_seen_through_the_camera() {
+    use fixshade::error::RenderError;
+    use fixshade::prelude::*;
+    const N: (usize, usize) = uv_sphere_counts(16, 24);
+    static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(16, 24, 14);
+    // the lamp on the world's +x side
+    let lamp = DirectionalLight::<Q14>::white([1.0, 0.0, 0.0]).unwrap();
+    let mat = MaterialDesc::classic([1.0; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
+    let world = Lighting::<Q14, _, Lambert>::new(lamp, Material::new(&mat).unwrap());
+    assert!(!world.is_eye_space());
+    let vp = Viewport::new(0, 0, 64, 64).unwrap();
+    // one frame seen from `eye` with `lit`: the number of lit pixels and
+    // their mean column
+    let frame = |eye: [f32; 3], lit: &Lighting<Q14, DirectionalLight<Q14>, Lambert>| {
+        let camera = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, vp)
+            .unwrap()
+            .with_view(Mat4::look_at(eye, [0.0; 3], [0.0, 1.0, 0.0]).unwrap());
+        let t = camera.mesh_transform(&Mat4::IDENTITY, SPHERE.frac).unwrap();
+        let layout = Layout::full(64, 64).unwrap();
+        let mut buffers: MeshBuffers<_, { N.0 }, { bins_len(N.1, 1) }, 1> = MeshBuffers::new();
+        let shader = Shader::new(GouraudShading, lit, Linear);
+        let mut sphere = match MeshDraw::new(layout, SPHERE.mesh(), &t, shader, buffers.memory()) {
+            Err(e) => return Err(e),
+            Ok(s) => s,
+        };
+        let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
+        let mut fb = FullFrame::new(64, 64, &mut color, Some(&mut depth)).unwrap();
+        fb.render(Rgb565::BLACK, &mut [&mut sphere]).unwrap();
+        let lit: Vec<usize> = (0..64 * 64).filter(|&i| fb.pixels()[i].g() > 20).collect();
+        let mean = lit.iter().map(|i| (i % 64) as f32).sum::<f32>() / lit.len().max(1) as f32;
+        Ok((lit.len(), mean))
+    };
+    let front = [0.0, 0.0, 5.0]; // the lamp on the camera's right
+    let right = [5.0, 0.0, 0.0]; // the lamp behind the camera: the front lit
+    let left = [-5.0, 0.0, 0.0]; // the lamp behind the sphere: unlit from here
+    assert_eq!(frame(front, &world), Err(RenderError::WorldLights));
+    let view = |eye: [f32; 3]| Mat4::look_at(eye, [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
+    let (n, x) = frame(front, &world.viewed(&view(front)).unwrap()).unwrap();
+    assert!(
+        n > 500 && x > 40.0,
+        "the lamp on the right: {n} lit, mean column {x}"
+    );
+    let (n, x) = frame(right, &world.viewed(&view(right)).unwrap()).unwrap();
+    assert!(
+        n > 1500 && (x - 31.5).abs() < 2.0,
+        "the lamp behind the camera: {n} lit, mean column {x}"
+    );
+    let (n, _) = frame(left, &world.viewed(&view(left)).unwrap()).unwrap();
+    assert_eq!(n, 0, "the lamp behind the sphere");
+    // eye coordinates by choice: the lamp moves with the camera (on its right)
+    let eye = world.eye_space();
+    let (n, x) = frame(right, &eye).unwrap();
+    assert!(
+        n > 500 && x > 40.0,
+        "eye-space lamp on the right: {n} lit, mean column {x}"
+    );
+    // the per-triangle front refuses the same lighting
+    let shader = Shader::new(GouraudShading, &world, Linear);
+    assert_eq!(shader.check(), Err(RenderError::WorldLights));
+    struct One<'s>(
+        Shader<'s, GouraudShading, Lighting<Q14, DirectionalLight<Q14>, Lambert>, Linear, Rgb565>,
+        Vec<Result<(), RenderError>>,
+    );
+    impl fixshade::render::DrawBand<Rgb565> for One<'_> {
+        fn draw_band(&mut self, band: &mut fixshade::render::BandView<'_, Rgb565>) {
+            let corner = |x: i32, y: i32| fixshade::render::Corner {
+                clip: fixshade::camera::Clip {
+                    x: x << 4,
+                    y: y << 4,
+                    z: 100,
+                    w: 1,
+                },
+                vertex: fixshade::shade::VertexIn::new([0, 0, 16384], [0; 3]),
+            };
+            let tri = [corner(0, 0), corner(0, 8), corner(8, 4)];
+            let space = fixshade::camera::ClipSpace::SCREEN;
+            let r = fixshade::render::draw_triangle(band, &space, &self.0, &tri, Cull::None);
+            self.1.push(r);
+        }
+    }
+    let mut one = One(shader, Vec::new());
+    let (mut color, mut depth) = ([Rgb565::BLACK; 64], [0u16; 64]);
+    let mut fb = FullFrame::new(8, 8, &mut color, Some(&mut depth)).unwrap();
+    fb.render(Rgb565::BLACK, &mut [&mut one]).unwrap();
+    assert_eq!(one.1, [Err(RenderError::WorldLights)]);
+    assert!(fb.pixels().iter().all(|&c| c == Rgb565::BLACK));
 }

@@ -66,12 +66,14 @@ fn shade_all<P: Projection>(
     let l14 = DirectionalLight::<Q14>::white(dir).unwrap_or(standard::light::<Q14>().unwrap());
     let l30 = DirectionalLight::<Q30>::white(dir).unwrap_or(standard::light::<Q30>().unwrap());
     let lf = DirectionalLight::<f32>::white(dir).unwrap_or(standard::light::<f32>().unwrap());
-    let blinn14 = Lighting::<Q14, _, BlinnPhong>::new([l14], mat);
-    let lambert14 = Lighting::<Q14, _, Lambert>::new([l14], mat);
+    let blinn14 = Lighting::<Q14, _, BlinnPhong>::new([l14], mat).eye_space();
+    let lambert14 = Lighting::<Q14, _, Lambert>::new([l14], mat).eye_space();
     let phong30 =
-        Lighting::<Q30, _, Phong>::new([l30], Material::new(&standard::material()).unwrap());
+        Lighting::<Q30, _, Phong>::new([l30], Material::new(&standard::material()).unwrap())
+            .eye_space();
     let blinnf =
-        Lighting::<f32, _, BlinnPhong>::new([lf], Material::new(&standard::material()).unwrap());
+        Lighting::<f32, _, BlinnPhong>::new([lf], Material::new(&standard::material()).unwrap())
+            .eye_space();
     match inp.u8() % 6 {
         0 => check(
             mesh,

@@ -132,6 +132,7 @@ fn lighting() -> Lighting<Q14, [DirectionalLight<Q14>; 1], BlinnPhong> {
         [standard::light::<Q14>().unwrap()],
         Material::new(&standard::material()).unwrap(),
     )
+    .eye_space()
 }
 
 fn texture(inp: &mut Input) {
@@ -212,16 +213,19 @@ fn normal_map(inp: &mut Input) {
     let l1 = Lighting::<Q14<1>, _, BlinnPhong>::new(
         standard::light::<Q14<1>>().unwrap(),
         Material::new(&standard::material()).unwrap(),
-    );
+    )
+    .eye_space();
     let lam = Lighting::<Q14<1>, _, Lambert>::new(
         standard::light::<Q14<1>>().unwrap(),
         Material::new(&standard::material()).unwrap(),
-    );
+    )
+    .eye_space();
     let lit = lighting();
     let lf = Lighting::<f32, _, BlinnPhong>::new(
         [standard::light::<f32>().unwrap()],
         Material::new(&standard::material()).unwrap(),
-    );
+    )
+    .eye_space();
     match inp.u8() % 4 {
         0 => with_transform!(v, mesh, |t| same(
             mesh,

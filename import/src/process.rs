@@ -18,14 +18,14 @@
 //!    differ by at most the angle; sharing is transitive around a vertex).
 //! 5. **Welding**: corners with the same quantised position, Q14 normal and
 //!    Q12 texture coordinate become one vertex (first use first).
-//! 6. **Tangents** (if asked): the library's [`vertex_tangents`] on the welded
-//!    mesh, converted by [`tangents_to_q14`].
+//! 6. **Tangents** (if asked): the library's [`vertex_tangents`] (Q14) on the
+//!    welded mesh.
 
 use std::collections::HashMap;
 
 use fixshade::mesh::{
-    tangents_to_q14, to_compact, vertex_normals, vertex_tangents, Mesh, MeshError, Weighting,
-    NORMAL_ONE, TEXCOORD_FRAC,
+    to_compact, vertex_normals, vertex_tangents, Mesh, MeshError, Weighting, NORMAL_ONE,
+    TEXCOORD_FRAC,
 };
 
 use crate::error::Error;
@@ -490,10 +490,8 @@ pub fn process(
             .iter()
             .map(|q| q.map(|x| f32::from(x) / q12 as f32))
             .collect();
-        let mut out = vec![[0.0f32; 4]; p.len()];
-        vertex_tangents(&p, &n, &t, &mesh.triangles, &mut out).map_err(mesh_error("tangents"))?;
         let mut q = vec![[0i16; 4]; p.len()];
-        tangents_to_q14(&out, &mut q).map_err(mesh_error("tangents"))?;
+        vertex_tangents(&p, &n, &t, &mesh.triangles, &mut q).map_err(mesh_error("tangents"))?;
         mesh.tangents = Some(q);
     }
 

@@ -25,7 +25,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::io::Cursor;
 use std::path::Path;
 
-use fixshade::texture::{Texels, Texture, Wrap, MAX_LOG2_SIZE};
+use fixshade::texture::{Texels, Texture, Wrap};
 
 use crate::error::Error;
 
@@ -190,7 +190,7 @@ pub fn decode_png(bytes: &[u8], path: &Path) -> Result<Image, Error> {
 
 /// `log2(n)` when `n` is a power of two fixshade accepts (1 … 2^15).
 fn log2_exact(n: u32) -> Option<u8> {
-    (n.is_power_of_two() && n.trailing_zeros() <= u32::from(MAX_LOG2_SIZE))
+    (n.is_power_of_two() && n.trailing_zeros() <= u32::from(Texture::MAX_LOG2_SIZE))
         .then(|| n.trailing_zeros() as u8)
 }
 
@@ -198,7 +198,7 @@ fn log2_exact(n: u32) -> Option<u8> {
 /// within 1 … 2^15.
 pub fn nearest_power_of_two(n: u32) -> u32 {
     let l = f64::from(n.max(1)).log2().round() as u32;
-    1 << l.min(u32::from(MAX_LOG2_SIZE))
+    1 << l.min(u32::from(Texture::MAX_LOG2_SIZE))
 }
 
 /// Converts `image` (named `path` in messages) to `format`.

@@ -152,17 +152,15 @@ impl<C: OutputColor> Encoder<C> for Dithered {
     }
 }
 
-/// A gamma table: the linear channel indexes the table (8-bit encoded output),
-/// then is rounded to the channel's bits. Gouraud shading interpolates linear
-/// values and looks the table up per pixel.
-#[derive(Clone, Copy, Debug)]
-pub struct Gamma<'t, const N: usize>(pub &'t GammaTable<N>);
-
-impl<C: OutputColor, const N: usize> Encoder<C> for Gamma<'_, N> {
+/// A gamma table is an encoder (by reference: `Shader::new(mode, &lighting,
+/// &table)`): the linear channel indexes the table (8-bit encoded output), then
+/// is rounded to the channel's bits. Gouraud shading interpolates linear values
+/// and looks the table up per pixel.
+impl<C: OutputColor, const N: usize> Encoder<C> for &GammaTable<N> {
     const POSITIONAL: bool = false;
     #[inline(always)]
     fn encode<S: Scalar>(&self, c: Rgb<S>, _x: i32, _y: i32) -> C {
-        C::from_linear_gamma(c, self.0)
+        C::from_linear_gamma(c, self)
     }
     #[inline]
     fn vertex<S: Scalar>(&self, c: Rgb<S>) -> [i32; 3] {
@@ -175,7 +173,7 @@ impl<C: OutputColor, const N: usize> Encoder<C> for Gamma<'_, N> {
         C::from_channels(core::array::from_fn(|i| {
             // Q15 · 2^ATTR_FRAC → 16-bit linear value
             let v = (a[i].max(0) as u32) >> (ATTR_FRAC - 1);
-            let e = self.0.apply_unorm16(v) as u32;
+            let e = self.apply_unorm16(v) as u32;
             div255(e * max[i] + 127)
         }))
     }

@@ -3,7 +3,7 @@
 
 pub(crate) mod encode;
 
-pub use encode::{Dithered, Encoder, Gamma, Linear};
+pub use encode::{Dithered, Encoder, Linear};
 
 use crate::error::{finite, non_negative3, ParamError};
 use crate::num::Scalar;

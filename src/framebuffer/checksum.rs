@@ -3,7 +3,7 @@
 use core::convert::Infallible;
 
 use embedded_graphics_core::draw_target::DrawTarget;
-use embedded_graphics_core::geometry::{OriginDimensions, Size};
+use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::raw::RawData;
 use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
@@ -29,6 +29,10 @@ use embedded_graphics_core::Pixel;
 /// b.fill_contiguous(&area, [Rgb565::BLUE, Rgb565::RED, Rgb565::RED, Rgb565::RED]).unwrap();
 /// assert_ne!(a.value(), b.value());
 /// assert_eq!(a.pixels(), 4);
+/// // fill_solid and clear hand over an endless stream: the area's pixels count
+/// a.fill_solid(&area, Rgb565::RED).unwrap();
+/// a.clear(Rgb565::RED).unwrap();
+/// assert_eq!(a.pixels(), 12);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Checksum<C> {
@@ -85,6 +89,8 @@ where
         Ok(())
     }
 
+    /// Every colour of `colors` (the renderer hands exactly the area's; a
+    /// longer iterator is counted to its end).
     fn fill_contiguous<I: IntoIterator<Item = C>>(
         &mut self,
         _area: &Rectangle,
@@ -92,6 +98,18 @@ where
     ) -> Result<(), Infallible> {
         self.fill_contiguous_raw(colors);
         Ok(())
+    }
+
+    /// The area's pixels of `color` (the default hands `fill_contiguous` an
+    /// endless iterator).
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
+        let n = area.size.width as usize * area.size.height as usize;
+        self.fill_contiguous_raw(core::iter::repeat_n(color, n));
+        Ok(())
+    }
+
+    fn clear(&mut self, color: C) -> Result<(), Infallible> {
+        self.fill_solid(&Rectangle::new(Point::zero(), self.size), color)
     }
 }
 

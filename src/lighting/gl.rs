@@ -35,7 +35,7 @@
 //! | `GL_LIGHT_MODEL_TWO_SIDE` | [`GlScene::back_lighting`] ([`BackFaces`]) for the back faces |
 //! | `GL_LIGHT_MODEL_COLOR_CONTROL` = `GL_SEPARATE_SPECULAR_COLOR` | [`LitColor`](crate::lighting::LitColor), [`SeparateSpecular`](crate::lighting::SeparateSpecular) |
 //! | `glColorMaterial` + `GL_COLOR_MATERIAL` | [`GlColorMaterial`] → [`ColorMaterial`] |
-//! | `GL_NORMALIZE`, `GL_RESCALE_NORMAL` | [`GlNormals`], [`eye_normal`] |
+//! | `GL_NORMALIZE`, `GL_RESCALE_NORMAL` | [`GlNormals`], [`GlNormals::eye_normal`] |
 //! | lit alpha (the material's diffuse alpha) | [`GlMaterial::alpha`] (the pixel formats have no alpha) |
 //!
 //! Coordinates are eye space (the eye at the origin looking down −z), as OpenGL
@@ -216,10 +216,11 @@ impl GlLight {
     }
 }
 
-/// The light types an OpenGL light converts to (see [`GlLight::to_light`]):
-/// sealed, not re-exported (issue 18).
+/// The light types an OpenGL light converts to (see [`GlLight::to_light`]) and
+/// the light sets [`GlScene::lighting`] builds: sealed, not re-exported
+/// (issue 18).
 mod from_gl {
-    use super::{GlLight, ParamError};
+    use super::{GlLight, LightSet, ParamError, Scalar};
 
     /// A light type that an OpenGL light converts to: `DirectionalLight`
     /// (`w = 0`), `PointLight` (`w ≠ 0`, cutoff 180), `SpotLight` (`w ≠ 0`,
@@ -229,8 +230,18 @@ mod from_gl {
         /// The light of `light`'s parameters.
         fn from_gl_light(light: &GlLight) -> Result<Self, ParamError>;
     }
+
+    /// A light set built from the enabled OpenGL lights: one light type
+    /// (`DirectionalLight`, `PointLight`, `SpotLight` or `AnyLight`, see
+    /// `GlLight::to_light`) for exactly one light, `[L; K]` for exactly `K`
+    /// lights, `heapless::Vec<L, K>` for up to `K` (OpenGL guarantees 8).
+    pub trait GlLightSet<S: Scalar>: LightSet<S> + Sized {
+        /// The set of `lights`; `ParamError::LightCount` when their number does
+        /// not fit, `ParamError::LightKind` when a light is of another kind.
+        fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError>;
+    }
 }
-use from_gl::FromGlLight;
+use from_gl::{FromGlLight, GlLightSet};
 
 impl<S: Scalar> FromGlLight for AnyLight<S> {
     fn from_gl_light(light: &GlLight) -> Result<Self, ParamError> {
@@ -265,16 +276,6 @@ from_gl_kind!(
     Spot,
     "a SpotLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF in 0..=90"
 );
-
-/// A light set built from the enabled OpenGL lights: one light type
-/// ([`DirectionalLight`], [`PointLight`], [`SpotLight`] or [`AnyLight`], see
-/// [`GlLight::to_light`]) for exactly one light, `[L; K]` for exactly `K` lights,
-/// `heapless::Vec<L, K>` for up to `K` (OpenGL guarantees 8).
-pub trait GlLightSet<S: Scalar>: LightSet<S> + Sized {
-    /// The set of `lights`; [`ParamError::LightCount`] when their number does not
-    /// fit, [`ParamError::LightKind`] when a light is of another kind.
-    fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError>;
-}
 
 macro_rules! gl_light_set_single {
     ($($ty:ident),*) => {$(
@@ -531,10 +532,13 @@ impl<'a> GlScene<'a> {
     /// The lighting of the front faces in tier `S`: the light set `L`, reflection
     /// model `M` (OpenGL's is [`BlinnPhong`]) and viewer `V` of the caller's
     /// choosing, built from the GL state and [checked](Lighting::checked) against
-    /// the tier.
+    /// the tier. `L` is one light type ([`DirectionalLight`], [`PointLight`],
+    /// [`SpotLight`] or [`AnyLight`], see [`GlLight::to_light`]) for exactly one
+    /// enabled light, `[L; K]` for exactly `K`, `heapless::Vec<L, K>` for up to
+    /// `K` (OpenGL guarantees 8).
     ///
     /// Errors: invalid GL parameters (as `GL_INVALID_VALUE`), lights that `L`
-    /// cannot hold ([`GlLightSet`]), a viewer type that does not match
+    /// cannot hold ([`ParamError::LightCount`], [`ParamError::LightKind`]), a viewer type that does not match
     /// `GL_LIGHT_MODEL_LOCAL_VIEWER` ([`GlViewer`]), and terms beyond the tier's
     /// range ([`ParamError::TierRange`]).
     ///
@@ -615,6 +619,7 @@ impl<'a> GlScene<'a> {
             NoFog,
             self.color_material_on(face),
         )
+        .eye_space()
         .checked()
     }
 }
@@ -634,56 +639,58 @@ pub enum GlNormals {
     Rescale,
 }
 
-/// The eye-space normal OpenGL lights for object-space normal `n` under
-/// `modelview`: `M⁻ᵀ·n` (upper-left 3×3), then normalised or rescaled as `mode`
-/// says. A singular matrix gives the zero vector. In the fixed tiers a normal
-/// component beyond ±2 saturates; the mesh renderer always normalises (it lights
-/// as `GL_NORMALIZE` does), and so does the per-triangle front
-/// ([`VertexIn::normal`](crate::shade::VertexIn::normal) is normalised by
-/// every mode).
-///
-/// ```
-/// use fixshade::lighting::gl::{eye_normal, GlNormals};
-/// use fixshade::num::Mat4;
-/// let m = Mat4::scale([2.0, 2.0, 2.0]);
-/// let n = [0.0, 0.0, 1.0];
-/// assert_eq!(eye_normal(&m, n, GlNormals::AsGiven), [0.0, 0.0, 0.5]);
-/// assert_eq!(eye_normal(&m, n, GlNormals::Rescale), [0.0, 0.0, 1.0]);
-/// assert_eq!(eye_normal(&m, n, GlNormals::Normalize), [0.0, 0.0, 1.0]);
-/// ```
-pub fn eye_normal(modelview: &Mat4, n: [f32; 3], mode: GlNormals) -> [f32; 3] {
-    let m: [[f64; 3]; 3] =
-        core::array::from_fn(|r| core::array::from_fn(|c| f64::from(modelview.m[r][c])));
-    let cof = |r: usize, c: usize| {
-        let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
-        m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]
-    };
-    let det = m[0][0] * cof(0, 0) + m[0][1] * cof(0, 1) + m[0][2] * cof(0, 2);
-    if det == 0.0 || !det.is_finite() {
-        return [0.0; 3];
-    }
-    // M⁻ᵀ = cof(M)/det; M⁻¹ = cof(M)ᵀ/det
-    let nd = n.map(f64::from);
-    let t: [f64; 3] =
-        core::array::from_fn(|r| (0..3).map(|c| cof(r, c) * nd[c]).sum::<f64>() / det);
-    let len = |v: [f64; 3]| libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    let k = match mode {
-        GlNormals::AsGiven => 1.0,
-        GlNormals::Normalize => {
-            let l = len(t);
-            if l > 0.0 {
-                1.0 / l
-            } else {
-                0.0
+impl GlNormals {
+    /// The eye-space normal OpenGL lights for object-space normal `n` under
+    /// `modelview`: `M⁻ᵀ·n` (upper-left 3×3), then normalised or rescaled as `self`
+    /// says. A singular matrix gives the zero vector. In the fixed tiers a normal
+    /// component beyond ±2 saturates; the mesh renderer always normalises (it lights
+    /// as `GL_NORMALIZE` does), and so does the per-triangle front
+    /// ([`VertexIn::normal`](crate::shade::VertexIn::normal) is normalised by
+    /// every mode).
+    ///
+    /// ```
+    /// use fixshade::lighting::gl::GlNormals;
+    /// use fixshade::num::Mat4;
+    /// let m = Mat4::scale([2.0, 2.0, 2.0]);
+    /// let n = [0.0, 0.0, 1.0];
+    /// assert_eq!(GlNormals::AsGiven.eye_normal(&m, n), [0.0, 0.0, 0.5]);
+    /// assert_eq!(GlNormals::Rescale.eye_normal(&m, n), [0.0, 0.0, 1.0]);
+    /// assert_eq!(GlNormals::Normalize.eye_normal(&m, n), [0.0, 0.0, 1.0]);
+    /// ```
+    pub fn eye_normal(self, modelview: &Mat4, n: [f32; 3]) -> [f32; 3] {
+        let m: [[f64; 3]; 3] =
+            core::array::from_fn(|r| core::array::from_fn(|c| f64::from(modelview.m[r][c])));
+        let cof = |r: usize, c: usize| {
+            let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
+            m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]
+        };
+        let det = m[0][0] * cof(0, 0) + m[0][1] * cof(0, 1) + m[0][2] * cof(0, 2);
+        if det == 0.0 || !det.is_finite() {
+            return [0.0; 3];
+        }
+        // M⁻ᵀ = cof(M)/det; M⁻¹ = cof(M)ᵀ/det
+        let nd = n.map(f64::from);
+        let t: [f64; 3] =
+            core::array::from_fn(|r| (0..3).map(|c| cof(r, c) * nd[c]).sum::<f64>() / det);
+        let len = |v: [f64; 3]| libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        let k = match self {
+            GlNormals::AsGiven => 1.0,
+            GlNormals::Normalize => {
+                let l = len(t);
+                if l > 0.0 {
+                    1.0 / l
+                } else {
+                    0.0
+                }
             }
-        }
-        GlNormals::Rescale => {
-            // row 3 of M⁻¹ is column 3 of cof(M), divided by det
-            let row3 = [cof(0, 2), cof(1, 2), cof(2, 2)].map(|v| v / det);
-            1.0 / len(row3)
-        }
-    };
-    t.map(|v| (v * k) as f32)
+            GlNormals::Rescale => {
+                // row 3 of M⁻¹ is column 3 of cof(M), divided by det
+                let row3 = [cof(0, 2), cof(1, 2), cof(2, 2)].map(|v| v / det);
+                1.0 / len(row3)
+            }
+        };
+        t.map(|v| (v * k) as f32)
+    }
 }
 
 #[cfg(test)]
@@ -731,8 +738,8 @@ mod tests {
     fn rescale_is_normalize_for_uniform_scales() {
         let m = Mat4::scale([3.0, 3.0, 3.0]).mul(&Mat4::rotate_y(0.7));
         for n in [[0.0, 0.0, 1.0], [0.6, 0.0, 0.8], [0.0, -1.0, 0.0]] {
-            let a = eye_normal(&m, n, GlNormals::Rescale);
-            let b = eye_normal(&m, n, GlNormals::Normalize);
+            let a = GlNormals::Rescale.eye_normal(&m, n);
+            let b = GlNormals::Normalize.eye_normal(&m, n);
             for i in 0..3 {
                 assert!((a[i] - b[i]).abs() < 1e-6, "{a:?} {b:?}");
             }

@@ -27,6 +27,11 @@ pub trait Illuminate {
     fn directional(&self) -> Option<DirectionalTerms<Self::Scalar>> {
         None
     }
+    /// Whether the lights are in eye coordinates, where the renderer hands
+    /// points and normals (see [`Lighting::new`]); the default is `true`.
+    fn lights_in_eye_space(&self) -> bool {
+        true
+    }
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
     fn shade(&self, p: &Point3<Self::Scalar>, n: Vec3<Self::Scalar>) -> Rgb<Self::Scalar>;
     /// The colour in OpenGL's primary and secondary parts, with a vertex colour for
@@ -52,6 +57,9 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illumina
 {
     type Scalar = S;
     const NEEDS_POSITION: bool = Self::NEEDS_POSITION;
+    fn lights_in_eye_space(&self) -> bool {
+        self.is_eye_space()
+    }
     type Fast =
         <<<S::Fixed14 as Flag>::And<L::OneDirectional> as Flag>::And<V::AtInfinity> as Flag>::And<
             F::Clear,
@@ -131,6 +139,9 @@ impl<I: Illuminate> Illuminate for BackFaces<I> {
     type Scalar = I::Scalar;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
     type Fast = Off;
+    fn lights_in_eye_space(&self) -> bool {
+        self.0.lights_in_eye_space()
+    }
     #[inline(always)]
     fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
         self.0.shade(p, n.neg())
@@ -160,6 +171,9 @@ impl<I: Illuminate> Illuminate for SeparateSpecular<I> {
     type Scalar = I::Scalar;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
     type Fast = Off;
+    fn lights_in_eye_space(&self) -> bool {
+        self.0.lights_in_eye_space()
+    }
     #[inline(always)]
     fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
         self.0.shade_parts(p, n, None).separate()

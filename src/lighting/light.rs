@@ -278,17 +278,20 @@ pub trait LightSet<S: Scalar> {
     fn directional(&self) -> Option<(Vec3<S>, &Prepared<S>)> {
         None
     }
-    /// See [`LightSource::prepare`].
+    /// Multiplies each light's colours with `material` and precomputes what is
+    /// constant for a viewer direction `view` (`None` for a local viewer).
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>);
     /// The sum of the lights' point-independent ambient contributions.
     fn constant_ambient(&self) -> Rgb<S>;
-    /// Hands each light's [`Incident`] at `p` to `visitor`.
+    /// Hands the light arriving at `p` from each light to `visitor`.
     fn for_each<V: IncidentVisitor<S>>(&self, p: &Point3<S>, visitor: &mut V);
-    /// Hands each light's [`LightSource::color_terms`] for `material` to `f`
+    /// Hands each light's colour terms for `material`, in `f32`, to `f`
     /// (construction time only).
     fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms));
-    /// See [`LightSource::transform`] (on an error, the lights before the
-    /// failing one are moved).
+    /// Moves every light by `m` (world to eye coordinates: the camera's view),
+    /// as OpenGL transforms `GL_POSITION` and `GL_SPOT_DIRECTION` by the
+    /// model-view matrix; on an error, the lights before the failing one are
+    /// moved. [`Lighting::viewed`](crate::lighting::Lighting::viewed) calls it.
     fn transform(&mut self, m: &Mat4) -> Result<(), ParamError>;
 }
 
@@ -422,7 +425,7 @@ impl<S: Scalar> DirectionalLight<S> {
     }
 
     /// The light's colours times the material's, and the halfway vector, as set by
-    /// the last [`LightSource::prepare`].
+    /// the last `prepare`.
     pub fn prepared(&self) -> &Prepared<S> {
         &self.pre
     }

@@ -47,10 +47,12 @@ mod viewer;
 
 pub use any::{AnyLight, LightDesc, LightKind};
 pub use illuminate::{BackFaces, DirectionalTerms, Illuminate, SeparateSpecular};
-pub use light::{
-    Attenuation, ColorTerms, DirectionalLight, Incident, IncidentVisitor, LightColors, LightSet,
-    LightSource, PointLight, Prepared, SpotLight,
-};
+pub use light::{Attenuation, DirectionalLight, LightColors, LightSet, PointLight, SpotLight};
+// The machinery of `LightSet` (each light's incident terms, its colours
+// prepared for a material, the visitor that sums them): public in their
+// module, not nameable outside the crate (the crate's lights, arrays,
+// `heapless::Vec` and tuples implement `LightSet`).
+pub(crate) use light::{ColorTerms, Incident, IncidentVisitor};
 pub use material::{AmbientSource, Material, MaterialDesc};
 pub use model::{BlinnPhong, Full, Lambert, Model, Phong, Specular, Terms};
 pub use viewer::{FogModel, InfiniteViewer, LinearFog, LocalViewer, NoFog, Viewer};
@@ -179,26 +181,51 @@ where
     ambient_base: Rgb<S>,
     viewer: V,
     fog: F,
+    /// The lights are in eye coordinates ([`Lighting::viewed`],
+    /// [`Lighting::eye_space`]); `false`: world coordinates, not yet seen
+    /// through a camera (the renderer refuses them).
+    eye: bool,
     model: PhantomData<M>,
 }
 
+/// OpenGL's default `GL_LIGHT_MODEL_AMBIENT` (without alpha).
+const GL_GLOBAL_AMBIENT: [f32; 3] = [0.2; 3];
+
 impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
-    /// Lights and a material, the viewer at infinity on +z, no fog and no global
-    /// ambient light. The lights are taken in eye coordinates; lights placed in
-    /// the world are seen through the camera with [`Lighting::viewed`].
+    /// Lights and a material with OpenGL's defaults for the rest: the viewer
+    /// at infinity on +z (`GL_LIGHT_MODEL_LOCAL_VIEWER` false), no fog, and a
+    /// global ambient light of 0.2 (`GL_LIGHT_MODEL_AMBIENT`), multiplied
+    /// with the material's ambient colour; [`Lighting::with_global_ambient_f32`]
+    /// changes it (`[0.0; 3]`: none).
+    ///
+    /// The lights are in **world coordinates**: before the renderer draws with
+    /// this lighting, see them through the camera with [`Lighting::viewed`]
+    /// (once per frame for a moving camera); [`MeshDraw::new`] and
+    /// [`draw_triangle`] refuse a lighting that was not
+    /// ([`RenderError::WorldLights`]), rather than light the scene from the
+    /// wrong side. Lights given in eye coordinates (OpenGL's `GL_POSITION`
+    /// after the camera's matrix, a lamp that moves with the camera) say so
+    /// with [`Lighting::eye_space`]; [`GlScene::lighting`] does.
+    ///
+    /// [`MeshDraw::new`]: crate::render::MeshDraw::new
+    /// [`draw_triangle`]: crate::render::draw_triangle
+    /// [`RenderError::WorldLights`]: crate::error::RenderError::WorldLights
+    /// [`GlScene::lighting`]: crate::lighting::gl::GlScene::lighting
     pub fn new(lights: L, material: Material<S>) -> Self {
-        Self::with_parts(
+        Self::build(
             lights,
             material,
-            Rgb::BLACK,
+            GL_GLOBAL_AMBIENT,
             InfiniteViewer::default(),
             NoFog,
+            ColorMaterial::Off,
         )
     }
 }
 
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting<S, L, M, V, F> {
-    /// Every part at once.
+    /// Every part at once (the lights in world coordinates, as
+    /// [`Lighting::new`]).
     pub fn with_parts(
         lights: L,
         material: Material<S>,
@@ -243,8 +270,47 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             ambient_base,
             viewer,
             fog,
+            eye: false,
             model: PhantomData,
         }
+    }
+
+    /// [`Lighting::build`] with the lights in eye coordinates if `eye` (the
+    /// `with_*` methods keep the coordinates of the lighting they start from).
+    fn remake<M2: Model, V2: Viewer<S>, F2: FogModel<S>>(
+        eye: bool,
+        lights: L,
+        material: Material<S>,
+        global_ambient: [f32; 3],
+        viewer: V2,
+        fog: F2,
+        color_material: ColorMaterial,
+    ) -> Lighting<S, L, M2, V2, F2> {
+        let mut l = Lighting::build(
+            lights,
+            material,
+            global_ambient,
+            viewer,
+            fog,
+            color_material,
+        );
+        l.eye = eye;
+        l
+    }
+
+    /// The same lighting with its lights taken as given, in eye coordinates
+    /// (the eye at the origin looking down −z): OpenGL's `GL_POSITION` set
+    /// after the camera's matrix, or a lamp that moves with the camera. See
+    /// [`Lighting::new`].
+    pub fn eye_space(mut self) -> Self {
+        self.eye = true;
+        self
+    }
+
+    /// Whether the lights are in eye coordinates ([`Lighting::viewed`] or
+    /// [`Lighting::eye_space`]); the renderer draws only with such a lighting.
+    pub fn is_eye_space(&self) -> bool {
+        self.eye
     }
 
     /// The same configuration with a global ambient light `Ia` (OpenGL's
@@ -256,7 +322,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// [`Lighting::with_global_ambient`] from `f32` channels (any sign), multiplied
     /// with the material's ambient colour before it is converted to the tier.
     pub fn with_global_ambient_f32(self, ambient: [f32; 3]) -> Self {
-        Self::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             ambient,
@@ -276,7 +343,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// its upper-left 3×3, normalised again — what OpenGL does to `GL_POSITION`
     /// and `GL_SPOT_DIRECTION` when they are set after the camera's matrix
     /// (`gl::GlLight::transformed` for parameter sets). Without it, lights are
-    /// taken as given, in eye coordinates. Directions and positions move in
+    /// taken as given ([`Lighting::eye_space`]). Directions and positions move in
     /// the tier's precision (a Q14 direction within one unit of the
     /// `f64` result); costs a few hundred `f32` operations per light (soft float
     /// on a core without an FPU) and prepares the lights again.
@@ -308,19 +375,22 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     {
         let mut lights = self.lights.clone();
         lights.transform(view)?;
-        Ok(Self::build(
+        let mut l = Self::build(
             lights,
             self.material,
             self.global_ambient,
             self.viewer,
             self.fog,
             self.color_material,
-        ))
+        );
+        l.eye = true;
+        Ok(l)
     }
 
     /// The same configuration with another viewer.
     pub fn with_viewer<V2: Viewer<S>>(self, viewer: V2) -> Lighting<S, L, M, V2, F> {
-        Lighting::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
@@ -332,7 +402,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The same configuration with fog.
     pub fn with_fog<F2: FogModel<S>>(self, fog: F2) -> Lighting<S, L, M, V, F2> {
-        Lighting::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
@@ -344,7 +415,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The same configuration with another material model.
     pub fn with_model<M2: Model>(self) -> Lighting<S, L, M2, V, F> {
-        Lighting::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
@@ -356,7 +428,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The same lights and viewer with another material.
     pub fn with_material(self, material: Material<S>) -> Self {
-        Self::build(
+        Self::remake(
+            self.eye,
             self.lights,
             material,
             self.global_ambient,
@@ -369,7 +442,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// The same configuration with `GL_COLOR_MATERIAL` in mode `mode`: the vertex
     /// colour given to [`Lighting::shade_parts`] replaces that material colour.
     pub fn with_color_material(self, mode: ColorMaterial) -> Self {
-        Self::build(
+        Self::remake(
+            self.eye,
             self.lights,
             self.material,
             self.global_ambient,
@@ -410,7 +484,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// let mat = Material::new(&MaterialDesc { diffuse: [0.3; 3], ..MaterialDesc::default() }).unwrap();
     /// let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat).checked().unwrap();
     /// let c = lit.shade(&Lighting::<Q14, DirectionalLight<Q14>>::origin(), Vec3::from_f32([0.0, 0.0, 1.0]));
-    /// assert_eq!(c.to_rgb888().r(), 191); // 0.75
+    /// // 0.75, plus OpenGL's global ambient 0.2 × the default material ambient 0.2
+    /// assert_eq!(c.to_rgb888().r(), 201); // 0.79
     /// // on a material of 1.0 the product 2.5 does not
     /// let mat = Material::new(&MaterialDesc { diffuse: [1.0; 3], ..MaterialDesc::default() }).unwrap();
     /// let err = Lighting::<Q14, _, BlinnPhong>::new(light, mat).checked().unwrap_err();

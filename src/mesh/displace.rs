@@ -40,15 +40,10 @@ use crate::texture::{Filter, TexCoord, Texture, TEX_FRAC};
 ///
 /// [`MeshError::BufferTooSmall`] when `out` is shorter than the positions;
 /// [`MeshError::TooManyVertices`] beyond 65536 positions.
-///
-/// ```
-/// use fixshade::mesh::weld_by_position;
-/// let mut w = [0u16; 3];
-/// weld_by_position(&[[1, 2, 3], [4, 5, 6], [1, 2, 3]], &mut w)?;
-/// assert_eq!(w, [0, 1, 0]);
-/// # Ok::<(), fixshade::mesh::MeshError>(())
-/// ```
-pub fn weld_by_position(positions: &[[i16; 3]], out: &mut [u16]) -> Result<usize, MeshError> {
+pub(crate) fn weld_by_position(
+    positions: &[[i16; 3]],
+    out: &mut [u16],
+) -> Result<usize, MeshError> {
     let n = positions.len();
     if n > 1 << 16 {
         return Err(MeshError::TooManyVertices { needed: n });
@@ -95,7 +90,7 @@ fn normalize(v: [f32; 3]) -> [f32; 3] {
 /// `normals`. Returns the number of vertices.
 ///
 /// **Seams.** Vertices with the same raw position (a texture seam, a pole
-/// fan) are welded ([`weld_by_position`], into the caller's `weld`): they all
+/// fan) are welded (for every vertex the lowest index with its position, into the caller's `weld`): they all
 /// take the height, normal and displacement of their representative (the
 /// lowest such index), so they move identically and no crack opens, and
 /// their normals are computed over the faces of all of them together.
@@ -252,6 +247,16 @@ mod tests {
 
     const N: (usize, usize) = textured_sphere_counts(16, 24);
     static SPHERE: TexturedMeshData<{ N.0 }, { N.1 }> = TexturedMeshData::uv_sphere(16, 24, 13);
+
+    #[test]
+    fn weld_names_the_lowest_index_of_a_position() {
+        let mut w = [0u16; 3];
+        assert_eq!(
+            weld_by_position(&[[1, 2, 3], [4, 5, 6], [1, 2, 3]], &mut w),
+            Ok(3)
+        );
+        assert_eq!(w, [0, 1, 0]);
+    }
 
     struct Out {
         weld: [u16; N.0],

@@ -5,7 +5,9 @@ use super::MeshError;
 use crate::num::{cross3, dot3};
 
 /// Per-vertex tangents from positions, unit normals, texture coordinates and
-/// triangles, into `out` (`[tx, ty, tz, w]`, one per vertex).
+/// triangles, into `out` in the Q14 format of
+/// [`Mesh::with_tangents`](super::Mesh::with_tangents): `[tx, ty, tz, w]`, one
+/// per vertex, the unit tangent rounded to Q14 and the handedness `w = ±16384`.
 ///
 /// Per triangle, `dP/du` and `dP/dv` (the edge vectors solved against the
 /// texture-coordinate edges) are accumulated at its three vertices (weighted
@@ -13,7 +15,7 @@ use crate::num::{cross3, dot3};
 /// accumulated `dP/du` is made orthogonal to the normal (Gram–Schmidt) and
 /// normalised into `t`; the handedness `w = ±1` is the sign of
 /// `(N × T)·dP/dv`, so that the bitangent is `B = w · N × T` (`w = −1` where
-/// the texture is mirrored). Triangles whose texture coordinates have zero
+/// the texture is mirrored; ±1 is stored as ±16384). Triangles whose texture coordinates have zero
 /// area are skipped; a vertex no triangle references gets an arbitrary unit
 /// tangent orthogonal to its normal with `w = 1`.
 ///
@@ -31,13 +33,13 @@ use crate::num::{cross3, dot3};
 /// let pos = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
 /// let nrm = [[0.0, 0.0, 1.0]; 4];
 /// let uv = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-/// let mut t = [[0.0f32; 4]; 4];
+/// let mut t = [[0i16; 4]; 4];
 /// vertex_tangents(&pos, &nrm, &uv, &[[0, 1, 2], [0, 2, 3]], &mut t)?;
-/// assert_eq!(t[0], [1.0, 0.0, 0.0, 1.0]);
+/// assert_eq!(t[0], [16384, 0, 0, 16384]);
 /// // mirrored in v: the handedness flips
 /// let uv = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
 /// vertex_tangents(&pos, &nrm, &uv, &[[0, 1, 2], [0, 2, 3]], &mut t)?;
-/// assert_eq!(t[0], [1.0, 0.0, 0.0, -1.0]);
+/// assert_eq!(t[0], [16384, 0, 0, -16384]);
 /// # Ok::<(), fixshade::mesh::MeshError>(())
 /// ```
 pub fn vertex_tangents(
@@ -45,7 +47,42 @@ pub fn vertex_tangents(
     normals: &[[f32; 3]],
     uvs: &[[f32; 2]],
     triangles: &[[u16; 3]],
-    out: &mut [[f32; 4]],
+    out: &mut [[i16; 4]],
+) -> Result<(), MeshError> {
+    tangents_into(positions, normals, uvs, triangles, out)
+}
+
+/// A tangent as stored: `f32` (the computed value) or Q14.
+pub(crate) trait Tangent {
+    /// From a unit tangent and its handedness `±1`.
+    fn from_f32(t: [f32; 4]) -> Self;
+}
+
+impl Tangent for [f32; 4] {
+    fn from_f32(t: [f32; 4]) -> Self {
+        t
+    }
+}
+
+impl Tangent for [i16; 4] {
+    fn from_f32(t: [f32; 4]) -> Self {
+        let q = |c: f32| libm::roundf(c.clamp(-1.0, 1.0) * 16384.0) as i16;
+        [
+            q(t[0]),
+            q(t[1]),
+            q(t[2]),
+            if t[3] < 0.0 { -16384 } else { 16384 },
+        ]
+    }
+}
+
+/// [`vertex_tangents`] into any [`Tangent`] format.
+pub(crate) fn tangents_into<T: Tangent>(
+    positions: &[[f32; 3]],
+    normals: &[[f32; 3]],
+    uvs: &[[f32; 2]],
+    triangles: &[[u16; 3]],
+    out: &mut [T],
 ) -> Result<(), MeshError> {
     let n = positions.len();
     check_len("normals", n, normals.len())?;
@@ -81,7 +118,7 @@ pub fn vertex_tangents(
     // pass 2: write
     accumulate(positions, normals, uvs, triangles, |v, t| {
         if let (Some(o), Ok(Ok(r))) = (out.get_mut(v), t.map(|t| finish(normals, v, t))) {
-            *o = r;
+            *o = T::from_f32(r);
         }
     });
     Ok(())
@@ -222,37 +259,6 @@ fn orthonormal(n: [f64; 3], a: [f64; 3]) -> Option<[f64; 3]> {
     Some(t.map(|c| c / l))
 }
 
-/// Converts `f32` tangents (from [`vertex_tangents`]) into the Q14 format of
-/// [`Mesh::with_tangents`](super::Mesh::with_tangents): the unit tangent
-/// rounded to Q14 in `[0..3]`, the handedness `±16384` in `[3]` (`w < 0` gives
-/// `−16384`). Errors: `out` too short, a non-finite component.
-///
-/// ```
-/// use fixshade::mesh::tangents_to_q14;
-/// let mut q = [[0i16; 4]; 2];
-/// tangents_to_q14(&[[1.0, 0.0, 0.0, 1.0], [0.0, 0.6, 0.8, -1.0]], &mut q)?;
-/// assert_eq!(q, [[16384, 0, 0, 16384], [0, 9830, 13107, -16384]]);
-/// # Ok::<(), fixshade::mesh::MeshError>(())
-/// ```
-pub fn tangents_to_q14(tangents: &[[f32; 4]], out: &mut [[i16; 4]]) -> Result<(), MeshError> {
-    check_len("out", tangents.len(), out.len())?;
-    for t in tangents {
-        for &c in t {
-            finite("tangents", c)?;
-        }
-    }
-    for (o, t) in out.iter_mut().zip(tangents) {
-        let q = |c: f32| libm::roundf(c.clamp(-1.0, 1.0) * 16384.0) as i16;
-        *o = [
-            q(t[0]),
-            q(t[1]),
-            q(t[2]),
-            if t[3] < 0.0 { -16384 } else { 16384 },
-        ];
-    }
-    Ok(())
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -275,14 +281,14 @@ mod tests {
         let uv = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
         let mut out = [[9.0f32; 4]; 4];
         assert_eq!(
-            vertex_tangents(&pos, &nrm, &uv, &[[0, 1, 4]], &mut out),
+            tangents_into(&pos, &nrm, &uv, &[[0, 1, 4]], &mut out),
             Err(MeshError::IndexOutOfRange {
                 triangle: 0,
                 index: 4
             })
         );
         assert_eq!(
-            vertex_tangents(&pos, &nrm, &uv[..3], &tris, &mut out),
+            tangents_into(&pos, &nrm, &uv[..3], &tris, &mut out),
             Err(MeshError::BufferTooSmall {
                 which: "uvs",
                 needed: 4,
@@ -290,7 +296,7 @@ mod tests {
             })
         );
         assert_eq!(
-            vertex_tangents(&pos, &nrm, &uv, &tris, &mut out[..2]),
+            tangents_into(&pos, &nrm, &uv, &tris, &mut out[..2]),
             Err(MeshError::BufferTooSmall {
                 which: "out",
                 needed: 4,
@@ -300,13 +306,13 @@ mod tests {
         // all texture coordinates equal: degenerate, nothing written
         let flat = [[0.5, 0.5]; 4];
         assert_eq!(
-            vertex_tangents(&pos, &nrm, &flat, &tris, &mut out),
+            tangents_into(&pos, &nrm, &flat, &tris, &mut out),
             Err(MeshError::Degenerate("texcoords"))
         );
         // collinear texture coordinates
         let line = [[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]];
         assert_eq!(
-            vertex_tangents(&pos, &nrm, &line, &tris, &mut out),
+            tangents_into(&pos, &nrm, &line, &tris, &mut out),
             Err(MeshError::Degenerate("texcoords"))
         );
         assert!(out.iter().all(|t| *t == [9.0; 4]));
@@ -319,23 +325,18 @@ mod tests {
             [0.0, 1.0, 0.0],
         ];
         assert_eq!(
-            vertex_tangents(&pos_z, &tilted, &uv, &tris, &mut out),
+            tangents_into(&pos_z, &tilted, &uv, &tris, &mut out),
             Err(MeshError::Degenerate("texcoords"))
         );
         let mut bad = uv;
         bad[2][0] = f32::NAN;
         assert_eq!(
-            vertex_tangents(&pos, &nrm, &bad, &tris, &mut out),
+            tangents_into(&pos, &nrm, &bad, &tris, &mut out),
             Err(MeshError::NotFinite("texcoords"))
         );
         assert_eq!(
-            vertex_tangents(&pos, &[[0.0; 3]; 4], &uv, &tris, &mut out),
+            tangents_into(&pos, &[[0.0; 3]; 4], &uv, &tris, &mut out),
             Err(MeshError::Degenerate("normal"))
-        );
-        let mut q = [[0i16; 4]; 1];
-        assert_eq!(
-            tangents_to_q14(&[[f32::NAN, 0.0, 0.0, 1.0]], &mut q),
-            Err(MeshError::NotFinite("tangents"))
         );
     }
 
@@ -368,7 +369,7 @@ mod tests {
                 uv
             };
             let mut out = [[0.0f32; 4]; 2 * N];
-            vertex_tangents(&pos, &nrm, &uv, &tris, &mut out).unwrap();
+            tangents_into(&pos, &nrm, &uv, &tris, &mut out).unwrap();
             for (k, t) in out.iter().enumerate() {
                 let tv = [t[0] as f64, t[1] as f64, t[2] as f64];
                 let n = nrm[k].map(f64::from);
@@ -392,7 +393,7 @@ mod tests {
         let (pos, nrm, _) = sq();
         let uv = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
         let mut out = [[0.0f32; 4]; 4];
-        vertex_tangents(&pos, &nrm, &uv, &[[0, 1, 2]], &mut out).unwrap();
+        tangents_into(&pos, &nrm, &uv, &[[0, 1, 2]], &mut out).unwrap();
         assert_eq!(out[3][2], 0.0);
         assert!((out[3][0].hypot(out[3][1]) - 1.0).abs() < 1e-6);
     }

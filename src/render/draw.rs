@@ -183,7 +183,10 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// [`RenderError::BufferTooSmall`] for a vertex cache shorter than the
     /// mesh's vertices, too few bins or resume records;
     /// [`RenderError::MissingAttribute`] when the shader reads texture
-    /// coordinates or tangents the mesh lacks. Nothing is drawn then.
+    /// coordinates or tangents the mesh lacks; [`RenderError::WorldLights`]
+    /// when its lighting's lights are in world coordinates, not seen through
+    /// the camera ([`Lighting::new`](crate::lighting::Lighting::new)). Nothing
+    /// is drawn then.
     pub fn new(
         layout: Layout,
         mesh: Mesh<'a>,
@@ -302,6 +305,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             bins,
             carry,
         } = memory;
+        kernel.check()?;
         if K::NEEDS_TEXCOORD && mesh.texcoords().is_empty() {
             return Err(RenderError::MissingAttribute("texture coordinates"));
         }

@@ -5,6 +5,7 @@
 
 use super::BandView;
 use crate::camera::{Clip, ClipSpace};
+use crate::error::RenderError;
 use crate::raster::clip::{self, ClipPoint, Polygon, Screen};
 use crate::raster::interp::{self, eighth, step_over, within, Linear, Persp, Varyings};
 use crate::raster::setup::at3;
@@ -493,6 +494,13 @@ pub struct Corner {
 /// band, e.g. from a [`DrawBand`](super::DrawBand) of your own); never
 /// panics.
 ///
+/// # Errors
+///
+/// The kernel's [`Kernel::check`] (a [`Shader`](crate::shade::Shader) whose
+/// lights are in world coordinates: [`RenderError::WorldLights`]); nothing is
+/// drawn then. It depends on the kernel only: check it once when setting up
+/// (as below) and the calls per band cannot fail.
+///
 /// ```
 /// use fixshade::camera::{Clip, ClipSpace};
 /// use fixshade::prelude::*;
@@ -508,11 +516,14 @@ pub struct Corner {
 ///             vertex: VertexIn::new([0, 0, 16384], [0; 3]),
 ///         };
 ///         let tri = [c(2, 2), c(2, 30), c(30, 16)];
-///         draw_triangle(band, &ClipSpace::SCREEN, &self.0, &tri, Cull::Back);
+///         // cannot fail: the kernel was checked when the item was made
+///         let _ = draw_triangle(band, &ClipSpace::SCREEN, &self.0, &tri, Cull::Back);
 ///     }
 /// }
-/// let lighting = fixshade::standard::blinn::<Q14>()?;
-/// let mut item = One(Shader::new(GouraudShading, &lighting, Linear));
+/// let lighting = fixshade::standard::blinn::<Q14>()?; // lights in eye coordinates
+/// let shader = Shader::new(GouraudShading, &lighting, Linear);
+/// shader.check()?;
+/// let mut item = One(shader);
 /// let (mut color, mut depth) = ([Rgb565::BLACK; 32 * 32], [0u16; 32 * 32]);
 /// let mut frame = FullFrame::new(32, 32, &mut color, Some(&mut depth))?;
 /// frame.render(Rgb565::BLACK, &mut [&mut item])?;
@@ -525,12 +536,14 @@ pub fn draw_triangle<K: Kernel>(
     kernel: &K,
     corners: &[Corner; 3],
     cull: Cull,
-) {
+) -> Result<(), RenderError> {
+    kernel.check()?;
     if space.is_perspective() {
         front::<K, true>(band, space, kernel, corners, cull)
     } else {
         front::<K, false>(band, space, kernel, corners, cull)
     }
+    Ok(())
 }
 
 /// [`draw_triangle`] in a clip space known to be perspective (`PERSP`) or

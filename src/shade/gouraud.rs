@@ -17,6 +17,9 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     type Varyings = [i32; 3];
     type Triangle = ();
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    fn check(&self) -> Result<(), crate::error::RenderError> {
+        self.check_lights()
+    }
 
     #[inline]
     fn vertex(&self, v: &super::VertexIn) -> [u16; 3] {

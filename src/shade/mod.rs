@@ -42,13 +42,14 @@ mod quadratic;
 mod segment;
 mod textured;
 
-pub use crate::color::{Dithered, Encoder, Gamma, Linear};
+pub use crate::color::{Dithered, Encoder, Linear};
 pub use incremental::IncrementalModel;
 pub use normalmap::NormalMapped;
 pub use quadratic::QuadraticModel;
 pub use textured::Textured;
 
 use crate::color::OutputColor;
+use crate::error::RenderError;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
 use crate::num::{Point3, Vec3};
@@ -150,6 +151,18 @@ pub struct Shader<'l, M: ModeState<I, C>, I: Illuminate, E, C> {
     pub(crate) encoder: E,
     pub(crate) state: <M as ModeState<I, C>>::State,
     color: PhantomData<(M, C)>,
+}
+
+impl<M: ModeState<I, C>, I: Illuminate, E, C> Shader<'_, M, I, E, C> {
+    /// [`Kernel::check`] of every shading mode: the lights are in eye
+    /// coordinates.
+    pub(crate) fn check_lights(&self) -> Result<(), RenderError> {
+        if self.lighting.lights_in_eye_space() {
+            Ok(())
+        } else {
+            Err(RenderError::WorldLights)
+        }
+    }
 }
 
 /// Per-mode constants a shader precomputes (the incremental mode's tables).
@@ -269,6 +282,15 @@ pub trait Kernel {
     /// Whether [`Kernel::vertex`] reads [`VertexIn::tangent`] (else the
     /// pipeline passes zeros and skips transforming the mesh's tangents).
     const NEEDS_TANGENT: bool = false;
+
+    /// Whether the kernel can draw, checked once by
+    /// [`MeshDraw::new`](crate::render::MeshDraw::new) and
+    /// [`draw_triangle`](crate::render::draw_triangle) before anything is
+    /// drawn. A [`Shader`] refuses a lighting whose lights are in world
+    /// coordinates ([`RenderError::WorldLights`]); the default is `Ok`.
+    fn check(&self) -> Result<(), RenderError> {
+        Ok(())
+    }
 
     /// The payload of vertex `v`.
     fn vertex(&self, v: &VertexIn) -> Self::Vertex;

@@ -484,6 +484,9 @@ where
     type Varyings = <M::Features as Surface>::Varyings;
     type Triangle = PixelTriangle;
     const USED: usize = used::<M::Features, I>();
+    fn check(&self) -> Result<(), crate::error::RenderError> {
+        self.check_lights()
+    }
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
     const NEEDS_TEXCOORD: bool = M::Features::MAP || M::Features::TEX;
     const NEEDS_TANGENT: bool = M::Features::MAP;

@@ -180,6 +180,9 @@ where
     type Vertex = [i16; 3];
     type Varyings = <I::Fast as PhongPath<I, C>>::Varyings;
     type Triangle = PixelTriangle;
+    fn check(&self) -> Result<(), crate::error::RenderError> {
+        self.check_lights()
+    }
     const USED: usize = <I::Fast as PhongPath<I, C>>::USED;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
 

@@ -30,16 +30,13 @@ mod normal_map;
 mod rgb565;
 
 pub(crate) use normal_map::Nearest;
-pub use normal_map::{bump_to_normals, normal_texel, normalize_texels, NormalMap, FLAT_NORMAL};
+pub use normal_map::{bump_to_normals, normal_texel, normalize_texels, NormalMap};
 pub(crate) use rgb565::{modulate_run, Pieces};
 
 use crate::error::TextureError;
 
 /// Fraction bits of a [`TexCoord`] component.
 pub(crate) const TEX_FRAC: u32 = 16;
-
-/// The largest `log2` of a texture side (32 768 texels).
-pub const MAX_LOG2_SIZE: u8 = 15;
 
 /// Texel data of a [`Texture`], row by row from the top-left texel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -160,6 +157,9 @@ impl Texture<'static> {
 }
 
 impl<'a> Texture<'a> {
+    /// The largest `log2` of a texture side (32 768 texels).
+    pub const MAX_LOG2_SIZE: u8 = 15;
+
     /// A texture of `2^log2_w` columns and `2^log2_h` rows. Errors: a side above
     /// 2^15 texels, data of another length than `w·h`, a palette of more than 256
     /// colours.
@@ -169,7 +169,7 @@ impl<'a> Texture<'a> {
         log2_h: u8,
         wrap: Wrap,
     ) -> Result<Self, TextureError> {
-        if log2_w > MAX_LOG2_SIZE || log2_h > MAX_LOG2_SIZE {
+        if log2_w > Self::MAX_LOG2_SIZE || log2_h > Self::MAX_LOG2_SIZE {
             return Err(TextureError::TooLarge {
                 log2: if log2_w > log2_h { log2_w } else { log2_h },
             });

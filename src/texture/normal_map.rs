@@ -51,8 +51,8 @@
 use super::{TexCoord, Wrap};
 use crate::error::TextureError;
 
-/// The flat normal `(0, 0, 1)`: a map of it shades like no map at all.
-pub const FLAT_NORMAL: [i16; 3] = [0, 0, 1 << 14];
+/// The flat normal `(0, 0, 1)`.
+const FLAT_NORMAL: [i16; 3] = NormalMap::FLAT;
 
 /// The largest `|x² + y² + z² − 2^28|` of a texel [`NormalMap::new`] accepts
 /// (`2^15`: a length within `1 ± 6.1·10⁻⁵`). Rounding each component of a
@@ -92,6 +92,10 @@ impl<'a> NormalMap<'a> {
     /// texture coordinates address a texel of a map up to that size.
     pub const MAX_LOG2_SIZE: u8 = 12;
 
+    /// The flat normal texel `(0, 0, 1)` in Q14: a map of it shades like no map
+    /// at all.
+    pub const FLAT: [i16; 3] = [0, 0, 1 << 14];
+
     /// A map of `2^w_log2 × 2^h_log2` texels, row by row from the top-left
     /// (`v = 0`) texel. Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], fewer texels
     /// than the size (extra texels are ignored), a texel that is not a unit
@@ -101,12 +105,12 @@ impl<'a> NormalMap<'a> {
     ///
     /// ```
     /// use fixshade::error::TextureError;
-    /// use fixshade::texture::{NormalMap, Wrap, FLAT_NORMAL};
-    /// static FLAT: [[i16; 3]; 1] = [FLAT_NORMAL];
+    /// use fixshade::texture::{NormalMap, Wrap};
+    /// static FLAT: [[i16; 3]; 1] = [NormalMap::FLAT];
     /// let map = NormalMap::new(&FLAT, 0, 0, Wrap::Repeat).unwrap();
     /// assert_eq!((map.width(), map.height()), (1, 1));
     /// // not unit length: a typed error, not an overflow in the kernel
-    /// let long = [FLAT_NORMAL, [i16::MAX; 3]];
+    /// let long = [NormalMap::FLAT, [i16::MAX; 3]];
     /// assert_eq!(
     ///     NormalMap::new(&long, 1, 0, Wrap::Repeat),
     ///     Err(TextureError::NotUnit { index: 1, texel: [i16::MAX; 3] })
@@ -302,11 +306,11 @@ pub fn normalize_texels(texels: &mut [[i16; 3]]) -> Result<(), TextureError> {
 /// non-finite `scale`. Nothing is written on error.
 ///
 /// ```
-/// use fixshade::texture::{bump_to_normals, Wrap, FLAT_NORMAL};
+/// use fixshade::texture::{bump_to_normals, NormalMap, Wrap};
 /// let heights = [77u8; 64];
 /// let mut out = [[0i16; 3]; 64];
 /// bump_to_normals(&heights, 3, 3, Wrap::Repeat, 4.0, &mut out)?;
-/// assert!(out.iter().all(|&t| t == FLAT_NORMAL));
+/// assert!(out.iter().all(|&t| t == NormalMap::FLAT));
 /// # Ok::<(), fixshade::error::TextureError>(())
 /// ```
 pub fn bump_to_normals(

@@ -487,10 +487,18 @@ impl<S: Scalar> Lightings<S> {
             let m = Material::<S>::new(&o.material).unwrap();
             let ls = lights.clone();
             match o.terms {
-                Terms4::Lambert => l.lam.push(Lighting::new(ls, m).with_global_ambient(g)),
-                Terms4::Brilliance => l.bri.push(Lighting::new(ls, m).with_global_ambient(g)),
-                Terms4::Phong => l.pho.push(Lighting::new(ls, m).with_global_ambient(g)),
-                Terms4::Blinn => l.bli.push(Lighting::new(ls, m).with_global_ambient(g)),
+                Terms4::Lambert => l
+                    .lam
+                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
+                Terms4::Brilliance => l
+                    .bri
+                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
+                Terms4::Phong => l
+                    .pho
+                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
+                Terms4::Blinn => l
+                    .bli
+                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
             }
         }
         l
@@ -687,7 +695,8 @@ impl<K: Kernel> DrawBand<K::Color> for Triangles<'_, K> {
                 &self.kernel,
                 &t.map(|v| v.corner()),
                 Cull::Back,
-            );
+            )
+            .expect("the kernel draws (Kernel::check)");
         }
     }
 }

@@ -143,7 +143,8 @@ fn silhouette_pair(cam: &Camera<Perspective>) -> (Vec<Rgb888>, Vec<Rgb888>, Stri
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
         key_light(),
         Material::new(&material([0.85, 0.35, 0.25], 0.5, 40.0)).unwrap(),
-    );
+    )
+    .eye_space();
     let shader = || Shader::<_, _, _, Rgb888>::new(PhongShading, &lighting, Linear);
     let plain = panel(mesh, &t, shader());
     let layout = Layout::full(SIDE, SIDE).unwrap();
@@ -230,7 +231,8 @@ pub fn normal_map() -> Image {
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
         key_light(),
         Material::new(&material([0.75, 0.72, 0.68], 0.45, 30.0)).unwrap(),
-    );
+    )
+    .eye_space();
     let low = LOW_SPHERE.mesh();
     let t_low = cam.mesh_transform(&model(), LOW_SPHERE.frac).unwrap();
     let t_high = cam.mesh_transform(&model(), 13).unwrap();
@@ -298,7 +300,8 @@ pub fn bump_displacement() -> Image {
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
         key_light(),
         Material::new(&material([0.35, 0.55, 0.8], 0.4, 30.0)).unwrap(),
-    );
+    )
+    .eye_space();
     let low = LOW_SPHERE.mesh();
     let t_low = cam.mesh_transform(&model(), LOW_SPHERE.frac).unwrap();
     let t_d = cam.mesh_transform(&model(), 13).unwrap();
@@ -347,7 +350,8 @@ pub fn textured() -> Image {
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
         key_light(),
         Material::new(&material([1.0, 1.0, 1.0], 0.6, 40.0)).unwrap(),
-    );
+    )
+    .eye_space();
     let low = LOW_SPHERE.mesh();
     let t = cam.mesh_transform(&model(), LOW_SPHERE.frac).unwrap();
     let shader =

@@ -177,7 +177,8 @@ impl<K> Tris<K> {
 impl<K: Kernel> DrawBand<K::Color> for Tris<K> {
     fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
         for t in &self.tris {
-            draw_triangle(band, &self.space, &self.kernel, t, self.cull);
+            draw_triangle(band, &self.space, &self.kernel, t, self.cull)
+                .expect("the kernel draws (Kernel::check)");
         }
     }
 }
@@ -403,7 +404,8 @@ impl<K: Kernel, P: Projection> DrawBand<K::Color> for Front<'_, K, P> {
                     vertex: VertexIn::new(self.t.normal(n), self.t.eye(p)),
                 }
             });
-            draw_triangle(band, &space, &self.kernel, &c, self.cull);
+            draw_triangle(band, &space, &self.kernel, &c, self.cull)
+                .expect("the kernel draws (Kernel::check)");
         }
     }
 }

@@ -34,7 +34,8 @@ pub fn render(
     let t = camera.mesh_transform(model, mesh.frac()).unwrap();
     let light = DirectionalLight::<Q14<2>>::white([-0.4, 0.5, 0.8]).unwrap();
     let white = MaterialDesc::classic([1.0, 1.0, 1.0], AmbientSource::Object, 0.15, 0.8, 0.4, 40.0);
-    let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(light, Material::new(&white).unwrap());
+    let lighting =
+        Lighting::<Q14<2>, _, BlinnPhong>::new(light, Material::new(&white).unwrap()).eye_space();
     match texture {
         Some(tex) => frame(
             mesh,

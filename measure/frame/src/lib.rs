@@ -252,7 +252,11 @@ pub fn inc_lighting() -> Result<Lighting<Q14, [Dir; 1], BlinnPhong>, ParamError>
         Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
             [standard::light()?],
             Material::new(&standard::material())?,
-        ),
+        )
+        // the standard scene: no global ambient light, the light in eye
+        // coordinates (as standard::blinn)
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space(),
     )
 }
 

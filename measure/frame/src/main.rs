@@ -7,7 +7,7 @@
 //!   rendering one complete frame of the standard scene into a
 //!   `fixshade::framebuffer::Checksum<Rgb565>` and returning
 //!   `status << 32 | checksum` (status 0: drawn, all 57 600 pixels sent).
-//!   `init()` converts the camera (`standard::fixed_camera()`, `f32`) and
+//!   `init()` converts the camera (`FixedCamera::new(&standard::camera()?)`, `f32`) and
 //!   builds every configuration's lighting once into statics; each frame builds
 //!   its mesh transform from the camera in integers (`standard::fixed_transform`); frame.py calls it first and counts
 //!   it separately. Buffers are statics (`.bss`), named for frame.py:
@@ -56,7 +56,7 @@ mod firmware {
     /// Converts the camera (once, in `f32`, before any frame). 0: done.
     #[no_mangle]
     pub unsafe extern "C" fn init() -> u32 {
-        match fixshade::standard::fixed_camera() {
+        match fixshade::standard::camera().and_then(|c| FixedCamera::new(&c)) {
             Ok(c) => (*addr_of_mut!(CAMERA)).write(c),
             Err(_) => return 1,
         };
@@ -263,9 +263,9 @@ fn main() {
         }
     }
 
-    let t =
-        fixshade::standard::fixed_transform(&fixshade::standard::fixed_camera().expect("camera"))
-            .expect("standard transform");
+    let camera = fixshade::standard::camera().expect("camera");
+    let camera = fixshade::camera::FixedCamera::new(&camera).expect("fixed camera");
+    let t = fixshade::standard::fixed_transform(&camera).expect("standard transform");
     let mut out = Vec::new();
     for name in CONFIGS {
         for band8 in [false, true] {

@@ -97,7 +97,9 @@ fn spot<S: Scalar>() -> SpotLight<S> {
 /// and material values from memory, as in a program whose scene is data.
 #[inline(never)]
 fn lighting<S: Scalar, L: LightSet<S>, M: Model>(lights: L) -> Lighting<S, L, M> {
-    black_box(Lighting::<S, L, M>::new(lights, material::<S>()))
+    // no global ambient light: the measured scene of every row (as before
+    // `Lighting::new` took OpenGL's 0.2)
+    black_box(Lighting::<S, L, M>::new(lights, material::<S>()).eye_space().with_global_ambient_f32([0.0; 3]))
 }
 
 /// A unit normal in Q14.
