@@ -124,24 +124,22 @@ mod mode {
 }
 pub(crate) use mode::Mode;
 
-impl Mode for FlatShading {
-    const NAME: &'static str = "flat";
+/// [`Mode`] for each plain shading mode, with its name.
+macro_rules! mode_names {
+    ($($mode:ty => $name:literal),* $(,)?) => {$(
+        impl Mode for $mode {
+            const NAME: &'static str = $name;
+        }
+    )*};
 }
-impl Mode for GouraudShading {
-    const NAME: &'static str = "gouraud";
-}
-impl Mode for PhongShading {
-    const NAME: &'static str = "phong";
-}
-impl Mode for GeneralPhongShading {
-    const NAME: &'static str = "phong_general";
-}
-impl Mode for IncrementalPhongShading {
-    const NAME: &'static str = "phong_inc";
-}
-impl Mode for QuadraticPhongShading {
-    const NAME: &'static str = "phong_quad";
-}
+mode_names!(
+    FlatShading => "flat",
+    GouraudShading => "gouraud",
+    PhongShading => "phong",
+    GeneralPhongShading => "phong_general",
+    IncrementalPhongShading => "phong_inc",
+    QuadraticPhongShading => "phong_quad",
+);
 
 /// A shader: a shading mode `M` with a lighting `I`, writing colours `C`
 /// through an encoder `E`.
