@@ -383,6 +383,41 @@ pub(crate) fn depth_runs(z: i32, dz: i32, depth: &mut [u16], mut shade: impl FnM
     }
 }
 
+/// The range of the values of the kernels that interpolate the unit normal
+/// and its dot products (Q14 with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
+/// bits): the span code checks |N|² itself; the values must only stay inside
+/// ±2 so that nothing wraps.
+#[inline(always)]
+pub(crate) const fn normal_range() -> (i32, i32) {
+    let two = 1 << (15 + crate::raster::ATTR_FRAC);
+    (-two, two - 1)
+}
+
+/// The [`Kernel`] items shared by the kernels that interpolate the eye-space
+/// unit normal (and `$n − 3` values derived from it) without a position:
+/// the colour, the vertex payload (the unit normal in Q14), the triangle
+/// constants (none) and the range of the values ([`normal_range`]).
+macro_rules! normal_kernel_items {
+    ($n:literal) => {
+        type Color = C;
+        /// The eye-space unit normal in Q14.
+        type Vertex = [i16; 3];
+        type Triangle = ();
+        const NEEDS_POSITION: bool = false;
+
+        #[inline]
+        fn vertex(&self, v: &$crate::shade::VertexIn) -> [i16; 3] {
+            $crate::shade::unit_q14(v.normal)
+        }
+
+        #[inline(always)]
+        fn safe(&self, _i: usize) -> (i32, i32) {
+            $crate::shade::normal_range()
+        }
+    };
+}
+pub(crate) use normal_kernel_items;
+
 /// `n / |n|` in Q14 for a vector of `i32` components (any length): 32-bit
 /// arithmetic only (the inverse square root of `crate::num::Q14`: a seed and
 /// two Newton steps, about the Q14 resolution). The zero vector stays zero.
