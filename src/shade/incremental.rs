@@ -316,26 +316,17 @@ fn run<C: OutputColor, const K: usize, const NEWTON: u32, const SPEC: bool>(
             // diffuse: N·L/|N| (Q14)
             let d = ((dot[0] >> 12) * r) >> 14;
             if d > 0 {
-                let d = d.min(16384);
-                acc[0] += (d * lt.kd[0]) >> 14;
-                acc[1] += (d * lt.kd[1]) >> 14;
-                acc[2] += (d * lt.kd[2]) >> 14;
+                super::add_term(&mut acc, d.min(16384), &lt.kd);
                 if SPEC {
                     // specular: (N·H/|N|)^n
                     let sp = state.pow.get(((dot[2] >> 12) * r) >> 14);
-                    acc[0] += (sp * lt.ks[0]) >> 14;
-                    acc[1] += (sp * lt.ks[1]) >> 14;
-                    acc[2] += (sp * lt.ks[2]) >> 14;
+                    super::add_term(&mut acc, sp, &lt.ks);
                 }
             }
             dot[0] += dot[1];
             dot[2] += dot[3];
         }
-        *p = C::from_channels([
-            (acc[0] >> 8).max(0).min(max[0]) as u32,
-            (acc[1] >> 8).max(0).min(max[1]) as u32,
-            (acc[2] >> 8).max(0).min(max[2]) as u32,
-        ]);
+        *p = super::from_acc(acc, max);
         // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
         // seeded with this pixel's r
         s += ds;

@@ -393,6 +393,27 @@ pub(crate) const fn normal_range() -> (i32, i32) {
     (-two, two - 1)
 }
 
+/// `acc += (k·w) ≫ 14` per channel: a light term `k` (Q14) times the
+/// channel weights `w` (Q14 of the encoded channels with 8 fraction bits),
+/// in the fixed-point fast kernels' pixel loops.
+#[inline(always)]
+pub(crate) fn add_term(acc: &mut [i32; 3], k: i32, w: &[i32; 3]) {
+    acc[0] += (k * w[0]) >> 14;
+    acc[1] += (k * w[1]) >> 14;
+    acc[2] += (k * w[2]) >> 14;
+}
+
+/// The colour of the channel sums `acc` (8 fraction bits), each clamped to
+/// `[0, max]`.
+#[inline(always)]
+pub(crate) fn from_acc<C: OutputColor>(acc: [i32; 3], max: [i32; 3]) -> C {
+    C::from_channels([
+        (acc[0] >> 8).max(0).min(max[0]) as u32,
+        (acc[1] >> 8).max(0).min(max[1]) as u32,
+        (acc[2] >> 8).max(0).min(max[2]) as u32,
+    ])
+}
+
 /// The [`Kernel`] items shared by the kernels that interpolate the eye-space
 /// unit normal (and `$n − 3` values derived from it) without a position:
 /// the colour, the vertex payload (the unit normal in Q14), the triangle
