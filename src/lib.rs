@@ -105,6 +105,8 @@
 
 #[cfg(test)]
 extern crate std;
+#[cfg(test)]
+mod test_rng;
 
 pub mod camera;
 pub mod color;

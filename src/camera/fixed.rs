@@ -503,17 +503,7 @@ mod tests {
     use super::*;
     use crate::camera::{Mat4, Viewport};
     use crate::camera::{Orthographic, Perspective};
-
-    /// xorshift
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-    }
+    use crate::test_rng::Rng;
 
     fn poses(r: &mut Rng) -> (Pose, Mat4) {
         let a = [r.next() as u16, r.next() as u16, r.next() as u16];

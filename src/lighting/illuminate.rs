@@ -135,27 +135,46 @@ pub struct DirectionalTerms<S> {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct BackFaces<I>(pub I);
 
-impl<I: Illuminate> Illuminate for BackFaces<I> {
-    type Scalar = I::Scalar;
-    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
-    type Fast = Off;
-    fn lights_in_eye_space(&self) -> bool {
-        self.0.lights_in_eye_space()
-    }
-    #[inline(always)]
-    fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
-        self.0.shade(p, n.neg())
-    }
-    #[inline(always)]
-    fn shade_parts(
-        &self,
-        p: &Point3<I::Scalar>,
-        n: Vec3<I::Scalar>,
-        color: Option<Rgb<I::Scalar>>,
-    ) -> LitColor<I::Scalar> {
-        self.0.shade_parts(p, n.neg(), color)
-    }
+/// [`Illuminate`] for a wrapper around a lighting `l` (the tier and the need
+/// of positions of `l`, no fast path): `shade` and `shade_parts` as given, in
+/// terms of `l`, the point `p`, the normal `n` and the vertex colour `color`.
+macro_rules! wrapper_illuminate {
+    (
+        $wrapper:ident,
+        |$l:ident, $p:ident, $n:ident| $shade:expr,
+        |$l2:ident, $p2:ident, $n2:ident, $color:ident| $parts:expr $(,)?
+    ) => {
+        impl<I: Illuminate> Illuminate for $wrapper<I> {
+            type Scalar = I::Scalar;
+            const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+            type Fast = Off;
+            fn lights_in_eye_space(&self) -> bool {
+                self.0.lights_in_eye_space()
+            }
+            #[inline(always)]
+            fn shade(&self, $p: &Point3<I::Scalar>, $n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
+                let $l = &self.0;
+                $shade
+            }
+            #[inline(always)]
+            fn shade_parts(
+                &self,
+                $p2: &Point3<I::Scalar>,
+                $n2: Vec3<I::Scalar>,
+                $color: Option<Rgb<I::Scalar>>,
+            ) -> LitColor<I::Scalar> {
+                let $l2 = &self.0;
+                $parts
+            }
+        }
+    };
 }
+
+wrapper_illuminate!(
+    BackFaces,
+    |l, p, n| l.shade(p, n.neg()),
+    |l, p, n, color| l.shade_parts(p, n.neg(), color),
+);
 
 /// `GL_SEPARATE_SPECULAR_COLOR` per point: [`Illuminate::shade`] is
 /// [`LitColor::separate`] (the primary and secondary colours clamped apart, then
@@ -167,24 +186,8 @@ impl<I: Illuminate> Illuminate for BackFaces<I> {
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SeparateSpecular<I>(pub I);
 
-impl<I: Illuminate> Illuminate for SeparateSpecular<I> {
-    type Scalar = I::Scalar;
-    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
-    type Fast = Off;
-    fn lights_in_eye_space(&self) -> bool {
-        self.0.lights_in_eye_space()
-    }
-    #[inline(always)]
-    fn shade(&self, p: &Point3<I::Scalar>, n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
-        self.0.shade_parts(p, n, None).separate()
-    }
-    #[inline(always)]
-    fn shade_parts(
-        &self,
-        p: &Point3<I::Scalar>,
-        n: Vec3<I::Scalar>,
-        color: Option<Rgb<I::Scalar>>,
-    ) -> LitColor<I::Scalar> {
-        self.0.shade_parts(p, n, color)
-    }
-}
+wrapper_illuminate!(
+    SeparateSpecular,
+    |l, p, n| l.shade_parts(p, n, None).separate(),
+    |l, p, n, color| l.shade_parts(p, n, color),
+);

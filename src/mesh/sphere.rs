@@ -56,9 +56,9 @@ fn check_common(
     centre: [f32; 3],
     radius: f32,
     counts: (usize, usize),
-    positions: usize,
-    normals: usize,
-    tris: usize,
+    positions: &[[f32; 3]],
+    normals: &[[f32; 3]],
+    tris: &[[u16; 3]],
 ) -> Result<(), MeshError> {
     for c in centre {
         finite("centre", c)?;
@@ -69,9 +69,9 @@ fn check_common(
     if counts.0 > 1 << 16 {
         return Err(MeshError::TooManyVertices { needed: counts.0 });
     }
-    check_len("positions", counts.0, positions)?;
-    check_len("normals", counts.0, normals)?;
-    check_len("triangles", counts.1, tris)
+    check_len("positions", counts.0, positions.len())?;
+    check_len("normals", counts.0, normals.len())?;
+    check_len("triangles", counts.1, tris.len())
 }
 
 /// `p = centre + radius·n` in `f32` (`n` unit).
@@ -135,14 +135,7 @@ pub fn uv_sphere(
         return Err(MeshError::OutOfRange("slices"));
     }
     let counts = uv_sphere_counts(stacks, slices);
-    check_common(
-        centre,
-        radius,
-        counts,
-        positions.len(),
-        normals.len(),
-        tris.len(),
-    )?;
+    check_common(centre, radius, counts, positions, normals, tris)?;
     let (nv, nt) = counts;
     // vertices
     let mut put = |k: usize, n: [f32; 3]| {
@@ -266,14 +259,7 @@ pub fn icosphere(
         return Err(MeshError::OutOfRange("level"));
     }
     let counts = icosphere_counts(level);
-    check_common(
-        centre,
-        radius,
-        counts,
-        positions.len(),
-        normals.len(),
-        tris.len(),
-    )?;
+    check_common(centre, radius, counts, positions, normals, tris)?;
     // Unit vectors in `positions` while subdividing.
     for (p, v) in positions.iter_mut().zip(ICO_VERTICES) {
         *p = unit(v);

@@ -11,6 +11,7 @@ use crate::camera::{Camera, Mat4, Perspective, Viewport};
 use crate::mesh::Mesh;
 use crate::raster::Cull;
 use crate::shade::{Kernel, VertexIn};
+use crate::test_rng::Rng;
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use proptest::prelude::*;
 use std::format;
@@ -316,21 +317,6 @@ proptest! {
         prop_assume!(dist.abs() >= 1.0);
         let s = sheet([o[0], o[1], oz], u.map(|c| c * size), v.map(|c| c * size), n, diag);
         prop_assert!(check(&s).is_ok(), "{:?}", check(&s));
-    }
-}
-
-/// A small deterministic generator (xorshift) for the counted sweep below.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn f(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * (self.next() >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 

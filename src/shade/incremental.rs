@@ -9,7 +9,6 @@ use crate::lighting::{DirectionalLight, DirectionalTerms, Illuminate};
 use crate::num::rsqrt::rsqrt_q28_q14;
 use crate::num::{Scalar, Vec3, Q14};
 use crate::raster::interp::Varyings;
-use crate::raster::ATTR_FRAC;
 
 /// The models [`IncrementalPhongShading`] evaluates: [`Lambert`] and [`BlinnPhong`].
 pub trait IncrementalModel: Model {}
@@ -161,8 +160,8 @@ type Inc<'l, const NW: u8, const K: usize, M, E, C> =
 
 /// Shades one span with the incremental constants `st`, the general path of
 /// `lighting` where the span leaves the fast path's range; `a`/`d` are `[Nx,
-/// Ny, Nz, N·L₁, N·H₁, …]` (Q14 with [`ATTR_FRAC`] bits); `SPEC`: the
-/// Blinn-Phong term.
+/// Ny, Nz, N·L₁, N·H₁, …]` (Q14 with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
+/// bits); `SPEC`: the Blinn-Phong term.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPEC: bool>(
     st_c: &IncrementalState<K>,
@@ -261,32 +260,15 @@ macro_rules! incremental_lights {
         impl<const NW: u8, M: IncrementalModel, E: super::Encoder<C>, C: OutputColor> Kernel
             for Inc<'_, NW, $k, M, E, C>
         {
-            type Color = C;
-            /// The eye-space unit normal in Q14.
-            type Vertex = [i16; 3];
+            super::normal_kernel_items!($n);
             /// The normal, then `N·L` and `N·H` per light (Q14).
             type Varyings = [i32; $n];
-            type Triangle = ();
-            const NEEDS_POSITION: bool = false;
-
-            #[inline]
-            fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
-                super::unit_q14(v.normal)
-            }
 
             #[inline(always)]
             fn triangle(&self, v: [&[i16; 3]; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; $n]; 3]) {
                 // the normal and N·L, N·H per light (Q14): affine over the
                 // triangle like the normal
                 ((), v.map(|n| self.state.varyings(n)))
-            }
-
-            #[inline(always)]
-            fn safe(&self, _i: usize) -> (i32, i32) {
-                // the span code checks |N|² itself; the values must only stay
-                // inside ±2 (Q14, with ATTR_FRAC bits) so that nothing wraps
-                let two = 1 << (15 + ATTR_FRAC);
-                (-two, two - 1)
             }
 
             #[inline(always)]
@@ -334,26 +316,17 @@ fn run<C: OutputColor, const K: usize, const NEWTON: u32, const SPEC: bool>(
             // diffuse: N·L/|N| (Q14)
             let d = ((dot[0] >> 12) * r) >> 14;
             if d > 0 {
-                let d = d.min(16384);
-                acc[0] += (d * lt.kd[0]) >> 14;
-                acc[1] += (d * lt.kd[1]) >> 14;
-                acc[2] += (d * lt.kd[2]) >> 14;
+                super::add_term(&mut acc, d.min(16384), &lt.kd);
                 if SPEC {
                     // specular: (N·H/|N|)^n
                     let sp = state.pow.get(((dot[2] >> 12) * r) >> 14);
-                    acc[0] += (sp * lt.ks[0]) >> 14;
-                    acc[1] += (sp * lt.ks[1]) >> 14;
-                    acc[2] += (sp * lt.ks[2]) >> 14;
+                    super::add_term(&mut acc, sp, &lt.ks);
                 }
             }
             dot[0] += dot[1];
             dot[2] += dot[3];
         }
-        *p = C::from_channels([
-            (acc[0] >> 8).max(0).min(max[0]) as u32,
-            (acc[1] >> 8).max(0).min(max[1]) as u32,
-            (acc[2] >> 8).max(0).min(max[2]) as u32,
-        ]);
+        *p = super::from_acc(acc, max);
         // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
         // seeded with this pixel's r
         s += ds;

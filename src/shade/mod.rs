@@ -125,24 +125,22 @@ mod mode {
 }
 pub(crate) use mode::Mode;
 
-impl Mode for FlatShading {
-    const NAME: &'static str = "flat";
+/// [`Mode`] for each plain shading mode, with its name.
+macro_rules! mode_names {
+    ($($mode:ty => $name:literal),* $(,)?) => {$(
+        impl Mode for $mode {
+            const NAME: &'static str = $name;
+        }
+    )*};
 }
-impl Mode for GouraudShading {
-    const NAME: &'static str = "gouraud";
-}
-impl Mode for PhongShading {
-    const NAME: &'static str = "phong";
-}
-impl Mode for GeneralPhongShading {
-    const NAME: &'static str = "phong_general";
-}
-impl Mode for IncrementalPhongShading {
-    const NAME: &'static str = "phong_inc";
-}
-impl Mode for QuadraticPhongShading {
-    const NAME: &'static str = "phong_quad";
-}
+mode_names!(
+    FlatShading => "flat",
+    GouraudShading => "gouraud",
+    PhongShading => "phong",
+    GeneralPhongShading => "phong_general",
+    IncrementalPhongShading => "phong_inc",
+    QuadraticPhongShading => "phong_quad",
+);
 
 /// A shader: a shading mode `M` with a lighting `I`, writing colours `C`
 /// through an encoder `E`.
@@ -406,6 +404,62 @@ pub(crate) fn depth_runs(z: i32, dz: i32, depth: &mut [u16], mut shade: impl FnM
         z = z.wrapping_add(dz.wrapping_mul(f as u32));
     }
 }
+
+/// The range of the values of the kernels that interpolate the unit normal
+/// and its dot products (Q14 with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
+/// bits): the span code checks |N|² itself; the values must only stay inside
+/// ±2 so that nothing wraps.
+#[inline(always)]
+pub(crate) const fn normal_range() -> (i32, i32) {
+    let two = 1 << (15 + crate::raster::ATTR_FRAC);
+    (-two, two - 1)
+}
+
+/// `acc += (k·w) ≫ 14` per channel: a light term `k` (Q14) times the
+/// channel weights `w` (Q14 of the encoded channels with 8 fraction bits),
+/// in the fixed-point fast kernels' pixel loops.
+#[inline(always)]
+pub(crate) fn add_term(acc: &mut [i32; 3], k: i32, w: &[i32; 3]) {
+    acc[0] += (k * w[0]) >> 14;
+    acc[1] += (k * w[1]) >> 14;
+    acc[2] += (k * w[2]) >> 14;
+}
+
+/// The colour of the channel sums `acc` (8 fraction bits), each clamped to
+/// `[0, max]`.
+#[inline(always)]
+pub(crate) fn from_acc<C: OutputColor>(acc: [i32; 3], max: [i32; 3]) -> C {
+    C::from_channels([
+        (acc[0] >> 8).max(0).min(max[0]) as u32,
+        (acc[1] >> 8).max(0).min(max[1]) as u32,
+        (acc[2] >> 8).max(0).min(max[2]) as u32,
+    ])
+}
+
+/// The [`Kernel`] items shared by the kernels that interpolate the eye-space
+/// unit normal (and `$n − 3` values derived from it) without a position:
+/// the colour, the vertex payload (the unit normal in Q14), the triangle
+/// constants (none) and the range of the values ([`normal_range`]).
+macro_rules! normal_kernel_items {
+    ($n:literal) => {
+        type Color = C;
+        /// The eye-space unit normal in Q14.
+        type Vertex = [i16; 3];
+        type Triangle = ();
+        const NEEDS_POSITION: bool = false;
+
+        #[inline]
+        fn vertex(&self, v: &$crate::shade::VertexIn) -> [i16; 3] {
+            $crate::shade::unit_q14(v.normal)
+        }
+
+        #[inline(always)]
+        fn safe(&self, _i: usize) -> (i32, i32) {
+            $crate::shade::normal_range()
+        }
+    };
+}
+pub(crate) use normal_kernel_items;
 
 /// `n / |n|` in Q14 for a vector of `i32` components (any length): 32-bit
 /// arithmetic only (the inverse square root of `crate::num::Q14`: a seed and

@@ -287,24 +287,15 @@ impl<'m> FastNormal<'m> {
             let dl = (m[0] * (lh[0] >> 8) + m[1] * (lh[1] >> 8) + m[2] * (lh[2] >> 8)) >> 14;
             let d = (dl * r[0] + (1 << 15)) >> 16;
             if d > 0 {
-                let d = d.min(16384);
-                acc[0] += (d * self.kd[0]) >> 14;
-                acc[1] += (d * self.kd[1]) >> 14;
-                acc[2] += (d * self.kd[2]) >> 14;
+                super::add_term(&mut acc, d.min(16384), &self.kd);
                 if spec {
                     let dh =
                         (m[0] * (lh[3] >> 8) + m[1] * (lh[4] >> 8) + m[2] * (lh[5] >> 8)) >> 14;
                     let sp = self.pow.get((dh * r[1] + (1 << 15)) >> 16);
-                    acc[0] += (sp * self.ks[0]) >> 14;
-                    acc[1] += (sp * self.ks[1]) >> 14;
-                    acc[2] += (sp * self.ks[2]) >> 14;
+                    super::add_term(&mut acc, sp, &self.ks);
                 }
             }
-            *p = C::from_channels([
-                (acc[0] >> 8).max(0).min(max[0]) as u32,
-                (acc[1] >> 8).max(0).min(max[1]) as u32,
-                (acc[2] >> 8).max(0).min(max[2]) as u32,
-            ]);
+            *p = super::from_acc(acc, max);
             // next pixel (the values after the last pixel are not used: wrapping
             // is harmless)
             for (a, d) in lh.iter_mut().zip(dlh) {

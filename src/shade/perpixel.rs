@@ -117,30 +117,24 @@ pub enum Tex {}
 #[derive(Clone, Copy, Debug)]
 pub enum MappedTex {}
 
-impl Surface for Plain {
-    const MAP: bool = false;
-    const TEX: bool = false;
-    type Vertex = [i16; 3];
-    type Varyings = [i32; 6];
+/// [`Surface`] for each surface: its features (map, texture) and the sizes
+/// of its vertex payload and of its values.
+macro_rules! surfaces {
+    ($($s:ty => ($map:literal, $tex:literal, $vertex:literal, $values:literal)),* $(,)?) => {$(
+        impl Surface for $s {
+            const MAP: bool = $map;
+            const TEX: bool = $tex;
+            type Vertex = [i16; $vertex];
+            type Varyings = [i32; $values];
+        }
+    )*};
 }
-impl Surface for Tex {
-    const MAP: bool = false;
-    const TEX: bool = true;
-    type Vertex = [i16; 5];
-    type Varyings = [i32; 8];
-}
-impl Surface for Mapped {
-    const MAP: bool = true;
-    const TEX: bool = false;
-    type Vertex = [i16; 9];
-    type Varyings = [i32; 11];
-}
-impl Surface for MappedTex {
-    const MAP: bool = true;
-    const TEX: bool = true;
-    type Vertex = [i16; 9];
-    type Varyings = [i32; 11];
-}
+surfaces!(
+    Plain => (false, false, 3, 6),
+    Tex => (false, true, 5, 8),
+    Mapped => (true, false, 9, 11),
+    MappedTex => (true, true, 9, 11),
+);
 
 /// Clamps an `i32` to `i16`.
 #[inline]

@@ -8,7 +8,6 @@ use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::num::{Flag, Off, On};
 use crate::raster::interp::Varyings;
-use crate::raster::ATTR_FRAC;
 
 impl GeneralSurface for GeneralPhongShading {
     type Features = Plain;
@@ -121,10 +120,7 @@ impl<I: Illuminate, C: OutputColor> PhongPath<I, C> for On {
     }
     #[inline(always)]
     fn safe(_: usize) -> (i32, i32) {
-        // the span code checks |N|² itself; the values must only stay inside
-        // ±2 (Q14, with ATTR_FRAC bits) so that nothing wraps
-        let two = 1 << (15 + ATTR_FRAC);
-        (-two, two - 1)
+        super::normal_range()
     }
     #[inline(always)]
     fn span<E: Encoder<C>>(

@@ -460,18 +460,9 @@ macro_rules! quadratic_lights {
         impl<S: QuadraticTier, M: QuadraticModel, E: Encoder<C>, C: OutputColor> Kernel
             for Inc<'_, S, $k, M, E, C>
         {
-            type Color = C;
-            /// The eye-space unit normal in Q14.
-            type Vertex = [i16; 3];
+            super::normal_kernel_items!($n);
             /// The normal, then `N·L` and `N·H` (or `N·V`) per light (Q14).
             type Varyings = [i32; $n];
-            type Triangle = ();
-            const NEEDS_POSITION: bool = false;
-
-            #[inline]
-            fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
-                super::unit_q14(v.normal)
-            }
 
             #[inline(always)]
             fn triangle(&self, v: [&[i16; 3]; 3], _eye: &[[i32; 3]; 3]) -> ((), [[i32; $n]; 3]) {
@@ -488,14 +479,6 @@ macro_rules! quadratic_lights {
                     a
                 });
                 ((), var)
-            }
-
-            #[inline(always)]
-            fn safe(&self, _i: usize) -> (i32, i32) {
-                // the span code checks |N|² itself; the values must only stay
-                // inside ±2 (Q14, with ATTR_FRAC bits) so that nothing wraps
-                let two = 1 << (15 + ATTR_FRAC);
-                (-two, two - 1)
             }
 
             #[inline(always)]

@@ -150,19 +150,21 @@ impl Quad {
     }
 }
 
+/// A segment the walk accepted: pixels `x..x + 2^(jm+1)` with the anchors
+/// `a` at `x`, `x + 2^jm` and `x + 2^(jm+1)`; `spec`: the lights whose
+/// specular term it carries (per pixel).
+#[derive(Clone, Copy)]
+pub(crate) struct Segment<'a, const K: usize> {
+    pub x: usize,
+    pub jm: u32,
+    pub a: [&'a Anchor<K>; 3],
+    pub spec: [bool; K],
+}
+
 /// Where the walk puts pixels: the encoder and colour specific loops.
 pub(crate) trait Sink<const K: usize> {
-    /// Pixels `x..x + 2^(jm+1)` from the anchors at `x`, `x + 2^jm` and
-    /// `x + 2^(jm+1)`; the specular terms of the lights in `spec` per pixel.
-    fn segment<P: Probe<K>>(
-        &mut self,
-        probe: &P,
-        x: usize,
-        jm: u32,
-        a: [&Anchor<K>; 3],
-        spec: [bool; K],
-        walk: &Walk<'_, K>,
-    );
+    /// The pixels of segment `seg` from its anchors.
+    fn segment<P: Probe<K>>(&mut self, probe: &P, seg: Segment<'_, K>, walk: &Walk<'_, K>);
     /// Pixel `x` from its own anchor (exactly).
     fn exact(&mut self, x: usize, a: &Anchor<K>, walk: &Walk<'_, K>);
     /// Pixel `x` by the general path (the anchor was not usable).
@@ -235,7 +237,13 @@ pub(crate) fn walk<const K: usize, P: Probe<K>, S: Sink<K>>(
         loop {
             match check(w, [&a[i0], &a[im], &a[i1]], jj, dd15) {
                 Some((spec, grow)) => {
-                    sink.segment(probe, pos, jj - 1, [&a[i0], &a[im], &a[i1]], spec, w);
+                    let seg = Segment {
+                        x: pos,
+                        jm: jj - 1,
+                        a: [&a[i0], &a[im], &a[i1]],
+                        spec,
+                    };
+                    sink.segment(probe, seg, w);
                     pos += 1 << jj;
                     core::mem::swap(&mut i0, &mut i1);
                     j = if grow { (jj + 1).min(MAX_LOG) } else { jj };

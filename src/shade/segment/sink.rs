@@ -5,7 +5,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::lut::{run_lut_clamped, DiffuseTable};
-use super::{Anchor, Probe, Quad, Sink, Walk, MAX_LOG};
+use super::{Anchor, Probe, Quad, Segment, Sink, Walk, MAX_LOG};
 use crate::color::OutputColor;
 use crate::shade::{Encoder, Linear};
 
@@ -60,15 +60,8 @@ fn spec_max<const K: usize>(w: &Walk<'_, K>, spec: &[bool; K], c: usize) -> i32 
 impl<E: Encoder<C>, C: OutputColor, G: Fn(usize) -> C, const K: usize> Sink<K>
     for EncodeSink<'_, E, C, G>
 {
-    fn segment<P: Probe<K>>(
-        &mut self,
-        probe: &P,
-        x: usize,
-        jm: u32,
-        a: [&Anchor<K>; 3],
-        spec: [bool; K],
-        w: &Walk<'_, K>,
-    ) {
+    fn segment<P: Probe<K>>(&mut self, probe: &P, seg: Segment<'_, K>, w: &Walk<'_, K>) {
+        let Segment { x, jm, a, spec } = seg;
         let h = 2usize << jm;
         let Some(out) = self.out.get_mut(x..(x + h).min(self.out.len())) else {
             return;
@@ -207,15 +200,8 @@ pub(crate) struct Fast565Sink<'o, C, G> {
 }
 
 impl<C: OutputColor, G: Fn(usize) -> C, const K: usize> Sink<K> for Fast565Sink<'_, C, G> {
-    fn segment<P: Probe<K>>(
-        &mut self,
-        probe: &P,
-        x: usize,
-        jm: u32,
-        a: [&Anchor<K>; 3],
-        spec: [bool; K],
-        w: &Walk<'_, K>,
-    ) {
+    fn segment<P: Probe<K>>(&mut self, probe: &P, seg: Segment<'_, K>, w: &Walk<'_, K>) {
+        let Segment { x, jm, a, spec } = seg;
         let h = 2usize << jm;
         let len = self.out.len();
         let Some(out) = self.out.get_mut(x..(x + h).min(len)) else {
@@ -250,7 +236,7 @@ impl<C: OutputColor, G: Fn(usize) -> C, const K: usize> Sink<K> for Fast565Sink<
                 out: self.out,
                 general: &self.general,
             };
-            return s.segment(probe, x, jm, a, spec, w);
+            return s.segment(probe, seg, w);
         }
         let g = Quad::fit(a[0].v[1], a[1].v[1], a[2].v[1], jm);
         let pack = |r: Quad, b: Quad| {
