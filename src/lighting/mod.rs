@@ -275,27 +275,30 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         }
     }
 
-    /// [`Lighting::build`] with the lights in eye coordinates if `eye` (the
-    /// `with_*` methods keep the coordinates of the lighting they start from).
-    fn remake<M2: Model, V2: Viewer<S>, F2: FogModel<S>>(
-        eye: bool,
-        lights: L,
-        material: Material<S>,
-        global_ambient: [f32; 3],
+    /// `self`'s lights, material, global ambient light and colour material,
+    /// prepared again with `viewer`, `fog` and model `M2`; the lights stay in
+    /// the coordinates they are in (the `with_*` builders).
+    fn remade<M2: Model, V2: Viewer<S>, F2: FogModel<S>>(
+        self,
         viewer: V2,
         fog: F2,
-        color_material: ColorMaterial,
     ) -> Lighting<S, L, M2, V2, F2> {
         let mut l = Lighting::build(
-            lights,
-            material,
-            global_ambient,
+            self.lights,
+            self.material,
+            self.global_ambient,
             viewer,
             fog,
-            color_material,
+            self.color_material,
         );
-        l.eye = eye;
+        l.eye = self.eye;
         l
+    }
+
+    /// The lighting of `self`'s parts, prepared again (after a part changed).
+    fn rebuilt(self) -> Self {
+        let (viewer, fog) = (self.viewer, self.fog);
+        self.remade(viewer, fog)
     }
 
     /// The same lighting with its lights taken as given, in eye coordinates
@@ -321,16 +324,9 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// [`Lighting::with_global_ambient`] from `f32` channels (any sign), multiplied
     /// with the material's ambient colour before it is converted to the tier.
-    pub fn with_global_ambient_f32(self, ambient: [f32; 3]) -> Self {
-        Self::remake(
-            self.eye,
-            self.lights,
-            self.material,
-            ambient,
-            self.viewer,
-            self.fog,
-            self.color_material,
-        )
+    pub fn with_global_ambient_f32(mut self, ambient: [f32; 3]) -> Self {
+        self.global_ambient = ambient;
+        self.rebuilt()
     }
 
     /// The same configuration with its lights, given in world coordinates,
@@ -373,84 +369,41 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     where
         L: Clone,
     {
-        let mut lights = self.lights.clone();
-        lights.transform(view)?;
-        let mut l = Self::build(
-            lights,
-            self.material,
-            self.global_ambient,
-            self.viewer,
-            self.fog,
-            self.color_material,
-        );
+        let mut l = self.clone();
+        l.lights.transform(view)?;
         l.eye = true;
-        Ok(l)
+        Ok(l.rebuilt())
     }
 
     /// The same configuration with another viewer.
     pub fn with_viewer<V2: Viewer<S>>(self, viewer: V2) -> Lighting<S, L, M, V2, F> {
-        Self::remake(
-            self.eye,
-            self.lights,
-            self.material,
-            self.global_ambient,
-            viewer,
-            self.fog,
-            self.color_material,
-        )
+        let fog = self.fog;
+        self.remade(viewer, fog)
     }
 
     /// The same configuration with fog.
     pub fn with_fog<F2: FogModel<S>>(self, fog: F2) -> Lighting<S, L, M, V, F2> {
-        Self::remake(
-            self.eye,
-            self.lights,
-            self.material,
-            self.global_ambient,
-            self.viewer,
-            fog,
-            self.color_material,
-        )
+        let viewer = self.viewer;
+        self.remade(viewer, fog)
     }
 
     /// The same configuration with another material model.
     pub fn with_model<M2: Model>(self) -> Lighting<S, L, M2, V, F> {
-        Self::remake(
-            self.eye,
-            self.lights,
-            self.material,
-            self.global_ambient,
-            self.viewer,
-            self.fog,
-            self.color_material,
-        )
+        let (viewer, fog) = (self.viewer, self.fog);
+        self.remade(viewer, fog)
     }
 
     /// The same lights and viewer with another material.
-    pub fn with_material(self, material: Material<S>) -> Self {
-        Self::remake(
-            self.eye,
-            self.lights,
-            material,
-            self.global_ambient,
-            self.viewer,
-            self.fog,
-            self.color_material,
-        )
+    pub fn with_material(mut self, material: Material<S>) -> Self {
+        self.material = material;
+        self.rebuilt()
     }
 
     /// The same configuration with `GL_COLOR_MATERIAL` in mode `mode`: the vertex
     /// colour given to [`Lighting::shade_parts`] replaces that material colour.
-    pub fn with_color_material(self, mode: ColorMaterial) -> Self {
-        Self::remake(
-            self.eye,
-            self.lights,
-            self.material,
-            self.global_ambient,
-            self.viewer,
-            self.fog,
-            mode,
-        )
+    pub fn with_color_material(mut self, mode: ColorMaterial) -> Self {
+        self.color_material = mode;
+        self.rebuilt()
     }
 
     /// The lighting if the tier holds every term of its equation, else the term
