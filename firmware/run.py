@@ -15,6 +15,13 @@ Needs: qemu-system-arm and qemu-system-riscv32 (Debian: apt-get install
 qemu-system-arm qemu-system-misc), the rustup targets thumbv6m-none-eabi,
 thumbv7em-none-eabihf and riscv32imc-unknown-none-elf, pyelftools.
 
+Configurations `imported` and `imported_textured`: the rocket that
+firmware/qemu/build.rs imports from import/assets/rocket.obj (fixshade-import),
+Gouraud and textured Gouraud; `imported` runs on the micro:bit in 2-row bands,
+`imported_textured` does not fit its RAM and is skipped there. The host
+reference also counts the pixels not of the clear colour: every configuration
+must light at least 5 % of them and differ from a clear frame.
+
 Per image (one configuration, the standard scene, `fixshade-qemu` built at
 opt-level 3 with LTO):
   * checksum: the Checksum display's value after one frame; must equal the
@@ -56,7 +63,12 @@ HERE = Path(__file__).resolve().parent
 # cargo runs in firmware/: a relative CARGO_TARGET_DIR is relative to it
 TARGET_DIR = HERE / os.environ.get("CARGO_TARGET_DIR", "target")
 IMAGES = TARGET_DIR / "images"
-CONFIGS = ["lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat"]
+CONFIGS = ["lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat", "imported",
+           "imported_textured"]
+# the rocket imported from import/assets/rocket.obj by firmware/qemu/build.rs
+IMPORTED = ["imported", "imported_textured"]
+# (core, config) not built, and why
+SKIP = {("m0", "imported_textured"): "687 textured vertex cache entries of 22 B (15.1 KiB) do not fit 16 KiB of RAM"}
 CORES = {
     # core: (rust target, QEMU machine, instructions per SysTick tick, RAM bytes,
     #        clock for frames per second, what that clock is)
@@ -104,7 +116,7 @@ def qemu(core, elf):
 
 
 def host_reference():
-    return json.loads(cargo(["run", "-q", "-p", "fixshade-qemu", "--profile", "host"]))
+    return json.loads(cargo(["run", "-q", "-p", "fixshade-qemu", "--profile", "host", "--features", ",".join(IMPORTED)]))
 
 
 def elf_sizes(path):
@@ -134,7 +146,8 @@ def elf_sizes(path):
                 objects[n] = z
         # what no function symbol covers (padding, literal pools outside functions)
         code["runtime"] += size(".text") - sum(code.values())
-        mesh = sum(z for n, z in objects.items() if "8standard6SPHERE" in n)
+        # the standard sphere, or the imported rocket's arrays (with its texture)
+        mesh = sum(z for n, z in objects.items() if "8standard6SPHERE" in n or ("5model" in n and "ROCKET" in n))
         # RISC-V: riscv-rt's start-up code is in .init.rust
         flash = size(".vector_table") + size(".text") + size(".init.rust") + size(".rodata") + size(".data")
         buffers = {n: objects.get(n, 0) for n in ["STRIP", "DEPTH", "CACHE", "BINS", "CARRY_RECORDS"]}
@@ -179,6 +192,9 @@ def main():
     for core in cores:
         target, machine, per_tick, ram, clock, _ = CORES[core]
         for config in configs:
+            if (core, config) in SKIP:
+                print(f"{core} {config}: not built: {SKIP[core, config]}", flush=True)
+                continue
             elf = IMAGES / f"{core}_{config}_{args.profile}.elf"
             if not args.no_build:
                 elf = build(core, config, args.profile)
@@ -190,6 +206,9 @@ def main():
             r = json.loads(line[len("RESULT "):])
             want = host[config]["checksum"]
             check(r["checksum"] == want, f"{what}: checksum {r['checksum']}, host {want}")
+            # the host's frame is a rendered model: not a clear frame, at least 5 % of the pixels lit
+            check(want != host["clear"] and 20 * host[config]["lit"] >= r["pixels"],
+                  f"{what}: host frame {want} (clear {host['clear']}), {host[config]['lit']} of {r['pixels']} pixels lit")
             if core.startswith("rv"):
                 n, c1, c2 = r["calib_n"], r["calib_instructions"], r["calib_instructions_2n"]
                 check(c2 - c1 == 2 * n and 0 <= c1 - 2 * n < 16,
@@ -207,6 +226,13 @@ def main():
             rows.append(r)
             print(f"{what}: {r['checksum']} (host {want}), {r['instructions']} instructions/frame, "
                   f"stack {r['stack_frame']} B (frame), {r['stack_peak']} B (image), {secs:.1f} s", flush=True)
+
+    if "imported" in host and "imported_textured" in host:
+        # the texture shows: the textured rocket is not the untextured one
+        check(host["imported"]["checksum"] != host["imported_textured"]["checksum"],
+              "imported and imported_textured give the same frame")
+        print(f"host: imported {host['imported']['lit']} of {240 * 240} pixels lit, clear frame {host['clear']}",
+              flush=True)
 
     if args.check:
         # a stack overflow must fail loudly: 2 KiB is far too small for a frame

@@ -16,6 +16,9 @@
 //! locked PMP entry: an overflow faults (store access fault) instead of
 //! running into the statics.
 //!
+//! `imported` on the micro:bit: 2-row bands and a 2.75 KiB stack (the rocket's
+//! 687-vertex cache leaves no more; see [`import_model`]).
+//!
 //! `FIXSHADE_STACK=<bytes>` (a multiple of 8) and `FIXSHADE_ROWS=<rows>`
 //! override the defaults (`run.py --overflow` builds a too small stack to
 //! show that an overflow fails loudly).
@@ -25,12 +28,17 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-env-changed=FIXSHADE_STACK");
     println!("cargo:rerun-if-env-changed=FIXSHADE_ROWS");
+    let imported = env::var_os("CARGO_FEATURE_IMPORTED").is_some();
+    #[cfg(any(feature = "imported", feature = "imported_textured"))]
+    import_model();
     if env::var("CARGO_CFG_TARGET_OS").as_deref() != Ok("none") {
         return;
     }
     let target = env::var("TARGET").unwrap();
     // (board, core, flash KiB, RAM KiB, stack bytes, band rows)
     let (board, core, flash, ram, stack, rows) = match target.as_str() {
+        // the rocket's vertex cache (687 × 12 B) and bins take 10.2 KiB
+        "thumbv6m-none-eabi" if imported => ("microbit", "cortex-m0", 256, 16, 2816, 2),
         "thumbv6m-none-eabi" => ("microbit", "cortex-m0", 256, 16, 5632, 4),
         "thumbv7em-none-eabihf" => ("mps2-an386", "cortex-m4f", 4096, 4096, 16384, 8),
         "riscv32imc-unknown-none-elf" => ("virt", "rv32imc", 0, 1024, 16384, 8),
@@ -105,4 +113,20 @@ _stack_start = ORIGIN(STACK) + LENGTH(STACK);
         println!("cargo:rustc-link-arg-bins=-Tmemory-virt.x");
     }
     println!("cargo:rustc-link-arg-bins=-Tlink.x");
+}
+
+/// `imported`, `imported_textured`: imports the demo rocket
+/// (`import/assets/rocket.obj` with its MTL and 128 × 128 PNG) into
+/// `$OUT_DIR/model.rs` (`ROCKET`, `ROCKET_FRAC`, `ROCKET_TEXTURE`, ...): 687
+/// vertices, 784 triangles, texture coordinates, the texture as `Rgb565`
+/// (32 KiB of flash, exact to the 5-6-5 colours; the textured Gouraud kernel's
+/// fast path samples it). Re-run when the OBJ, MTL or PNG change.
+#[cfg(any(feature = "imported", feature = "imported_textured"))]
+fn import_model() {
+    use fixshade_import::{build, Options, TextureFormat};
+    let mut options = Options::new("ROCKET");
+    options.texture_format = TextureFormat::Rgb565;
+    if let Err(e) = build::generate("../../import/assets/rocket.obj", "model.rs", &options) {
+        panic!("fixshade-import: {e}");
+    }
 }

@@ -30,7 +30,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::framebuffer::Checksum;
 use fixshade::render::{CachedVertex, Carry};
-use fixshade_qemu::{bins, Buffers, Fail, CARRY, NV, W};
+use fixshade_qemu::{bins_for, Buffers, Fail, W};
 use riscv_rt::entry;
 
 mod board {
@@ -46,6 +46,10 @@ use fixshade_qemu::blinn_phong as config;
 use fixshade_qemu::blinn_phong_inc as config;
 #[cfg(feature = "flat")]
 use fixshade_qemu::flat as config;
+#[cfg(feature = "imported")]
+use fixshade_qemu::imported as config;
+#[cfg(feature = "imported_textured")]
+use fixshade_qemu::imported_textured as config;
 #[cfg(feature = "lambert_gouraud")]
 use fixshade_qemu::lambert_gouraud as config;
 #[cfg(not(any(
@@ -53,9 +57,11 @@ use fixshade_qemu::lambert_gouraud as config;
     feature = "blinn_gouraud",
     feature = "blinn_phong",
     feature = "blinn_phong_inc",
-    feature = "flat"
+    feature = "flat",
+    feature = "imported",
+    feature = "imported_textured"
 )))]
-compile_error!("choose one configuration: --features lambert_gouraud|blinn_gouraud|blinn_phong|blinn_phong_inc|flat");
+compile_error!("choose one configuration: --features lambert_gouraud|blinn_gouraud|blinn_phong|blinn_phong_inc|flat|imported|imported_textured");
 
 /// Frames rendered (all must give the same checksum and count).
 const FRAMES: usize = 2;
@@ -66,11 +72,11 @@ static mut STRIP: [Rgb565; W * ROWS] = [Rgb565::BLACK; W * ROWS];
 #[no_mangle]
 static mut DEPTH: [u16; W * ROWS] = [0; W * ROWS];
 #[no_mangle]
-static mut CACHE: [CachedVertex<config::Vertex>; NV] = [CachedVertex::ZERO; NV];
+static mut CACHE: [CachedVertex<config::Vertex>; config::NV] = [CachedVertex::ZERO; config::NV];
 #[no_mangle]
-static mut BINS: [u16; bins(ROWS)] = [0; bins(ROWS)];
+static mut BINS: [u16; bins_for(config::NT, ROWS)] = [0; bins_for(config::NT, ROWS)];
 #[no_mangle]
-static mut CARRY_RECORDS: [Carry; CARRY] = [Carry::ZERO; CARRY];
+static mut CARRY_RECORDS: [Carry; config::CARRY] = [Carry::ZERO; config::CARRY];
 
 extern "C" {
     /// The stack's lowest address (`memory.x`).
