@@ -262,8 +262,16 @@ pub mod rocket {
     /// 1.20 along y; tilted towards the camera and turned so that the
     /// portholes (u = 1/4, the +x side) face it, in a ±1.35 orthographic view.
     pub fn transform() -> Result<MeshTransform<Orthographic>, Fail> {
+        let model = Mat4::rotate_x(0.25).mul(&Mat4::rotate_y(-1.2));
+        camera()?
+            .mesh_transform(&model, super::model::ROCKET_FRAC)
+            .map_err(|_| Fail::Transform)
+    }
+
+    /// The camera: five units up +z, looking down −z.
+    fn camera() -> Result<Camera<Orthographic>, Fail> {
         let s = 1.35;
-        let camera = Camera::orthographic(
+        Ok(Camera::orthographic(
             -s,
             s,
             -s,
@@ -273,15 +281,12 @@ pub mod rocket {
             Viewport::new(0, 0, W as i32, W as i32).map_err(|_| Fail::Transform)?,
         )
         .map_err(|_| Fail::Transform)?
-        .with_view(Mat4::translate([0.0, 0.0, -5.0]));
-        let model = Mat4::rotate_x(0.25).mul(&Mat4::rotate_y(-1.2));
-        camera
-            .mesh_transform(&model, super::model::ROCKET_FRAC)
-            .map_err(|_| Fail::Transform)
+        .with_view(Mat4::translate([0.0, 0.0, -5.0])))
     }
 
-    /// One directional light, ambient + Lambert diffuse on a white material
-    /// (the texture, where there is one, gives the colour).
+    /// One directional light placed in the world and seen through the camera,
+    /// ambient + Lambert diffuse on a white material (the texture, where
+    /// there is one, gives the colour), OpenGL's global ambient light.
     pub fn lighting() -> Result<Lighting<Q14, DirectionalLight<Q14>, Lambert>, Fail> {
         let light = DirectionalLight::new(
             [1.0, 0.8, 1.0],
@@ -295,7 +300,10 @@ pub mod rocket {
             ..MaterialDesc::default()
         })
         .map_err(|_| Fail::Lighting)?;
-        Ok(Lighting::new(light, material))
+        let camera = camera()?;
+        Lighting::new(light, material)
+            .viewed(camera.view())
+            .map_err(|_| Fail::Lighting)
     }
 
     /// One frame of `kernel` on the rocket in bands of `rows` rows (as
