@@ -12,8 +12,9 @@
 
 use crate::camera::{Camera, FixedCamera, MeshTransform, Orthographic, Pose};
 use crate::camera::{Mat4, Viewport};
+use crate::color::Rgb;
 use crate::error::ParamError;
-use crate::lighting::{BlinnPhong, Lambert, Lighting};
+use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, NoFog};
 use crate::lighting::{DirectionalLight, LightColors};
 use crate::lighting::{Material, MaterialDesc};
 use crate::mesh::{uv_sphere_counts, MeshData};
@@ -82,15 +83,25 @@ pub fn light<S: Scalar>() -> Result<DirectionalLight<S>, ParamError> {
 /// leaves a directional light's direction as it is, so the frame needs no
 /// per-frame `Lighting::viewed`.
 pub fn blinn<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, BlinnPhong>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?)
-        .with_global_ambient_f32([0.0; 3])
-        .eye_space())
+    Ok(Lighting::with_parts(
+        light()?,
+        Material::new(&material())?,
+        Rgb::BLACK,
+        InfiniteViewer::default(),
+        NoFog,
+    )
+    .eye_space())
 }
 
 /// The lighting without specular (ambient + Lambert diffuse; no global
 /// ambient light; the light in eye coordinates, as [`blinn`]'s).
 pub fn lambert<S: Scalar>() -> Result<Lighting<S, DirectionalLight<S>, Lambert>, ParamError> {
-    Ok(Lighting::new(light()?, Material::new(&material())?)
-        .with_global_ambient_f32([0.0; 3])
-        .eye_space())
+    Ok(Lighting::with_parts(
+        light()?,
+        Material::new(&material())?,
+        Rgb::BLACK,
+        InfiniteViewer::default(),
+        NoFog,
+    )
+    .eye_space())
 }

@@ -17,7 +17,8 @@
 //! running into the statics.
 //!
 //! `imported` on the micro:bit: 2-row bands and a 2.75 KiB stack (the rocket's
-//! 687-vertex cache leaves no more; see [`import_model`]).
+//! 687-vertex cache leaves no more; see [`import_model`]); at opt-level "z"
+//! (or "s") 1-row bands and a 3.25 KiB stack.
 //!
 //! `FIXSHADE_STACK=<bytes>` (a multiple of 8) and `FIXSHADE_ROWS=<rows>`
 //! override the defaults (`run.py --overflow` builds a too small stack to
@@ -35,9 +36,14 @@ fn main() {
         return;
     }
     let target = env::var("TARGET").unwrap();
+    println!("cargo:rerun-if-env-changed=OPT_LEVEL");
+    let small = matches!(env::var("OPT_LEVEL").as_deref(), Ok("z" | "s"));
     // (board, core, flash KiB, RAM KiB, stack bytes, band rows)
     let (board, core, flash, ram, stack, rows) = match target.as_str() {
-        // the rocket's vertex cache (687 × 12 B) and bins take 10.2 KiB
+        // the rocket's vertex cache (687 × 12 B) and bins take 10.2 KiB; at
+        // opt-level "z" the frame needs more stack than 2.75 KiB: 1-row bands
+        // give it 3.25 KiB
+        "thumbv6m-none-eabi" if imported && small => ("microbit", "cortex-m0", 256, 16, 3328, 1),
         "thumbv6m-none-eabi" if imported => ("microbit", "cortex-m0", 256, 16, 2816, 2),
         "thumbv6m-none-eabi" => ("microbit", "cortex-m0", 256, 16, 5632, 4),
         "thumbv7em-none-eabihf" => ("mps2-an386", "cortex-m4f", 4096, 4096, 16384, 8),
