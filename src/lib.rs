@@ -50,20 +50,29 @@
 //! let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.6, 32.0);
 //! let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&red)?);
 //!
-//! // memory the caller owns: an 8-row strip, its depth, the mesh's buffers
-//! let layout = Layout::banded(240, 240, 8)?;
-//! let mut strip = [Rgb565::BLACK; 240 * 8];
-//! let mut depth = [0u16; 240 * 8];
-//! let mut buffers: MeshBuffers<_, { N.0 }, { bins_len(N.1, 30) }, 64> = MeshBuffers::new();
+//! // memory the caller owns, sized from the layout and the mesh: an 8-row strip, its
+//! // depth, the mesh's vertex cache, bins and resume records (two per triangle crossing
+//! // the busiest band boundary: this sphere needs 48; MeshDraw::new returns
+//! // BufferTooSmall { which: "carry", needed } when short)
+//! const LAYOUT: Layout = match Layout::banded(240, 240, 8) {
+//!     Ok(layout) => layout,
+//!     Err(_) => panic!("not a layout"), // a compile-time error
+//! };
+//! const STRIP: usize = (LAYOUT.width() * LAYOUT.band_rows()) as usize;
+//! let mut strip = [Rgb565::BLACK; STRIP];
+//! let mut depth = [0u16; STRIP];
+//! let mut buffers: MeshBuffers<_, { N.0 }, { bins_len(N.1, LAYOUT.bands() as usize) }, 64> =
+//!     MeshBuffers::new();
 //!
 //! // once per frame: the lights seen from the camera; transform, light and bin
 //! // the mesh, then draw band by band
 //! let lit = lighting.viewed(camera.view())?;
 //! let transform = camera.mesh_transform(&Mat4::rotate_y(0.3), SPHERE.frac)?;
 //! let shader = Shader::new(PhongShading, &lit, Linear);
-//! let mut sphere = MeshDraw::new(layout, SPHERE.mesh(), &transform, shader, buffers.memory())?;
+//! let mut sphere = MeshDraw::new(LAYOUT, SPHERE.mesh(), &transform, shader, buffers.memory())?;
+//! assert_eq!(sphere.carry_needed(), 48); // of the 64 resume records
 //! let mut display = Checksum::new(Size::new(240, 240)); // any DrawTarget: a display driver, the simulator
-//! Bands::new(layout, &mut strip, Some(&mut depth))?.render(&mut display, Rgb565::BLACK, &mut [&mut sphere])?;
+//! Bands::new(LAYOUT, &mut strip, Some(&mut depth))?.render(&mut display, Rgb565::BLACK, &mut [&mut sphere])?;
 //! assert_eq!(display.pixels(), 240 * 240);
 //! # Ok::<(), Box<dyn core::error::Error>>(())
 //! ```

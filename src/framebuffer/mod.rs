@@ -41,14 +41,32 @@ impl Layout {
     ///
     /// [`RenderError::Size`] unless `1 ≤ width, height ≤ 1024` and
     /// `band_rows ≥ 1`.
-    pub fn banded(width: u32, height: u32, band_rows: u32) -> Result<Layout, RenderError> {
-        if !(1..=MAX_SIZE).contains(&width) || !(1..=MAX_SIZE).contains(&height) || band_rows == 0 {
+    ///
+    /// A `const fn`: a layout known at compile time sizes the buffers of a
+    /// firmware's statics (a bad layout is then a compile-time error):
+    ///
+    /// ```
+    /// use fixshade::render::{bins_len, Layout};
+    /// const LAYOUT: Layout = match Layout::banded(240, 240, 8) {
+    ///     Ok(layout) => layout,
+    ///     Err(_) => panic!("not a layout"),
+    /// };
+    /// const STRIP: usize = (LAYOUT.width() * LAYOUT.band_rows()) as usize;
+    /// const BINS: usize = bins_len(720, LAYOUT.bands() as usize);
+    /// assert_eq!((STRIP, LAYOUT.bands(), BINS), (1920, 30, 782));
+    /// ```
+    pub const fn banded(width: u32, height: u32, band_rows: u32) -> Result<Layout, RenderError> {
+        if width == 0 || width > MAX_SIZE || height == 0 || height > MAX_SIZE || band_rows == 0 {
             return Err(RenderError::Size);
         }
         Ok(Layout {
             width,
             height,
-            band_rows: band_rows.min(height),
+            band_rows: if band_rows < height {
+                band_rows
+            } else {
+                height
+            },
         })
     }
 
@@ -57,29 +75,34 @@ impl Layout {
     /// # Errors
     ///
     /// As [`Layout::banded`].
-    pub fn full(width: u32, height: u32) -> Result<Layout, RenderError> {
+    pub const fn full(width: u32, height: u32) -> Result<Layout, RenderError> {
         Layout::banded(width, height, height)
     }
 
     /// Frame width.
-    pub fn width(&self) -> u32 {
+    pub const fn width(&self) -> u32 {
         self.width
     }
 
     /// Frame height.
-    pub fn height(&self) -> u32 {
+    pub const fn height(&self) -> u32 {
         self.height
     }
 
     /// Rows per band (the last band may have fewer).
-    pub fn band_rows(&self) -> u32 {
+    pub const fn band_rows(&self) -> u32 {
         self.band_rows
     }
 
     /// Number of bands.
-    pub fn bands(&self) -> u32 {
-        // band_rows ≥ 1 (the constructors): `max(1)` only drops the panic path
-        self.height.div_ceil(self.band_rows.max(1))
+    pub const fn bands(&self) -> u32 {
+        // band_rows ≥ 1 (the constructors): the test only drops the panic path
+        let rows = if self.band_rows == 0 {
+            1
+        } else {
+            self.band_rows
+        };
+        self.height.div_ceil(rows)
     }
 
     /// The rows of band `b`.
@@ -121,7 +144,7 @@ impl<'a, C> BandView<'a, C> {
     }
 
     /// The frame width.
-    pub fn width(&self) -> u32 {
+    pub const fn width(&self) -> u32 {
         self.width
     }
 }
