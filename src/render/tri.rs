@@ -119,6 +119,40 @@ trait Runs<K: Kernel> {
         y: i32,
         out: &mut [K::Color],
     );
+    /// The same with the depth test of the run (depth `z.0 + k·z.1` at pixel
+    /// `k`, the depth strip `depth` as long as `out`); `CLAMP` as in
+    /// [`Runs::run`].
+    #[inline(always)]
+    fn run_depth<const CLAMP: bool>(
+        &self,
+        kernel: &K,
+        t: &K::Triangle,
+        (x, y): (i32, i32),
+        z: (i32, i32),
+        out: &mut [K::Color],
+        depth: &mut [u16],
+    ) {
+        split_runs::<K, Self, CLAMP>(self, kernel, t, (x, y), z, out, depth)
+    }
+}
+
+/// [`Runs::run_depth`] by [`depth_runs`]: the values of each passing run
+/// from [`Runs::run`].
+#[inline(always)]
+fn split_runs<K: Kernel, R: Runs<K> + ?Sized, const CLAMP: bool>(
+    values: &R,
+    kernel: &K,
+    t: &K::Triangle,
+    (x, y): (i32, i32),
+    z: (i32, i32),
+    out: &mut [K::Color],
+    depth: &mut [u16],
+) {
+    depth_runs(z.0, z.1, depth, |k0, k1| {
+        if let Some(c) = out.get_mut(k0..k1) {
+            values.run::<CLAMP>(kernel, t, x + k0 as i32, y, c);
+        }
+    });
 }
 
 impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
@@ -138,6 +172,25 @@ impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
     ) {
         let (a, d) = Linear::run::<CLAMP>(self, x, out.len(), K::USED);
         kernel.span(t, &a, &d, x, y, out)
+    }
+
+    #[inline(always)]
+    fn run_depth<const CLAMP: bool>(
+        &self,
+        kernel: &K,
+        t: &K::Triangle,
+        (x, y): (i32, i32),
+        z: (i32, i32),
+        out: &mut [K::Color],
+        depth: &mut [u16],
+    ) {
+        if CLAMP {
+            // the values are clamped per passing run
+            split_runs::<K, Self, CLAMP>(self, kernel, t, (x, y), z, out, depth)
+        } else {
+            let (a, d) = Linear::run::<false>(self, x, out.len(), K::USED);
+            kernel.span_depth(t, &a, &d, x, y, z, out, depth);
+        }
     }
 }
 
@@ -192,11 +245,7 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
                         (zp.at(lo), zp.dx)
                     };
                     if let Some(depth) = d.get_mut(at..at + n) {
-                        depth_runs(z0, dz, depth, |k0, k1| {
-                            if let Some(c) = color.get_mut(k0..k1) {
-                                values.run::<CLAMP>(kernel, t, lo + k0 as i32, y, c);
-                            }
-                        });
+                        values.run_depth::<CLAMP>(kernel, t, (lo, y), (z0, dz), color, depth);
                     }
                 } else {
                     values.run::<CLAMP>(kernel, t, lo, y, color);

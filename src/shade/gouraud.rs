@@ -42,9 +42,27 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     }
 
     #[inline(always)]
+    fn span_depth(
+        &self,
+        t: &(),
+        a: &[i32; 3],
+        d: &[i32; 3],
+        x: i32,
+        y: i32,
+        z: (i32, i32),
+        color: &mut [C],
+        depth: &mut [u16],
+    ) {
+        if C::IS_RGB565 && E::LINEAR {
+            return fill565_depth(Channels565::new(a, d), z, color, depth);
+        }
+        super::split_span(self, t, a, d, (x, y), z, color, depth)
+    }
+
+    #[inline(always)]
     fn span(&self, _t: &(), a: &[i32; 3], d: &[i32; 3], x: i32, y: i32, color: &mut [C]) {
         if C::IS_RGB565 && E::LINEAR {
-            return fill565(*a, *d, color);
+            return fill565(Channels565::new(a, d), color);
         }
         let enc = self.encoder;
         let (mut a, mut x) = (*a, x);
@@ -63,10 +81,10 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     }
 }
 
-/// The Gouraud loop for rounded 5-6-5 pixels: red and blue interpolated in one
-/// `u32` (red in the high half, blue in the low half, 11 fraction bits each),
-/// green in another: two additions instead of three, and no masks; a function
-/// of its own, so that its six live values fit the Cortex-M0's registers.
+/// The Gouraud channels of a run of rounded 5-6-5 pixels: red and blue
+/// interpolated in one `u32` (red in the high half, blue in the low half, 11
+/// fraction bits each), green in another: two additions per pixel instead of
+/// three, and no masks.
 ///
 /// Each field stays inside its 16 bits: the vertex values are
 /// `c·2^s + 2^(s−1)` with `(c + ½)·2^s < 2^15` (see [`Linear`](super::Linear)), the
@@ -74,22 +92,90 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
 /// the steps to 2^−11 of a channel moves a value by at most `len/2` such units
 /// over a run, far less than the half-step margin (1024 units) for any run of
 /// the window.
+#[derive(Clone, Copy)]
+struct Channels565 {
+    rb: u32,
+    drb: u32,
+    g: u32,
+    dg: u32,
+}
+
+impl Channels565 {
+    /// The channels of the run starting at `a` with steps `d` (the encoded
+    /// channels with [`ATTR_FRAC`] fraction bits).
+    #[inline(always)]
+    fn new(a: &[i32; 3], d: &[i32; 3]) -> Self {
+        // 5-bit channels: vertex values c·2^10 (+½) with ATTR_FRAC bits → c·2^11 in 16 bits
+        let sh = ATTR_FRAC - 1;
+        let half = 1 << (sh - 1);
+        Channels565 {
+            rb: (((a[0] >> sh) as u32) << 16) | (a[2] >> sh) as u32,
+            drb: (((d[0] + half) >> sh) as u32)
+                .wrapping_shl(16)
+                .wrapping_add(((d[2] + half) >> sh) as u32),
+            // 6-bit green: vertex values c·2^9 (+½) with ATTR_FRAC bits: c = g >> 23
+            g: a[1] as u32,
+            dg: d[1] as u32,
+        }
+    }
+}
+
+/// The 5-6-5 pixel of packed red-blue `rb` and green `g` ([`Channels565`]).
+#[inline(always)]
+fn pixel565(rb: u32, g: u32) -> u16 {
+    // r = rb >> 27, b = bits 27..32 of rb << 16, g = g >> 23
+    (((rb >> 27) << 11) | ((rb << 16) >> 27) | ((g >> 23) << 5)) as u16
+}
+
+/// The Gouraud loop for rounded 5-6-5 pixels ([`Channels565`]): a function
+/// of its own, so that its six live values fit the Cortex-M0's registers.
 #[inline(never)]
-fn fill565<C: OutputColor>(a: [i32; 3], d: [i32; 3], color: &mut [C]) {
-    // 5-bit channels: vertex values c·2^10 (+½) with ATTR_FRAC bits → c·2^11 in 16 bits
-    let sh = ATTR_FRAC - 1;
-    let half = 1 << (sh - 1);
-    let mut rb = (((a[0] >> sh) as u32) << 16) | (a[2] >> sh) as u32;
-    let drb = (((d[0] + half) >> sh) as u32)
-        .wrapping_shl(16)
-        .wrapping_add(((d[2] + half) >> sh) as u32);
-    // 6-bit green: vertex values c·2^9 (+½) with ATTR_FRAC bits: c = g >> 23
-    let (mut g, dg) = (a[1] as u32, d[1] as u32);
+fn fill565<C: OutputColor>(ch: Channels565, color: &mut [C]) {
+    let Channels565 {
+        mut rb,
+        drb,
+        mut g,
+        dg,
+    } = ch;
     for c in color.iter_mut() {
-        // r = rb >> 27, b = bits 27..32 of rb << 16, g = g >> 23
-        let raw = ((rb >> 27) << 11) | ((rb << 16) >> 27) | ((g >> 23) << 5);
-        *c = C::from_rgb565_raw(raw as u16);
+        *c = C::from_rgb565_raw(pixel565(rb, g));
         // the values after the last pixel are not used: wrapping is harmless
+        rb = rb.wrapping_add(drb);
+        g = g.wrapping_add(dg);
+        crate::num::no_unroll();
+    }
+}
+
+/// The Gouraud loop for rounded 5-6-5 pixels with the depth test fused in
+/// (see [`Kernel::span_depth`]): one pass that tests, writes the depth and
+/// the colour of a passing pixel, and steps depth and channels.
+#[inline(never)]
+fn fill565_depth<C: OutputColor>(
+    ch: Channels565,
+    z: (i32, i32),
+    color: &mut [C],
+    depth: &mut [u16],
+) {
+    let Channels565 {
+        mut rb,
+        drb,
+        mut g,
+        dg,
+    } = ch;
+    let (mut z, dz) = (z.0 as u32, z.1 as u32);
+    let n = color.len().min(depth.len());
+    let (Some(color), Some(depth)) = (color.get_mut(..n), depth.get_mut(..n)) else {
+        return;
+    };
+    for k in 0..n {
+        // below 2^16: the run's depths need no clamping
+        let zi = z >> ATTR_FRAC;
+        if zi < u32::from(depth[k]) {
+            depth[k] = zi as u16;
+            color[k] = C::from_rgb565_raw(pixel565(rb, g));
+        }
+        // the values after the last pixel are not used: wrapping is harmless
+        z = z.wrapping_add(dz);
         rb = rb.wrapping_add(drb);
         g = g.wrapping_add(dg);
         crate::num::no_unroll();
