@@ -72,6 +72,24 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     }
 
     #[inline(always)]
+    fn span_depth(
+        &self,
+        t: &FlatTriangle<C>,
+        a: &[i32; 0],
+        d: &[i32; 0],
+        x: i32,
+        y: i32,
+        z: (i32, i32),
+        color: &mut [C],
+        depth: &mut [u16],
+    ) {
+        if E::POSITIONAL {
+            return super::split_span(self, t, a, d, (x, y), z, color, depth);
+        }
+        fill_depth(t.color, z, color, depth)
+    }
+
+    #[inline(always)]
     fn span(
         &self,
         t: &FlatTriangle<C>,
@@ -88,5 +106,27 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
         } else {
             color.fill(t.color);
         }
+    }
+}
+
+/// One colour with the depth test fused in (see [`Kernel::span_depth`]): a
+/// pass that tests, writes the depth and the colour of a passing pixel.
+#[inline(never)]
+fn fill_depth<C: Copy>(c: C, z: (i32, i32), color: &mut [C], depth: &mut [u16]) {
+    let (mut z, dz) = (z.0 as u32, z.1 as u32);
+    let n = color.len().min(depth.len());
+    let (Some(color), Some(depth)) = (color.get_mut(..n), depth.get_mut(..n)) else {
+        return;
+    };
+    for k in 0..n {
+        // below 2^16: the run's depths need no clamping
+        let zi = z >> ATTR_FRAC;
+        if zi < u32::from(depth[k]) {
+            depth[k] = zi as u16;
+            color[k] = c;
+        }
+        // the value after the last pixel is not used: wrapping is harmless
+        z = z.wrapping_add(dz);
+        crate::num::no_unroll();
     }
 }
