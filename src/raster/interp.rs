@@ -367,13 +367,6 @@ pub(crate) fn step_over<V: Varyings>(a: &V, b: &V, n: u32) -> V {
     V::from_fn(|i| crate::num::div_small(get(b, i).wrapping_sub(get(a, i)), n))
 }
 
-/// The values `k` pixels on from `a` with the change `d` per pixel
-/// (wrapping, as a kernel steps them).
-#[inline(always)]
-pub(crate) fn advanced<V: Varyings>(a: &V, d: &V, k: usize) -> V {
-    V::from_fn(|i| get(a, i).wrapping_add(get(d, i).wrapping_mul(k as i32)))
-}
-
 /// The change per pixel between two sub-span ends 8 pixels apart (rounded
 /// toward zero, so that every pixel's value lies between the ends).
 #[inline(always)]

@@ -184,13 +184,15 @@ impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
         out: &mut [K::Color],
         depth: &mut [u16],
     ) {
-        if CLAMP {
-            // the values are clamped per passing run
-            split_runs::<K, Self, CLAMP>(self, kernel, t, (x, y), z, out, depth)
-        } else {
+        if !CLAMP {
+            // a kernel that fuses the depth test takes the whole run
             let (a, d) = Linear::run::<false>(self, x, out.len(), K::USED);
-            kernel.span_depth(t, &a, &d, x, y, z, out, depth);
+            if kernel.span_depth(t, &a, &d, x, y, z, out, depth) {
+                return;
+            }
         }
+        // the values are computed (and clamped) per passing run
+        split_runs::<K, Self, CLAMP>(self, kernel, t, (x, y), z, out, depth)
     }
 }
 

@@ -75,18 +75,19 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     fn span_depth(
         &self,
         t: &FlatTriangle<C>,
-        a: &[i32; 0],
-        d: &[i32; 0],
-        x: i32,
-        y: i32,
+        _: &[i32; 0],
+        _: &[i32; 0],
+        _x: i32,
+        _y: i32,
         z: (i32, i32),
         color: &mut [C],
         depth: &mut [u16],
-    ) {
+    ) -> bool {
         if E::POSITIONAL {
-            return super::split_span(self, t, a, d, (x, y), z, color, depth);
+            return false;
         }
-        fill_depth(t.color, z, color, depth)
+        fill_depth(t.color, z, color, depth);
+        true
     }
 
     #[inline(always)]

@@ -44,19 +44,20 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     #[inline(always)]
     fn span_depth(
         &self,
-        t: &(),
+        _t: &(),
         a: &[i32; 3],
         d: &[i32; 3],
-        x: i32,
-        y: i32,
+        _x: i32,
+        _y: i32,
         z: (i32, i32),
         color: &mut [C],
         depth: &mut [u16],
-    ) {
+    ) -> bool {
         if C::IS_RGB565 && E::LINEAR {
-            return fill565_depth(Channels565::new(a, d), z, color, depth);
+            fill565_depth(Channels565::new(a, d), z, color, depth);
+            return true;
         }
-        super::split_span(self, t, a, d, (x, y), z, color, depth)
+        false
     }
 
     #[inline(always)]

@@ -342,15 +342,16 @@ pub trait Kernel {
     );
 
     /// Depth-tests and shades pixels `x..x + out.len()` of row `y` in one
-    /// call (`depth` is as long as `out`): pixel `k` has the depth
-    /// `(z + k·dz) >> ATTR_FRAC` (wrapping `u32` steps) and passes when that
-    /// is less than `depth[k]`, which then takes it; a passing pixel gets the
-    /// colour [`Kernel::span`] gives it with the values `start + k·step`.
-    /// The default splits the run at the depth test and calls
-    /// [`Kernel::span`] for each passing run; a kernel may fuse the test into
-    /// its own loop (the Gouraud 5-6-5 kernel does: one pass over the pixels
-    /// instead of two). Called for screen-linear runs whose values need no
-    /// clamping (the common case); the others go through the default.
+    /// pass, if the kernel can (`depth` is as long as `out`): pixel `k` has
+    /// the depth `(z.0 + k·z.1) >> ATTR_FRAC` (wrapping `u32` steps) and
+    /// passes when that is less than `depth[k]`, which then takes it; a
+    /// passing pixel gets the colour [`Kernel::span`] would give it with the
+    /// values `start + k·step`. Returns whether it did: the default returns
+    /// `false` without touching anything, and the pipeline then splits the
+    /// run at the depth test and calls [`Kernel::span`] for each passing run.
+    /// The Gouraud and flat 5-6-5 kernels fuse the test into their loops
+    /// (one pass over the pixels instead of two). Called for screen-linear
+    /// runs whose values need no clamping (the common case).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn span_depth(
@@ -363,31 +364,10 @@ pub trait Kernel {
         z: (i32, i32),
         out: &mut [Self::Color],
         depth: &mut [u16],
-    ) {
-        split_span(self, t, start, step, (x, y), z, out, depth)
+    ) -> bool {
+        let _ = (t, start, step, x, y, z, out, depth);
+        false
     }
-}
-
-/// [`Kernel::span_depth`] by [`depth_runs`] and [`Kernel::span`] per passing
-/// run (the default, and a kernel's path where it does not fuse).
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub(crate) fn split_span<K: Kernel + ?Sized>(
-    kernel: &K,
-    t: &K::Triangle,
-    start: &K::Varyings,
-    step: &K::Varyings,
-    (x, y): (i32, i32),
-    z: (i32, i32),
-    out: &mut [K::Color],
-    depth: &mut [u16],
-) {
-    depth_runs(z.0, z.1, depth, |k0, k1| {
-        if let Some(c) = out.get_mut(k0..k1) {
-            let a = crate::raster::interp::advanced(start, step, k0);
-            kernel.span(t, &a, step, x + k0 as i32, y, c);
-        }
-    });
 }
 
 /// The depth test of the leading pixels of a run: pixel `k` has depth
