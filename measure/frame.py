@@ -37,7 +37,12 @@ sites of the dynamic call stack, so inlining does not move work between
 stages. Limits: code the compiler hoists or merges across an inlined
 function's boundary carries one function's debug location, and a tail call
 leaves the tail-calling function off the stack. It prints the stages per
-entry, with the functions that decided each.
+entry (with the functions that decided each), a markdown table of
+`lambert_gouraud` against the floor (`breakdown_markdown`), and writes the
+per-stage figures into frame.json's "breakdown" (when all sections run, or
+into the existing file for the entries whose instruction counts it already
+holds; a later full run keeps an entry's breakdown only while its count is
+unchanged).
 """
 from __future__ import annotations
 
@@ -946,6 +951,72 @@ def print_breakdown(section: str, bd: dict, res: dict) -> None:
             f"{k} {v}" for k, v in b["largest_functions"].items()))
 
 
+def breakdown_json(bd: dict, res: dict) -> dict:
+    """The machine-readable part of one section's breakdown (frame.json's "breakdown"):
+    per entry, the frame's instructions and lit pixels, the instructions of each
+    stage and the same per lit pixel. Deterministic: the counts of one build."""
+    out = {}
+    for ent, b in bd.items():
+        lit, tot = res[ent]["lit_px"], res[ent]["instructions"]
+        stages = {k: b[k] for k in STAGE_NAMES if k in b}
+        out[ent] = {"instructions": tot, "lit_px": lit, "stages": stages,
+                    "per_lit_px": {k: round(n / lit, 2) for k, n in stages.items()}}
+    return out
+
+
+def merge_breakdown(old: dict, new: dict, res: dict) -> tuple[dict, list[str]]:
+    """frame.json's "breakdown": `new` (this run's) over `old` (the file's), each entry kept
+    only while its instruction count equals the frame's in `res` (the figures it sits
+    beside): a breakdown from another build is dropped, not mixed in. (merged, dropped)"""
+    out: dict = {}
+    dropped = []
+    for src in (old, new):
+        for section, per in src.items():
+            for ent, d in per.items():
+                if res.get(section, {}).get(ent, {}).get("instructions") == d["instructions"]:
+                    out.setdefault(section, {})[ent] = d
+                elif src is old:
+                    dropped.append((section, ent))
+    order = {s: i for i, s in enumerate(SECTIONS)}
+    out = {s: dict(sorted(out[s].items(), key=lambda kv: ALL_ENTRIES.index(kv[0])))
+           for s in sorted(out, key=lambda s: order.get(s, len(order)))}
+    return out, [f"{s} {e}" for s, e in dropped if e not in out.get(s, {})]
+
+
+# The floor's whole frame per stage, instructions per lit pixel (32 480), M0 (`m0-asm`) and
+# M4F (`m4f`): from `bash ../shared/floor/run.sh` (table "The whole frame, per stage" of
+# ../shared/floor/README.md; run.sh writes them to build/limit.json, which is not kept).
+# The floor has no flush (it draws into its own frame buffer) and no per-frame scene set-up.
+FLOOR = {"clear": (2.44, 1.55), "vertex": (1.89, 1.38), "loop": (0.42, 0.27), "setup": (8.20, 5.62),
+         "rows": (13.23, 9.34), "spans": (18.99, 17.99), "total": (45.17, 36.15)}
+
+
+def breakdown_markdown(bd: dict, config: str = "lambert_gouraud") -> str:
+    """The per-stage table of `config` (frame.json's "breakdown" form): instructions per lit
+    pixel of each stage, M0 and M4F, whole frame and 8-row bands, beside the floor's."""
+    cols = [("m0", config), ("m0", config + "_band8"), ("m4f", config), ("m4f", config + "_band8")]
+    got = [bd.get(s, {}).get(e) for s, e in cols]
+    stages = [k for k in STAGE_NAMES if any(g and k in g["stages"] for g in got) or k in FLOOR]
+    f = lambda v: "—" if v is None else f"{v:.2f}"  # noqa: E731
+    head = ["per lit pixel", "M0 full", "M0 8-row", "M4F full", "M4F 8-row", "floor M0", "floor M4F"]
+    out = ["| " + " | ".join(head) + " |", "|---|" + "---:|" * (len(head) - 1)]
+    for k in stages:
+        row = [f(g["per_lit_px"].get(k, 0.0)) if g else "—" for g in got]
+        out.append(f"| {LABELS[k]} | " + " | ".join(row + [f(v) for v in FLOOR.get(k, (None, None))]) + " |")
+    tot = [f"**{g['instructions'] / g['lit_px']:.2f}**" if g else "—" for g in got]
+    out.append("| **frame** | " + " | ".join(tot + [f"**{v:.2f}**" for v in FLOOR["total"]]) + " |")
+    out.append("")
+    out.append(
+        f"`{config}`: each stage's instructions per lit pixel of the standard frame, counted in Unicorn"
+        " (`python3 measure/frame.py --breakdown`). An instruction counts for the innermost function on"
+        " its call stack, inlined or not, that names a stage; runtime helpers (compiler-builtins) are"
+        " listed apart by kind, except the clear's memset. *floor*: the C/assembly reference of"
+        " `../shared/floor` (`bash ../shared/floor/run.sh`), which has no flush and no per-frame scene"
+        " set-up; its cull runs in set-up, the crate's in binning (`tri::classify`, counted as cull +"
+        " set-up).")
+    return "\n".join(out)
+
+
 # -- checks ----------------------------------------------------------------------------
 def call_sites(emu: Image, caller: str, callee: str) -> list[int]:
     start = emu.funcs[callee][0]
@@ -1240,10 +1311,17 @@ def main(argv=None) -> int:
         res[section], runs[section] = measure_section(section, host, prof)
     res["host"] = {ent: {"checksum": host[ent]["checksum"]} for ent in ALL_ENTRIES}
     table(res)
+    bd_doc: dict = {}
     if bd:
         for section in runs:
             if runs[section]["profiled"]:
-                print_breakdown(section, breakdown(section, runs[section]), res[section])
+                b = breakdown(section, runs[section])
+                print_breakdown(section, b, res[section])
+                bd_doc[section] = breakdown_json(b, res[section])
+        if any(CONFIGS[0] in bd_doc.get(s, {}) or CONFIGS[0] + "_band8" in bd_doc.get(s, {})
+               for s in ("m0", "m4f")):
+            print(f"\nper stage, {CONFIGS[0]}, against the floor:\n")
+            print(breakdown_markdown(bd_doc, CONFIGS[0]))
     passed = failed = 0
     lines = []
     for section in runs:
@@ -1276,12 +1354,31 @@ def main(argv=None) -> int:
         write_bounds(res)
     if set(a.sections.split(",")) == set(SECTIONS):
         doc = {s: res[s] for s in ("m0", "m4f", "host", "m0_z", "rv32imc")}
+        old = json.loads(OUT.read_text()).get("breakdown", {}) if OUT.exists() else {}
+        merged, dropped = merge_breakdown(old, bd_doc, res)
+        if dropped:
+            log(f"  dropped the breakdown of {', '.join(dropped)} (another build: rerun with --breakdown)")
+        if merged:
+            doc["breakdown"] = merged
         OUT.parent.mkdir(exist_ok=True)
         OUT.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
         log(f"wrote {OUT.relative_to(HERE.parent)} ({time.time() - t:.0f} s)")
         for path in (README, TRADEOFF):
             if rewrite_marked(path, frame_markdown(doc)):
                 log(f"wrote the frame table in {path.relative_to(HERE.parent)}")
+    elif bd_doc and OUT.exists():
+        # a subset of the sections: only frame.json's "breakdown", for the entries whose
+        # instruction counts equal the file's (the same build)
+        doc = json.loads(OUT.read_text())
+        merged, _ = merge_breakdown(doc.get("breakdown", {}), bd_doc, doc)
+        skipped = [f"{s} {e}" for s, per in bd_doc.items() for e in per if e not in merged.get(s, {})]
+        if skipped:
+            log(f"  not written to {OUT.name} (its figures are from another build: run all sections):"
+                f" {', '.join(skipped)}")
+        if merged != doc.get("breakdown", {}):
+            doc["breakdown"] = merged
+            OUT.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
+            log(f"wrote the breakdown into {OUT.relative_to(HERE.parent)}")
     return 0
 
 
