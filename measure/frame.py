@@ -24,6 +24,25 @@ the host's frame); peak stack (lowest written address of a painted stack,
 below the initial SP, entry frame included); RAM of the frame's buffers (ELF
 symbol sizes of the statics it uses); flash of the code reachable from the
 entry (static call graph, see `Image`); the checksum (must equal the host's).
+
+`--breakdown` (M0, M4F, RV32IMC; a Python block hook, a few seconds per
+entry) attributes every instruction of a frame to a pipeline stage: scene
+(integer transform, shader state, entry), clear, vertex stage, triangle loop /
+bins, cull + set-up, clipping, rows (edge walking, span start values), spans
+(depth test + colour), flush into the `DrawTarget`, runtime helpers by kind
+(division, memcpy/memset, clz, 64-bit multiply, soft float) and "other". An
+instruction counts for the innermost function on its call stack that names a
+stage (`STAGES`): its inline stack from the DWARF line tables, then the call
+sites of the dynamic call stack, so inlining does not move work between
+stages. Limits: code the compiler hoists or merges across an inlined
+function's boundary carries one function's debug location, and a tail call
+leaves the tail-calling function off the stack. It prints the stages per
+entry (with the functions that decided each), a markdown table of
+`lambert_gouraud` against the floor (`breakdown_markdown`), and writes the
+per-stage figures into frame.json's "breakdown" (when all sections run, or
+into the existing file for the entries whose instruction counts it already
+holds; a later full run keeps an entry's breakdown only while its count is
+unchanged).
 """
 from __future__ import annotations
 
@@ -399,18 +418,28 @@ class NativeCounter:
         return {(self.lo + 2 * i, self.sz[i]): v for i, v in enumerate(c) if v}
 
 
+_COND = {"", "eq", "ne", "cs", "hs", "cc", "lo", "mi", "pl", "vs", "vc", "hi", "ls", "ge", "lt", "gt", "le", "al"}
+
+
 class Frame(Image):
     """Runs one frame entry. Counting: a native block hook (`NativeCounter`),
-    or with `profile` the Python hook, which also records the call site of
-    every compiler-builtins invocation and the stack at the deepest block entry
-    (for `--breakdown`). Both count every executed block's instructions
-    (decoded once with capstone), so the figures are the same."""
+    or with `profile` the Python hook, which also records the stack at the
+    deepest block entry and, per executed block, the dynamic call stack it
+    ran under (for `--breakdown`: a shadow stack of call sites, pushed when a
+    block ending in a call — `bl`/`blx`, RISC-V `jal`/`jalr` linking `ra` —
+    is followed by a block at a function's entry, popped when a block starts
+    at the innermost pending return address; a run fails unless every call
+    returned). Both count every executed block's instructions (decoded once
+    with capstone), so the figures are the same."""
 
     def __init__(self, elf, core, profile: bool = False):
         super().__init__(elf, core)
         self.profile = profile
         self.native = None
-        self._lib: dict[tuple[int, int], tuple] = {}  # block -> (instructions, builtin) or ()
+        self._ends_call: dict[tuple[int, int], tuple[int, int] | None] = {}
+        self._ctxs: list[tuple[int, ...]] = [()]  # call stacks (call sites, outermost first), by id
+        self._ctx_ids: dict[tuple[int, ...], int] = {(): 0}
+        self._entries = {a for a, _ in self.funcs.values()}  # function entries: where a call lands
         if not profile:
             try:
                 self.native = NativeCounter(self)
@@ -421,19 +450,39 @@ class Frame(Image):
         key = (addr, size)
         self._bc[key] += 1
         if self.profile:
-            lib = self._lib.get(key)
-            if lib is None:
-                n, name = self._block(addr, size)
-                lib = self._lib[key] = (n, name) if is_runtime_lib(name) else ()
-            if lib:
-                if self._site is None:  # entering a builtin from fixshade code: LR is the return address
-                    self._site = (uc.reg_read(self.R_LR) & ~1) - 2  # inside the call instruction
-                self.builtin_sites[(self._site, lib[1])] += lib[0]
-            else:
-                self._site = None
+            # the call stack: a call ends its block; the callee's first block follows
+            # (not a conditional call not taken, nor a Thumb-1 far branch `bl` inside a function)
+            if self._call is not None and addr != self._call[1] and addr in self._entries:
+                self._calls.append((self._call[1], self._cid))
+                ctx = self._ctxs[self._cid] + (self._call[0],)
+                cid = self._ctx_ids.get(ctx)
+                if cid is None:
+                    cid = self._ctx_ids[ctx] = len(self._ctxs)
+                    self._ctxs.append(ctx)
+                self._cid = cid
+            elif self._calls and addr == self._calls[-1][0]:  # returned
+                self._cid = self._calls.pop()[1]
+            self._ctx_blocks[(addr, size, self._cid)] += 1
+            call = self._ends_call.get(key, False)
+            if call is False:
+                call = self._ends_call[key] = self._call_at_end(addr, size)
+            self._call = call
             sp = uc.reg_read(self.R_SP)
             if sp < self.min_sp[0]:  # the deepest block entry: keep the stack for a backtrace
                 self.min_sp = (sp, addr, bytes(uc.mem_read(sp, self.stack_top - sp)))
+
+    def _call_at_end(self, addr: int, size: int) -> tuple[int, int] | None:
+        """(call site, return address) when the block's last instruction is a call."""
+        last = list(self.cs.disasm(bytes(self.uc.mem_read(addr, size)), addr))[-1]
+        m, ops = last.mnemonic, last.op_str
+        if self.riscv:
+            # `jal off` / `jalr rs` (one operand) link ra; `jal zero, …` is printed `j`
+            rd = ops.split(",")[0].strip() if "," in ops else "ra"
+            call = m in ("c.jal", "c.jalr") or (m in ("jal", "jalr") and rd == "ra")
+        else:  # `bl`, `blx`, and in an IT block `blne` …, not `bls`/`blt`/`ble`/`blo` (`b` + condition)
+            m = m.split(".")[0]
+            call = m[1:] not in _COND and (m[:2] == "bl" and m[2:] in _COND or m[:3] == "blx" and m[3:] in _COND)
+        return (last.address, last.address + last.size) if call else None
 
     def _block(self, addr: int, size: int) -> tuple[int, str]:
         hit = self._blocks.get((addr, size))
@@ -449,7 +498,8 @@ class Frame(Image):
         uc, top = self.uc, self.stack_top
         uc.mem_write(top - PAINT, PATTERN.to_bytes(4, "little") * (PAINT // 4))
         self.set_registers(top)
-        self._bc, self.builtin_sites, self._site = defaultdict(int), Counter(), None
+        self._bc = defaultdict(int)
+        self._ctx_blocks, self._calls, self._cid, self._call = Counter(), [], 0, None
         self.min_sp = (top, 0, b"")
         if self.native:
             self.native.reset()
@@ -459,6 +509,9 @@ class Frame(Image):
             raise SystemExit(f"FAIL {self.elf.parent.parent.name} {sym}: stopped at {pc:#x} "
                              f"({self.short(self.symbol_at(pc))}) after {TIMEOUT_S} s or a fault")
         self.blocks = self.native.counts() if self.native else dict(self._bc)
+        if self.profile and self._calls:  # every call returned: the shadow stack held
+            raise SystemExit(f"FAIL {sym}: {len(self._calls)} calls of the shadow call stack never returned"
+                             f" (innermost call site {self._ctxs[self._cid][-1]:#x})")
         insns, by_func = 0, Counter()
         for (a, n), times in self.blocks.items():
             k, name = self._block(a, n)
@@ -506,7 +559,7 @@ def measure_section(section: str, host: dict, profile: set[str]) -> tuple[dict, 
             if (rp.insns, rp.by_func) != (r.insns, r.by_func):
                 raise SystemExit(f"FAIL {section} {ent}: the profiling run counted {rp.insns} instructions,"
                                  f" the native counter {r.insns}")
-            profiled[ent] = {"blocks": slow.blocks, "sites": slow.builtin_sites, "min_sp": slow.min_sp}
+            profiled[ent] = {"min_sp": slow.min_sp, "ctx_blocks": slow._ctx_blocks, "ctxs": list(slow._ctxs)}
         if status:
             raise SystemExit(f"FAIL {section} {ent}: status {status:#x} (1 lighting, 2 render, "
                              f"3 | needed << 8 buffer too small, 4 pixels missing)")
@@ -574,29 +627,95 @@ def measure_section(section: str, host: dict, profile: set[str]) -> tuple[dict, 
 
 
 # -- breakdown -------------------------------------------------------------------------
-# (category, regex on a demangled function name of the inline stack). The
-# innermost frame that matches decides; compiler-builtins count for their call site.
+# Where a frame's instructions go. Every executed instruction is attributed to the
+# innermost *named* function on its call stack: first the instruction's inline stack
+# (llvm-symbolizer --inlining: the functions inlined at that address, innermost first,
+# up to the symbol that holds it), then the inline stack of each call site of the
+# dynamic call stack the block ran under (`Frame`'s shadow stack), innermost first.
+# The first function matching a stage's pattern decides. So a helper that matches
+# nothing (`Plane::at`, `MeshTransform::clip`, a lighting function, `core::…`) counts
+# for whatever called it, inlined or not: `MeshTransform::clip` for the vertex stage
+# from `vertex::stage`, for binning from the classification closure. A function
+# inlined into another keeps its own name in the inline stack, so inlining does not
+# move instructions between stages; only code the compiler merges from two functions
+# into one instruction would be attributed to the innermost of them.
+# Names are matched with trailing `::{{closure}}`s removed (a closure counts as its
+# function). Patterns name stage-defining functions only, robust to the span code's
+# new names (`fill565_depth`, `span_depth`, … count as spans).
+# Runtime helpers (compiler-builtins, libm) are reported apart, by kind, under the
+# stage of their fixshade caller in `builtins_by_stage`; a memset/memclr called from
+# the clear *is* the clear and counts there.
+# Stage pairs one function holds (by design, not by inlining): `tri::classify` (the
+# facing test and the row bounds, twice per triangle from `bins::sort`) counts as
+# cull + set-up; `Linear::run` (a run's start values) as rows; `depth_runs` (cutting a
+# row into passing runs) as spans.
 STAGES = [
-    ("vertex", r"render::vertex::stage$|render::vertex::orthographic$"),
-    ("bins", r"render::bins::|render::draw::classify$|MeshDraw<K,P>::prepare::\{\{closure\}\}$"),
-    ("clip", r"render::tri::(draw_clipped|pieces|clipped_bounds)$|raster::clip::"),
-    ("setup", r"Setup::(new|prepare_planes|plane|plane_exact|exact_recip|walker|err)$|interp::within$"
-              r"|Linear<V>::new$|Persp<V>::new$|Kernel for .*>::triangle$"
-              r"|Walker::(new|resume|unpositioned|edge_near|edge_from|level_row)$|Plane::skip_rows$"),
-    ("edges", r"Walker::(next|more|snapshot)$|Edge::"),
-    ("span_clamp", r"Plane::clamped$"),
-    ("rows", r"Plane::next_row$|Linear<V>::(next_row|skip_rows)$|BandView<C>::span$"),
-    ("spans", r"::depth_(prefix|fails|runs|loop)(::\{\{closure\}\})*$|gouraud::fill565$|flat::fill"
-              r"|Kernel for .*>::(span|run)(::\{\{closure\}\})*$|incremental::shade_run$|incremental::run$"
-              r"|Linear<V>::run$|Persp<V>::|perpixel::|segment::|quadratic::"),
-    ("clears", r"render::fill$|framebuffer::fill$"),
-    ("flush", r"Checksum<C>|FullFrame<C>::flush$"),
-    ("scene", r"fixshade::standard::|fixshade_frame::inc_lighting$|Shader<.*>::new$|ModeState.*::state$"
-              r"|PowTable::new$|Lighting<.*>::new$|Material<S>::new$|DirectionalLight<S>::new$"
-              r"|LightColors<S>::new$|Rgb<S>::try_from_f32$"),
-    ("triangles", r"::draw_band$|render::tri::draw$|MeshDraw<K,P>::prepare$|Bands<C>::render$|FullFrame<C>::render$"),
+    ("clear", r"fixshade::framebuffer::(fill|clear)\w*$|fixshade::render::fill$"),
+    ("vertex", r"fixshade::render::vertex::(stage|window)$|(^|<)fixshade::shade::.*::vertex$"),
+    # (not `Refined::replaced`: the binning's test whether a triangle was replaced)
+    ("refine", r"fixshade::render::refine::(?!Refined<.*>::replaced$)|MeshDraw<K,P>::with_refinement$"),
+    ("clip", r"MeshDraw<K,P>::clipped$|render::tri::(draw_clipped|pieces|clipped_bounds|outline|convex)$"
+             r"|fixshade::raster::clip::"),
+    ("setup", r"render::tri::(classify|draw|front|draw_triangle)$"
+              r"|fixshade::raster::setup::Setup::|fixshade::raster::setup::Plane::(skip_rows|absolute)$"
+              r"|fixshade::raster::interp::(within|oriented|corner|inverse_w)$"
+              r"|fixshade::raster::interp::(Linear|Persp)<V>::(new|skip_rows)$"
+              r"|fixshade::raster::edge::Walker::(new|resume|unpositioned|edge_near|edge_from|place)$"
+              r"|fixshade::raster::edge::Edge::(new|guess)$"
+              r"|(^|<)fixshade::shade::.*::triangle$"),
+    ("rows", r"render::tri::(draw_rows|perspective_run)$|fixshade::render::tri::Runs<K>>::"
+             r"|fixshade::raster::edge::Walker::(next|switch_row|more|snapshot)$"
+             r"|fixshade::raster::interp::(Linear|Persp)<V>::(next_row|run|at)$"
+             r"|fixshade::raster::setup::Plane::(next_row|clamped\w*)$"),
+    ("spans", r"fixshade::shade::depth_\w+$"
+              r"|(^|<)fixshade::shade::.*::(span\w*|shade_run|run|fill\w*|pixel|walk\w*)$"),
+    ("flush", r"fixshade::framebuffer::checksum::Checksum<C>::fill_contiguous\w*$"
+              r"|Checksum<C> as embedded_graphics_core::draw_target::DrawTarget>::(fill_contiguous|draw_iter"
+              r"|fill_solid|clear)$|fixshade::framebuffer::FullFrame<C>::flush$"),
+    ("loop", r"fixshade::render::bins::|fixshade::render::draw::MeshDraw<K,P>::"
+             r"|as fixshade::framebuffer::DrawBand<.*>>::draw_band$"
+             r"|fixshade::framebuffer::(Bands<C>::render|FullFrame<C>::render|Buffers<C>::draw|check_layouts)$"),
+    ("scene", r"^fixshade::standard::|^fixshade_frame::|^frame_\w+$|^init$|fixshade::shade::Shader<.*>::new$"
+              r"|(^|<)fixshade::shade::.*::state$|fixshade::lighting::.*::(new|build|prepare|validate)$"),
 ]
-STAGE_NAMES = [s for s, _ in STAGES] + ["other"]
+# runtime helpers by kind (the outermost helper called from fixshade code decides)
+RUNTIME = [
+    ("rt_float", r"float|libm|__aeabi_[fd]|2[fd]$|[sd]f\d?$|__fix|__(pow|sqrt|fmod)"),
+    ("rt_mem", r"mem(cpy|set|clr|move|cmp)"),
+    ("rt_clz", r"clz"),
+    ("rt_mul64", r"lmul|muldi3|int::mul::"),
+    ("rt_div", r"div|mod"),
+    ("rt_other", r""),
+]
+# in the order of a frame (the patterns' order above only settles a name two of them match)
+STAGE_NAMES = ["scene", "clear", "vertex", "refine", "loop", "setup", "clip", "rows", "spans", "flush",
+               *(k for k, _ in RUNTIME), "other"]
+assert sorted(STAGE_NAMES) == sorted([s for s, _ in STAGES] + [k for k, _ in RUNTIME] + ["other"])
+LABELS = {
+    "clear": "clear", "vertex": "vertex stage", "refine": "silhouette refinement",
+    "clip": "clipping", "setup": "cull + set-up", "rows": "rows (edge walking, span start values)",
+    "spans": "spans (depth test + colour)", "flush": "flush into the DrawTarget",
+    "loop": "triangle loop / bins", "scene": "scene (transform, shader state, entry)",
+    "rt_float": "runtime: soft float, libm", "rt_mem": "runtime: memcpy/memset",
+    "rt_clz": "runtime: clz", "rt_mul64": "runtime: 64-bit multiply", "rt_div": "runtime: division",
+    "rt_other": "runtime: other (64-bit shifts)", "other": "other",
+}
+_CLOSURE = re.compile(r"(::\{\{closure\}\})+$")
+_STAGE_RX = [(name, re.compile(rx)) for name, rx in STAGES]
+_RUNTIME_RX = [(name, re.compile(rx)) for name, rx in RUNTIME]
+
+
+def stage_of_frame(fn: str) -> str | None:
+    """The stage a function name (demangled) defines, or None."""
+    fn = _CLOSURE.sub("", fn)
+    for name, rx in _STAGE_RX:
+        if rx.search(fn):
+            return name
+    return None
+
+
+def runtime_kind(fn: str) -> str:
+    return next(name for name, rx in _RUNTIME_RX if rx.search(fn))
 
 
 def _symbol_file(path: Path) -> Path:
@@ -630,53 +749,92 @@ def symbolize(path: Path, addrs: list[int]) -> dict[int, list[tuple[str, str]]]:
     return res
 
 
-def stage_of(stack: list[tuple[str, str]]) -> str:
+def stage_of(stack: list[tuple[str, str]]) -> str | None:
+    """The stage of the innermost matching function of an inline stack (innermost first)."""
     for fn, _ in stack:
-        for name, rx in STAGES:
-            if re.search(rx, fn):
-                return name
-    return "other"
+        st = stage_of_frame(fn)
+        if st:
+            return st
+    return None
 
 
 def breakdown(section: str, data: dict) -> dict:
-    """entry -> {stage: instructions} (+ `builtins`: {name: instructions})."""
+    """entry -> {stage: instructions} (+ `builtins`: {name: instructions}, `builtins_by_stage`,
+    `unattributed`: the inline stacks of what landed in "other", and diagnostics)."""
     emu = data["emu"]
-    per_insn: dict[str, Counter] = {}
     addrs = set()
     dis: dict[tuple, list[int]] = {}
     for ent in data["profiled"]:
         d = data["entries"][ent]
-        c = Counter()
-        for (addr, size), times in d["blocks"].items():
-            if is_runtime_lib(emu._block(addr, size)[1]):
-                continue  # counted at their call sites
+        for (addr, size, cid), times in d["ctx_blocks"].items():
             if (addr, size) not in dis:
                 dis[(addr, size)] = [i.address for i in emu.cs.disasm(bytes(emu.uc.mem_read(addr, size)), addr)]
-            for a in dis[(addr, size)]:
-                c[a] += times
-        for (site, _), n in d["sites"].items():
-            c[site] += n
-        per_insn[ent] = c
-        addrs |= set(c)
+                addrs.update(dis[(addr, size)])
+        for ctx in d["ctxs"]:
+            addrs.update(ctx)
     stacks = symbolize(emu.elf, sorted(addrs))
-    stage = {a: stage_of(stacks[a]) for a in addrs}
+    own: dict[int, str | None] = {}  # address -> stage of its inline stack alone
+
+    def at(a: int) -> str | None:
+        if a not in own:
+            own[a] = stage_of(stacks[a])
+        return own[a]
+
+    rt = {a: is_runtime_lib(emu.symbol_at(a)) for a in addrs}
     out = {}
-    for ent, c in per_insn.items():
-        s = Counter()
-        for a, n in c.items():
-            s[stage[a]] += n
+    for ent in data["profiled"]:
+        d = data["entries"][ent]
+        ctxs = d["ctxs"]
+        memo: dict[tuple[int, int], tuple[str, str | None, str | None]] = {}
+
+        def attribute(a: int, cid: int) -> tuple[str, str | None, str | None]:
+            """(stage, runtime helper or None, the caller's stage for a helper)."""
+            key = (a, cid)
+            if key not in memo:
+                chain = [a] + list(reversed(ctxs[cid]))  # the instruction, then call sites, innermost first
+                helper, k = None, 0
+                while k < len(chain) and rt[chain[k]]:  # a runtime helper: skip to its fixshade caller
+                    helper, k = emu.symbol_at(chain[k]), k + 1
+                caller = next((s for s in map(at, chain[k:]) if s), None)
+                if helper is None:
+                    memo[key] = (caller or "other", None, None)
+                elif caller == "clear":  # the clear's memset/memclr
+                    memo[key] = ("clear", helper, caller)
+                else:
+                    memo[key] = (runtime_kind(emu.names.get(helper, helper)), helper, caller)
+            return memo[key]
+
+        def deciding(a: int, cid: int) -> str:
+            """The function whose name decided the stage (not for a runtime helper)."""
+            for c in [a] + list(reversed(ctxs[cid])):
+                for fn, _ in stacks[c]:
+                    if stage_of_frame(fn):
+                        return _CLOSURE.sub("", fn)
+            return "-"
+
+        s, by_site, lost = Counter(), Counter(), Counter()
+        named: dict[str, Counter] = defaultdict(Counter)  # stage -> the function that named it
+        for (addr, size, cid), times in d["ctx_blocks"].items():
+            for a in dis[(addr, size)]:
+                st, helper, caller = attribute(a, cid)
+                s[st] += times
+                named[st][emu.short(helper) if helper else deciding(a, cid)] += times
+                if helper:
+                    by_site[f"{caller or 'other'}: {emu.short(helper)}"] += times
+                if st == "other":
+                    chain = [a] + list(reversed(ctxs[cid]))
+                    lost[" < ".join(fn.split("::")[-1] if len(fn) > 60 else fn
+                                    for c in chain[:4] for fn, _ in stacks[c][:3])[:300]] += times
         total = sum(s.values())
-        assert total == data["entries"][ent]["by_func"].total(), (ent, total)
+        assert total == d["by_func"].total(), (ent, total, d["by_func"].total())
         b = {k: s[k] for k in STAGE_NAMES if s[k]}
-        b["builtins"] = {emu.short(f): n for f, n in data["entries"][ent]["by_func"].most_common()
-                         if is_runtime_lib(f)}
-        b["builtins_by_stage"] = {}
-        for (site, f), n in sorted(data["entries"][ent]["sites"].items()):
-            k = f"{stage[site]}: {emu.short(f)}"
-            b["builtins_by_stage"][k] = b["builtins_by_stage"].get(k, 0) + n
-        b["top_functions"] = {emu.short(f)[:100]: n for f, n in data["entries"][ent]["by_func"].most_common(12)}
-        b["deepest_stack"] = backtrace(emu, *data["entries"][ent]["min_sp"])
-        parent = data["entries"][ent]["parent"]
+        b["builtins"] = {emu.short(f): n for f, n in d["by_func"].most_common() if is_runtime_lib(f)}
+        b["builtins_by_stage"] = dict(by_site.most_common())
+        b["unattributed"] = dict(lost.most_common(8))
+        b["stage_functions"] = {k: dict(named[k].most_common(6)) for k in STAGE_NAMES if k in named}
+        b["top_functions"] = {emu.short(f)[:100]: n for f, n in d["by_func"].most_common(12)}
+        b["deepest_stack"] = backtrace(emu, *d["min_sp"])
+        parent = d["parent"]
         b["largest_functions"] = {emu.short(f)[:100]: emu.func_size(f) for f in
                                   sorted(parent, key=lambda f: (-emu.func_size(f), f))[:12]}
         out[ent] = b
@@ -750,26 +908,113 @@ def rv_backtrace(emu: Image, sp: int, addr: int, mem: bytes) -> list[str]:
     return out
 
 
+def _short_fn(fn: str) -> str:
+    """A demangled name without generic arguments and crate prefix, for listings."""
+    prev = None
+    while prev != fn:
+        prev = fn
+        fn = re.sub(r"<impl [^<>]* for ([^<>]*)>", r"\1", fn)
+        fn = re.sub(r"<([^<>]*) as [^<>]*>", r"\1", fn)
+        fn = re.sub(r"<(?!impl )[^<>]*>", lambda m: m[0] if " as " in m[0] else "", fn)
+    return fn.replace("fixshade::", "")
+
+
 def print_breakdown(section: str, bd: dict, res: dict) -> None:
-    print(f"\n{section}: instructions per frame by stage (innermost matching function of the inline"
-          " stack; compiler-builtins count for their call site)")
+    print(f"\n{section}: instructions per frame by stage (the innermost function on the call stack that"
+          " names a stage, inlined or not; runtime helpers rt_* apart, by kind; a memset of the clear"
+          " counts as clear)")
     cols = [s for s in STAGE_NAMES if any(s in b for b in bd.values())]
-    print(f"{'config':<22}" + "".join(f"{c:>11}" for c in cols) + f"{'total':>11}")
+    w = max(9, *(len(c) + 1 for c in cols))
+    print(f"{'config':<29}" + "".join(f"{c:>{w}}" for c in cols) + f"{'total':>{w + 1}}{'other':>8}")
     for ent, b in bd.items():
-        print(f"{ent:<22}" + "".join(f"{b.get(c, 0):>11}" for c in cols) + f"{res[ent]['instructions']:>11}")
+        tot = res[ent]["instructions"]
+        print(f"{ent:<29}" + "".join(f"{b.get(c, 0):>{w}}" for c in cols) + f"{tot:>{w + 1}}"
+              f"{100 * b.get('other', 0) / tot:>7.2f}%")
+    print("stages: " + "; ".join(f"{c} = {LABELS[c]}" for c in cols))
     for ent, b in bd.items():
         lit = res[ent]["lit_px"]
         print(f"\n  {section} {ent}: per lit pixel " + ", ".join(
-            f"{c} {b[c] / lit:.2f}" for c in cols if c in b))
-        top = sorted(b["builtins_by_stage"].items(), key=lambda kv: -kv[1])
-        print("    compiler-builtins by call-site stage: " + ", ".join(f"{k} {v}" for k, v in top[:8])
+            f"{c} {b[c] / lit:.2f}" for c in cols if c in b) + f"; total {res[ent]['instructions'] / lit:.2f}")
+        top = list(b["builtins_by_stage"].items())
+        print("    runtime helpers by caller stage: " + ", ".join(f"{k} {v}" for k, v in top[:8])
               + (f", … ({len(top) - 8} more, {sum(v for _, v in top[8:])} instr)" if len(top) > 8 else ""))
+        if b["unattributed"]:
+            print("    other (no stage on the call stack; instruction's inline stack < call sites'): "
+                  + "; ".join(f"{v} {k}" for k, v in b["unattributed"].items()))
+        for k, fs in b["stage_functions"].items():
+            print(f"    {k}: " + "; ".join(f"{_short_fn(f)} {v}" for f, v in fs.items()))
         print("    top functions (instructions, callees excluded): "
               + "; ".join(f"{k} {v}" for k, v in b["top_functions"].items()))
         print(f"    deepest stack (outermost first; peak {res[ent]['stack_bytes']} B): "
               + " -> ".join(b["deepest_stack"]))
         print("    largest reachable functions (bytes): " + "; ".join(
             f"{k} {v}" for k, v in b["largest_functions"].items()))
+
+
+def breakdown_json(bd: dict, res: dict) -> dict:
+    """The machine-readable part of one section's breakdown (frame.json's "breakdown"):
+    per entry, the frame's instructions and lit pixels, the instructions of each
+    stage and the same per lit pixel. Deterministic: the counts of one build."""
+    out = {}
+    for ent, b in bd.items():
+        lit, tot = res[ent]["lit_px"], res[ent]["instructions"]
+        stages = {k: b[k] for k in STAGE_NAMES if k in b}
+        out[ent] = {"instructions": tot, "lit_px": lit, "stages": stages,
+                    "per_lit_px": {k: round(n / lit, 2) for k, n in stages.items()}}
+    return out
+
+
+def merge_breakdown(old: dict, new: dict, res: dict) -> tuple[dict, list[str]]:
+    """frame.json's "breakdown": `new` (this run's) over `old` (the file's), each entry kept
+    only while its instruction count equals the frame's in `res` (the figures it sits
+    beside): a breakdown from another build is dropped, not mixed in. (merged, dropped)"""
+    out: dict = {}
+    dropped = []
+    for src in (old, new):
+        for section, per in src.items():
+            for ent, d in per.items():
+                if res.get(section, {}).get(ent, {}).get("instructions") == d["instructions"]:
+                    out.setdefault(section, {})[ent] = d
+                elif src is old:
+                    dropped.append((section, ent))
+    order = {s: i for i, s in enumerate(SECTIONS)}
+    out = {s: dict(sorted(out[s].items(), key=lambda kv: ALL_ENTRIES.index(kv[0])))
+           for s in sorted(out, key=lambda s: order.get(s, len(order)))}
+    return out, [f"{s} {e}" for s, e in dropped if e not in out.get(s, {})]
+
+
+# The floor's whole frame per stage, instructions per lit pixel (32 480), M0 (`m0-asm`) and
+# M4F (`m4f`): from `bash ../shared/floor/run.sh` (table "The whole frame, per stage" of
+# ../shared/floor/README.md; run.sh writes them to build/limit.json, which is not kept).
+# The floor has no flush (it draws into its own frame buffer) and no per-frame scene set-up.
+FLOOR = {"clear": (2.44, 1.55), "vertex": (1.89, 1.38), "loop": (0.42, 0.27), "setup": (8.20, 5.62),
+         "rows": (13.23, 9.34), "spans": (18.99, 17.99), "total": (45.17, 36.15)}
+
+
+def breakdown_markdown(bd: dict, config: str = "lambert_gouraud") -> str:
+    """The per-stage table of `config` (frame.json's "breakdown" form): instructions per lit
+    pixel of each stage, M0 and M4F, whole frame and 8-row bands, beside the floor's."""
+    cols = [("m0", config), ("m0", config + "_band8"), ("m4f", config), ("m4f", config + "_band8")]
+    got = [bd.get(s, {}).get(e) for s, e in cols]
+    stages = [k for k in STAGE_NAMES if any(g and k in g["stages"] for g in got) or k in FLOOR]
+    f = lambda v: "—" if v is None else f"{v:.2f}"  # noqa: E731
+    head = ["per lit pixel", "M0 full", "M0 8-row", "M4F full", "M4F 8-row", "floor M0", "floor M4F"]
+    out = ["| " + " | ".join(head) + " |", "|---|" + "---:|" * (len(head) - 1)]
+    for k in stages:
+        row = [f(g["per_lit_px"].get(k, 0.0)) if g else "—" for g in got]
+        out.append(f"| {LABELS[k]} | " + " | ".join(row + [f(v) for v in FLOOR.get(k, (None, None))]) + " |")
+    tot = [f"**{g['instructions'] / g['lit_px']:.2f}**" if g else "—" for g in got]
+    out.append("| **frame** | " + " | ".join(tot + [f"**{v:.2f}**" for v in FLOOR["total"]]) + " |")
+    out.append("")
+    out.append(
+        f"`{config}`: each stage's instructions per lit pixel of the standard frame, counted in Unicorn"
+        " (`python3 measure/frame.py --breakdown`). An instruction counts for the innermost function on"
+        " its call stack, inlined or not, that names a stage; runtime helpers (compiler-builtins) are"
+        " listed apart by kind, except the clear's memset. *floor*: the C/assembly reference of"
+        " `../shared/floor` (`bash ../shared/floor/run.sh`), which has no flush and no per-frame scene"
+        " set-up; its cull runs in set-up, the crate's in binning (`tri::classify`, counted as cull +"
+        " set-up).")
+    return "\n".join(out)
 
 
 # -- checks ----------------------------------------------------------------------------
@@ -1066,10 +1311,17 @@ def main(argv=None) -> int:
         res[section], runs[section] = measure_section(section, host, prof)
     res["host"] = {ent: {"checksum": host[ent]["checksum"]} for ent in ALL_ENTRIES}
     table(res)
+    bd_doc: dict = {}
     if bd:
         for section in runs:
             if runs[section]["profiled"]:
-                print_breakdown(section, breakdown(section, runs[section]), res[section])
+                b = breakdown(section, runs[section])
+                print_breakdown(section, b, res[section])
+                bd_doc[section] = breakdown_json(b, res[section])
+        if any(CONFIGS[0] in bd_doc.get(s, {}) or CONFIGS[0] + "_band8" in bd_doc.get(s, {})
+               for s in ("m0", "m4f")):
+            print(f"\nper stage, {CONFIGS[0]}, against the floor:\n")
+            print(breakdown_markdown(bd_doc, CONFIGS[0]))
     passed = failed = 0
     lines = []
     for section in runs:
@@ -1102,12 +1354,31 @@ def main(argv=None) -> int:
         write_bounds(res)
     if set(a.sections.split(",")) == set(SECTIONS):
         doc = {s: res[s] for s in ("m0", "m4f", "host", "m0_z", "rv32imc")}
+        old = json.loads(OUT.read_text()).get("breakdown", {}) if OUT.exists() else {}
+        merged, dropped = merge_breakdown(old, bd_doc, res)
+        if dropped:
+            log(f"  dropped the breakdown of {', '.join(dropped)} (another build: rerun with --breakdown)")
+        if merged:
+            doc["breakdown"] = merged
         OUT.parent.mkdir(exist_ok=True)
         OUT.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
         log(f"wrote {OUT.relative_to(HERE.parent)} ({time.time() - t:.0f} s)")
         for path in (README, TRADEOFF):
             if rewrite_marked(path, frame_markdown(doc)):
                 log(f"wrote the frame table in {path.relative_to(HERE.parent)}")
+    elif bd_doc and OUT.exists():
+        # a subset of the sections: only frame.json's "breakdown", for the entries whose
+        # instruction counts equal the file's (the same build)
+        doc = json.loads(OUT.read_text())
+        merged, _ = merge_breakdown(doc.get("breakdown", {}), bd_doc, doc)
+        skipped = [f"{s} {e}" for s, per in bd_doc.items() for e in per if e not in merged.get(s, {})]
+        if skipped:
+            log(f"  not written to {OUT.name} (its figures are from another build: run all sections):"
+                f" {', '.join(skipped)}")
+        if merged != doc.get("breakdown", {}):
+            doc["breakdown"] = merged
+            OUT.write_text(json.dumps(doc, indent=1, ensure_ascii=False) + "\n")
+            log(f"wrote the breakdown into {OUT.relative_to(HERE.parent)}")
     return 0
 
 
