@@ -119,11 +119,11 @@ trait Runs<K: Kernel> {
         y: i32,
         out: &mut [K::Color],
     );
-    /// The same with the depth test of the run (depth `z.0 + k·z.1` at pixel
-    /// `k`, the depth strip `depth` as long as `out`); `CLAMP` as in
-    /// [`Runs::run`].
+    /// Depth-tests and shades the run in one pass when the kernel fuses
+    /// the two ([`Kernel::span_depth`]; depth `z.0 + k·z.1` at pixel `k`,
+    /// the depth strip `depth` as long as `out`); returns whether it did.
     #[inline(always)]
-    fn run_depth<const CLAMP: bool>(
+    fn fused(
         &self,
         kernel: &K,
         t: &K::Triangle,
@@ -131,28 +131,10 @@ trait Runs<K: Kernel> {
         z: (i32, i32),
         out: &mut [K::Color],
         depth: &mut [u16],
-    ) {
-        split_runs::<K, Self, CLAMP>(self, kernel, t, (x, y), z, out, depth)
+    ) -> bool {
+        let _ = (kernel, t, x, y, z, out, depth);
+        false
     }
-}
-
-/// [`Runs::run_depth`] by [`depth_runs`]: the values of each passing run
-/// from [`Runs::run`].
-#[inline(always)]
-fn split_runs<K: Kernel, R: Runs<K> + ?Sized, const CLAMP: bool>(
-    values: &R,
-    kernel: &K,
-    t: &K::Triangle,
-    (x, y): (i32, i32),
-    z: (i32, i32),
-    out: &mut [K::Color],
-    depth: &mut [u16],
-) {
-    depth_runs(z.0, z.1, depth, |k0, k1| {
-        if let Some(c) = out.get_mut(k0..k1) {
-            values.run::<CLAMP>(kernel, t, x + k0 as i32, y, c);
-        }
-    });
 }
 
 impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
@@ -175,7 +157,7 @@ impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
     }
 
     #[inline(always)]
-    fn run_depth<const CLAMP: bool>(
+    fn fused(
         &self,
         kernel: &K,
         t: &K::Triangle,
@@ -183,16 +165,13 @@ impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
         z: (i32, i32),
         out: &mut [K::Color],
         depth: &mut [u16],
-    ) {
-        if !CLAMP {
-            // a kernel that fuses the depth test takes the whole run
-            let (a, d) = Linear::run::<false>(self, x, out.len(), K::USED);
-            if kernel.span_depth(t, &a, &d, x, y, z, out, depth) {
-                return;
-            }
+    ) -> bool {
+        if !K::FUSED_DEPTH {
+            return false;
         }
-        // the values are computed (and clamped) per passing run
-        split_runs::<K, Self, CLAMP>(self, kernel, t, (x, y), z, out, depth)
+        let (a, d) = Linear::run::<false>(self, x, out.len(), K::USED);
+        kernel.span_depth(t, &a, &d, x, y, z, out, depth);
+        true
     }
 }
 
@@ -247,7 +226,14 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
                         (zp.at(lo), zp.dx)
                     };
                     if let Some(depth) = d.get_mut(at..at + n) {
-                        values.run_depth::<CLAMP>(kernel, t, (lo, y), (z0, dz), color, depth);
+                        // values clamped per run are computed per passing run
+                        if CLAMP || !values.fused(kernel, t, (lo, y), (z0, dz), color, depth) {
+                            depth_runs(z0, dz, depth, |k0, k1| {
+                                if let Some(c) = color.get_mut(k0..k1) {
+                                    values.run::<CLAMP>(kernel, t, lo + k0 as i32, y, c);
+                                }
+                            });
+                        }
                     }
                 } else {
                     values.run::<CLAMP>(kernel, t, lo, y, color);

@@ -33,6 +33,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     type Vertex = [i16; 3];
     type Triangle = FlatTriangle<C>;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    const FUSED_DEPTH: bool = !E::POSITIONAL;
 
     #[inline]
     fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
@@ -75,19 +76,19 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     fn span_depth(
         &self,
         t: &FlatTriangle<C>,
-        _: &[i32; 0],
-        _: &[i32; 0],
-        _x: i32,
-        _y: i32,
+        a: &[i32; 0],
+        d: &[i32; 0],
+        x: i32,
+        y: i32,
         z: (i32, i32),
         color: &mut [C],
         depth: &mut [u16],
-    ) -> bool {
-        if E::POSITIONAL {
-            return false;
+    ) {
+        if Self::FUSED_DEPTH {
+            fill_depth(t.color, z, color, depth);
+        } else {
+            super::split_span(self, t, a, d, (x, y), z, color, depth);
         }
-        fill_depth(t.color, z, color, depth);
-        true
     }
 
     #[inline(always)]
@@ -129,5 +130,42 @@ fn fill_depth<C: Copy>(c: C, z: (i32, i32), color: &mut [C], depth: &mut [u16]) 
         // the value after the last pixel is not used: wrapping is harmless
         z = z.wrapping_add(dz);
         crate::num::no_unroll();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::fill_depth;
+    use crate::raster::ATTR_FRAC;
+
+    /// The fused loop writes the colour and the depth exactly where the
+    /// depth test passes: strictly nearer pixels, ties and farther ones in
+    /// stretches, rising and falling depths.
+    #[test]
+    fn fused_fill_writes_where_the_test_passes() {
+        for (case, dz) in [-70_000, -1, 0, 1, 3 << ATTR_FRAC, 123_457]
+            .into_iter()
+            .enumerate()
+        {
+            let z0: i32 = 30_000 << ATTR_FRAC;
+            let at = |k: usize| {
+                ((z0 as u32).wrapping_add((dz as u32).wrapping_mul(k as u32)) >> ATTR_FRAC) as i32
+            };
+            let mut depth: std::vec::Vec<u16> = (0..100)
+                .map(|k| (at(k) + ((k / 7 + case) % 3) as i32 - 1) as u16)
+                .collect();
+            let before = depth.clone();
+            let mut color = [0u8; 100];
+            fill_depth(9u8, (z0, dz), &mut color, &mut depth);
+            for k in 0..100 {
+                let pass = at(k) < i32::from(before[k]);
+                assert_eq!(color[k] == 9, pass, "case {case} pixel {k}");
+                assert_eq!(
+                    i32::from(depth[k]),
+                    if pass { at(k) } else { i32::from(before[k]) }
+                );
+            }
+            assert!(color.contains(&9) && color.contains(&0));
+        }
     }
 }

@@ -17,6 +17,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     type Varyings = [i32; 3];
     type Triangle = ();
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    const FUSED_DEPTH: bool = C::IS_RGB565 && E::LINEAR;
     fn check(&self) -> Result<(), crate::error::RenderError> {
         self.check_lights()
     }
@@ -44,20 +45,20 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
     #[inline(always)]
     fn span_depth(
         &self,
-        _t: &(),
+        t: &(),
         a: &[i32; 3],
         d: &[i32; 3],
-        _x: i32,
-        _y: i32,
+        x: i32,
+        y: i32,
         z: (i32, i32),
         color: &mut [C],
         depth: &mut [u16],
-    ) -> bool {
-        if C::IS_RGB565 && E::LINEAR {
+    ) {
+        if Self::FUSED_DEPTH {
             fill565_depth(Channels565::new(a, d), z, color, depth);
-            return true;
+        } else {
+            super::split_span(self, t, a, d, (x, y), z, color, depth);
         }
-        false
     }
 
     #[inline(always)]
@@ -180,5 +181,58 @@ fn fill565_depth<C: OutputColor>(
         rb = rb.wrapping_add(drb);
         g = g.wrapping_add(dg);
         crate::num::no_unroll();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{fill565, fill565_depth, Channels565};
+    use crate::raster::ATTR_FRAC;
+    use crate::test_rng::Rng;
+    use embedded_graphics_core::pixelcolor::Rgb565;
+    use embedded_graphics_core::prelude::RgbColor;
+
+    /// The fused loop equals the two passes it replaces: the depth test of
+    /// every pixel, then the colour of the whole run kept where it passed.
+    /// Runs of 1 to 240 pixels, rising and falling depths, strips whose
+    /// pixels pass, fail and tie in stretches.
+    #[test]
+    fn fused_span_equals_test_then_colour() {
+        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        for case in 0..2000 {
+            let n = 1 + (rng.next() % 240) as usize;
+            let ch = |rng: &mut Rng, bits: u32| (rng.next() % (1 << bits)) as i32;
+            // encoded channels with ATTR_FRAC bits inside the vertex range
+            let a = [0; 3].map(|_| (ch(&mut rng, 15) << ATTR_FRAC) / 2);
+            let d = [0; 3].map(|_| ch(&mut rng, 12) - (1 << 11));
+            let c = Channels565::new(&a, &d);
+            let z0 = (ch(&mut rng, 15) + 16384) << ATTR_FRAC;
+            let dz = ch(&mut rng, 16) - (1 << 15);
+            let z = (z0, dz);
+            let mut depth: std::vec::Vec<u16> = (0..n)
+                .map(|k| {
+                    let at = ((z0 as u32).wrapping_add((dz as u32).wrapping_mul(k as u32))
+                        >> ATTR_FRAC) as i32;
+                    // ties, passes and fails in stretches of 8
+                    (at + (((k / 8 + case) % 3) as i32 - 1) * 5).clamp(0, 65535) as u16
+                })
+                .collect();
+            let mut want_depth = depth.clone();
+            let mut all = std::vec![Rgb565::BLACK; n];
+            fill565(c, &mut all);
+            let mut want = std::vec![Rgb565::WHITE; n];
+            for k in 0..n {
+                let zk = (z0 as u32).wrapping_add((dz as u32).wrapping_mul(k as u32)) >> ATTR_FRAC;
+                if zk < u32::from(want_depth[k]) {
+                    want_depth[k] = zk as u16;
+                    want[k] = all[k];
+                }
+            }
+            let mut got = std::vec![Rgb565::WHITE; n];
+            fill565_depth(c, z, &mut got, &mut depth);
+            assert_eq!(got, want, "case {case}");
+            assert_eq!(depth, want_depth, "case {case}");
+            assert!(case > 3 || want.iter().any(|p| *p != Rgb565::WHITE));
+        }
     }
 }

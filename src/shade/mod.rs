@@ -280,6 +280,12 @@ pub trait Kernel {
     /// Whether [`Kernel::vertex`] reads [`VertexIn::tangent`] (else the
     /// pipeline passes zeros and skips transforming the mesh's tangents).
     const NEEDS_TANGENT: bool = false;
+    /// Whether [`Kernel::span_depth`] fuses the depth test into the
+    /// kernel's own loop: the pipeline then hands it every screen-linear run
+    /// whose values need no clamping (the common case); else it splits runs
+    /// at the depth test itself and calls [`Kernel::span`] per passing run.
+    /// The default is `false`.
+    const FUSED_DEPTH: bool = false;
 
     /// Whether the kernel can draw, checked once by
     /// [`MeshDraw::new`](crate::render::MeshDraw::new) and
@@ -342,16 +348,14 @@ pub trait Kernel {
     );
 
     /// Depth-tests and shades pixels `x..x + out.len()` of row `y` in one
-    /// pass, if the kernel can (`depth` is as long as `out`): pixel `k` has
-    /// the depth `(z.0 + k·z.1) >> ATTR_FRAC` (wrapping `u32` steps) and
-    /// passes when that is less than `depth[k]`, which then takes it; a
-    /// passing pixel gets the colour [`Kernel::span`] would give it with the
-    /// values `start + k·step`. Returns whether it did: the default returns
-    /// `false` without touching anything, and the pipeline then splits the
-    /// run at the depth test and calls [`Kernel::span`] for each passing run.
-    /// The Gouraud and flat 5-6-5 kernels fuse the test into their loops
-    /// (one pass over the pixels instead of two). Called for screen-linear
-    /// runs whose values need no clamping (the common case).
+    /// call (`depth` is as long as `out`): pixel `k` has the depth
+    /// `(z.0 + k·z.1) >> ATTR_FRAC` (wrapping `u32` steps) and passes when
+    /// that is less than `depth[k]`, which then takes it; a passing pixel
+    /// gets the colour [`Kernel::span`] gives it with the values
+    /// `start + k·step`. The default splits the run at the depth test and
+    /// calls [`Kernel::span`] for each passing run; the Gouraud and flat
+    /// 5-6-5 kernels fuse the test into their loops (one pass over the pixels
+    /// instead of two) and say so with [`Kernel::FUSED_DEPTH`].
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn span_depth(
@@ -364,10 +368,34 @@ pub trait Kernel {
         z: (i32, i32),
         out: &mut [Self::Color],
         depth: &mut [u16],
-    ) -> bool {
-        let _ = (t, start, step, x, y, z, out, depth);
-        false
+    ) {
+        split_span(self, t, start, step, (x, y), z, out, depth);
     }
+}
+
+/// [`Kernel::span_depth`] by [`depth_runs`] and [`Kernel::span`] per passing
+/// run: the default, and the path of a fusing kernel's other formats.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn split_span<K: Kernel + ?Sized>(
+    kernel: &K,
+    t: &K::Triangle,
+    start: &K::Varyings,
+    step: &K::Varyings,
+    (x, y): (i32, i32),
+    z: (i32, i32),
+    out: &mut [K::Color],
+    depth: &mut [u16],
+) {
+    use crate::raster::interp::get;
+    depth_runs(z.0, z.1, depth, |k0, k1| {
+        if let Some(c) = out.get_mut(k0..k1) {
+            let a = K::Varyings::from_fn(|i| {
+                get(start, i).wrapping_add(get(step, i).wrapping_mul(k0 as i32))
+            });
+            kernel.span(t, &a, step, x + k0 as i32, y, c);
+        }
+    });
 }
 
 /// The depth test of the leading pixels of a run: pixel `k` has depth
