@@ -29,6 +29,43 @@ pub(crate) fn recip16(q: u32) -> u32 {
     (r0 as i32).wrapping_add(((d >> 8).wrapping_mul(r0 as i32).wrapping_add(1 << 22)) >> 23) as u32
 }
 
+/// `⌊2^31 / q⌋` for `q` in `[2^15, 2^16)` (a result in `(2^15, 2^16]`):
+/// [`recip16`] (within 2 of it) and two correction steps each way, exact
+/// where a library division would be (the unit test checks every input).
+#[inline(always)]
+pub(crate) fn recip16_floor(q: u32) -> u32 {
+    let one = 1u32 << 31;
+    let mut r = recip16(q);
+    // q < 2^16 and r ≤ 2^16 + 2: q·r < 2^32
+    for _ in 0..2 {
+        if q.wrapping_mul(r) > one {
+            r -= 1;
+        }
+    }
+    for _ in 0..2 {
+        if one - q.wrapping_mul(r) >= q {
+            r += 1;
+        }
+    }
+    r
+}
+
+/// `⌊2^31 / q⌋` for `q` in `[2^15, 2^16)` (others are clamped into it on
+/// ARMv6-M, to 1 elsewhere): [`recip16_floor`] where the core
+/// has no division instruction (ARMv6-M: a library division costs about a
+/// hundred instructions), the division itself elsewhere (one instruction on
+/// a Cortex-M4 or an RV32IMC). The same value on every target.
+#[inline(always)]
+pub(crate) fn div_2p31(q: u32) -> u32 {
+    // ARMv6-M, told apart on stable Rust by its lack of 32-bit atomics (the
+    // Arm target features are not stable in `cfg`)
+    if cfg!(all(target_arch = "arm", not(target_has_atomic = "32"))) {
+        recip16_floor(q.clamp(1 << 15, (1 << 16) - 1))
+    } else {
+        (1u32 << 31) / q.max(1)
+    }
+}
+
 /// `⌊2^16 / n⌋` for `n` in `0..=8` (0 for 0).
 const SMALL: [u32; 9] = [0, 65536, 32768, 21845, 16384, 13107, 10922, 9362, 8192];
 
@@ -85,6 +122,14 @@ mod tests {
             let r = f64::from(recip16(q));
             let want = 2f64.powi(31) / f64::from(q);
             assert!((r - want).abs() / want < 2f64.powi(-15), "{q}: {r} {want}");
+        }
+    }
+
+    #[test]
+    fn recip16_floor_is_the_quotient() {
+        for q in (1u32 << 15)..(1u32 << 16) {
+            assert_eq!(recip16_floor(q), (1u32 << 31) / q, "{q}");
+            assert_eq!(div_2p31(q), (1u32 << 31) / q, "{q}");
         }
     }
 

@@ -192,7 +192,8 @@ impl Setup {
         let an = if sh >= 0 { a >> sh } else { a << -sh };
         // R in (2^15, 2^16]: relative error ≤ 2^−15 each for a_n and R
         // (`an` ≥ 2^15 for a triangle with an area: `max(1)` only drops the panic path)
-        let r = ((1u32 << 31) / (an as u32).max(1)) as i32;
+        // (exactly the quotient, without a library division)
+        let r = crate::num::recip::div_2p31(an as u32) as i32;
         // ∂β1/∂X = d2.y/A', ∂β2/∂X = −d1.y/A', ∂β1/∂Y = −d2.x/A', ∂β2/∂Y = d1.x/A'
         // |d|·R < 2^15·2^16 = 2^31
         let raw = [d2.1 * r, -(d1.1 * r), -(d2.0 * r), d1.0 * r];
