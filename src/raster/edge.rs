@@ -161,33 +161,19 @@ pub(crate) struct Walker {
 impl Walker {
     /// The walker positioned at `row` (at least the triangle's first row).
     pub(crate) fn new(s: &Setup, row: i32) -> Walker {
-        let mut w = Walker::unpositioned(s, row.max(s.rows.0));
-        let [t, m, b] = w.tmb;
-        let y = w.y;
-        let long = w.edge_near(t, b, y);
-        // before the switch row, or at it (which replaces the upper edge
-        // itself): the upper short edge; after it, the lower one
-        let short = if y <= w.switch {
-            w.edge_near(t, m, y)
-        } else {
-            w.switch = i32::MAX;
-            w.edge_near(m, b, y)
-        };
-        w.place(long, short);
-        w
+        let y = row.max(s.rows.0);
+        Walker::build(s, y, |xy, i, j, _| edge_near(xy, i, j, y))
     }
 
-    /// Puts the long and short edges on their sides.
+    /// The walker at row `y` with the long edge and the short edge in use
+    /// there from `edge(xy, i, j, long)` (the edge between vertices `i` and
+    /// `j`), built in place (no copy of a finished walker).
     #[inline(always)]
-    fn place(&mut self, long: Edge, short: Edge) {
-        if self.long_left {
-            (self.left, self.right) = (long, short);
-        } else {
-            (self.left, self.right) = (short, long);
-        }
-    }
-
-    fn unpositioned(s: &Setup, y: i32) -> Walker {
+    fn build(
+        s: &Setup,
+        y: i32,
+        edge: impl Fn(&[(i32, i32); 3], usize, usize, bool) -> Edge,
+    ) -> Walker {
         let [t, m, b] = s.tmb;
         let xy = s.xy;
         let half = 1 << (SUBPIXEL_BITS - 1);
@@ -202,12 +188,26 @@ impl Walker {
         };
         // the long edge as oriented: going down (t → b) it is a right edge
         let long_left = next3(t) != b;
+        let switch = if level { below - 1 } else { below };
+        let long = edge(&xy, t, b, true);
+        // before the switch row, or at it (which replaces the upper edge
+        // itself): the upper short edge; after it, the lower one
+        let (short, switch) = if y <= switch {
+            (edge(&xy, t, m, false), switch)
+        } else {
+            (edge(&xy, m, b, false), i32::MAX)
+        };
+        let (left, right) = if long_left {
+            (long, short)
+        } else {
+            (short, long)
+        };
         Walker {
-            left: Edge::default(),
-            right: Edge::default(),
+            left,
+            right,
             y,
             last: s.rows.1,
-            switch: if level { below - 1 } else { below },
+            switch,
             level,
             long_left,
             upper_flat: flat(t, m),
@@ -215,39 +215,6 @@ impl Walker {
             tmb: s.tmb,
             xy,
         }
-    }
-
-    /// The edge between vertices `i` and `j` (as oriented in the triangle) at
-    /// row `row`, searching from the upper vertex's column when the bound is
-    /// within 4 columns of it, else from a division estimate.
-    fn edge_near(&self, i: usize, j: usize, row: i32) -> Edge {
-        let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
-        let (pa, pb) = (at3(&self.xy, a), at3(&self.xy, b));
-        if pa.1 == pb.1 {
-            // a horizontal edge bounds no column (its fill rule is applied
-            // separately); an edge that never walks
-            return Edge::default();
-        }
-        let upper = if pa.1 <= pb.1 { pa } else { pb };
-        let (dx, dy) = (pb.0 - pa.0, pb.1 - pa.1);
-        let down = (row << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1)) - upper.1;
-        // |dx|·down ≤ 4·16·|dy|: the bound is within ~4 columns of the vertex
-        let guess = if down.unsigned_abs() * dx.unsigned_abs() <= (dy.unsigned_abs() << 6) {
-            upper.0 >> SUBPIXEL_BITS
-        } else {
-            Edge::guess(pa, pb, row)
-        };
-        Edge::new(pa, pb, row, guess)
-    }
-
-    /// The edge between `i` and `j` at `row`, searching from column `guess`.
-    fn edge_from(&self, i: usize, j: usize, row: i32, guess: i32) -> Edge {
-        let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
-        let (pa, pb) = (at3(&self.xy, a), at3(&self.xy, b));
-        if pa.1 == pb.1 {
-            return Edge::default();
-        }
-        Edge::new(pa, pb, row, guess)
     }
 
     /// Whether rows remain.
@@ -278,7 +245,7 @@ impl Walker {
         let y = self.y;
         self.switch = i32::MAX;
         let (mut lo, mut hi) = (self.left.x, self.right.x);
-        let lower = self.edge_near(m, b, y);
+        let lower = edge_near(&self.xy, m, b, y);
         if self.level {
             // level with the middle vertex: the upper short edge (or its fill
             // rule), the lower one (or its), and the long edge all apply
@@ -341,17 +308,42 @@ impl Walker {
     /// The walker at `row` given the bound columns from [`Walker::snapshot`]
     /// taken at that row: positioning costs no division and no walk.
     pub(crate) fn resume(s: &Setup, row: i32, cols: (i32, i32)) -> Walker {
-        let mut w = Walker::unpositioned(s, row);
-        let [t, m, b] = w.tmb;
-        let long = w.edge_from(t, b, row, cols.0);
-        let short = if row <= w.switch {
-            // before the switch (or at it: the upper edge is still in use)
-            w.edge_from(t, m, row, cols.1)
-        } else {
-            w.switch = i32::MAX;
-            w.edge_from(m, b, row, cols.1)
-        };
-        w.place(long, short);
-        w
+        Walker::build(s, row, |xy, i, j, long| {
+            edge_from(xy, i, j, row, if long { cols.0 } else { cols.1 })
+        })
     }
+}
+
+/// The edge between vertices `i` and `j` of `xy` (as oriented in the
+/// triangle) at row `row`, searching from the upper vertex's column when the
+/// bound is within 4 columns of it, else from a division estimate.
+fn edge_near(xy: &[(i32, i32); 3], i: usize, j: usize, row: i32) -> Edge {
+    let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
+    let (pa, pb) = (at3(xy, a), at3(xy, b));
+    if pa.1 == pb.1 {
+        // a horizontal edge bounds no column (its fill rule is applied
+        // separately); an edge that never walks
+        return Edge::default();
+    }
+    let upper = if pa.1 <= pb.1 { pa } else { pb };
+    let (dx, dy) = (pb.0 - pa.0, pb.1 - pa.1);
+    let down = (row << SUBPIXEL_BITS) + (1 << (SUBPIXEL_BITS - 1)) - upper.1;
+    // |dx|·down ≤ 4·16·|dy|: the bound is within ~4 columns of the vertex
+    let guess = if down.unsigned_abs() * dx.unsigned_abs() <= (dy.unsigned_abs() << 6) {
+        upper.0 >> SUBPIXEL_BITS
+    } else {
+        Edge::guess(pa, pb, row)
+    };
+    Edge::new(pa, pb, row, guess)
+}
+
+/// The edge between `i` and `j` of `xy` at `row`, searching from column
+/// `guess`.
+fn edge_from(xy: &[(i32, i32); 3], i: usize, j: usize, row: i32, guess: i32) -> Edge {
+    let (a, b) = if next3(i) == j { (i, j) } else { (j, i) };
+    let (pa, pb) = (at3(xy, a), at3(xy, b));
+    if pa.1 == pb.1 {
+        return Edge::default();
+    }
+    Edge::new(pa, pb, row, guess)
 }
