@@ -13,13 +13,17 @@
 //! never a silently wrong colour.
 
 use fixshade::error::ParamError;
-use fixshade::lighting::gl::{GlLight, GlLightModel, GlLighting, GlMaterial, GlScene};
+use fixshade::lighting::gl::{GlLight, GlLightModel, GlMaterial, GlScene};
 use fixshade::lighting::LinearFog;
 use fixshade::lighting::{AnyLight, Attenuation, LightDesc};
 use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
 use fixshade::prelude::*;
 use fixshade::reference::{FogDesc, ModelDesc, Reference, ViewerDesc};
+
+/// What `GlScene::lighting` builds here: up to 8 lights of any kind, OpenGL's
+/// Blinn-Phong model, a viewer at infinity.
+type SceneLighting<S> = Lighting<S, fixshade::heapless::Vec<AnyLight<S>, 8>>;
 
 /// Tiny coefficients: every decade from 10⁻⁴⁵ (a subnormal) to 10⁻³, and the
 /// smallest normal `f32`.
@@ -77,7 +81,7 @@ fn gl_scene<S: Scalar>(att: [f32; 3], model_ambient: f32, light_diffuse: f32) ->
         ..GlLightModel::default()
     };
     let scene = GlScene::new(&lights, material, model);
-    let lit: GlLighting<S> = match scene.lighting() {
+    let lit: SceneLighting<S> = match scene.lighting() {
         Ok(l) => l,
         Err(ParamError::TierRange { .. }) => return false,
         Err(e) => panic!("{}: {att:?}: {e}", S::NAME),
@@ -169,9 +173,9 @@ fn the_case_of_the_issue() {
         let lights = [light];
         let scene = GlScene::new(&lights, GlMaterial::default(), model);
         let n = [0.98f32, 0.0, 0.2];
-        let q30: GlLighting<Q30> = scene.lighting().unwrap();
-        let f32l: GlLighting<f32> = scene.lighting().unwrap();
-        let q14: GlLighting<Q14> = scene.lighting().unwrap();
+        let q30: SceneLighting<Q30> = scene.lighting().unwrap();
+        let f32l: SceneLighting<f32> = scene.lighting().unwrap();
+        let q14: SceneLighting<Q14> = scene.lighting().unwrap();
         let p = [0.0f32, 0.0, 1.0];
         let a = q30
             .shade(&point_from_f32::<Q30>(p), Vec3::from_f32(n))
