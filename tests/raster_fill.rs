@@ -8,10 +8,10 @@ mod support;
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::raster::interp::VARYING_LIMIT;
-use fixshade::raster::{Cull, ATTR_FRAC, PERSPECTIVE_SPAN};
+use fixshade::raster::{Cull, ATTR_FRAC};
 use fixshade::render::Corner;
 use support::{clip_corner, corner, counts, exact_plane, full, lumas, plane_bound, Count, Record};
-use support::{Tris, S};
+use support::{Tris, PERSPECTIVE_SPAN, S};
 
 const N: u32 = 16;
 

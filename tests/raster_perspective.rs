@@ -9,9 +9,9 @@ mod support;
 
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::camera::{Clip, ClipSpace};
-use fixshade::raster::{ATTR_FRAC, PERSPECTIVE_SPAN, SUBPIXEL_BITS};
+use fixshade::raster::{ATTR_FRAC, SUBPIXEL_BITS};
 use fixshade::render::Corner;
-use support::{clip_corner, full, plane_bound, Record, Run, Tris};
+use support::{clip_corner, full, plane_bound, Record, Run, Tris, PERSPECTIVE_SPAN};
 
 const W: usize = 128;
 const H: usize = 128;

@@ -12,7 +12,7 @@ use fixshade::camera::{Clip, ClipSpace, MeshTransform, Orthographic, Perspective
 use fixshade::lighting::{LightDesc, LightKind};
 use fixshade::mesh::TEXCOORD_FRAC;
 use fixshade::prelude::*;
-use fixshade::raster::{ATTR_FRAC, PERSPECTIVE_SPAN, SUBPIXEL_BITS};
+use fixshade::raster::{ATTR_FRAC, SUBPIXEL_BITS};
 use fixshade::reference::{ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{
     bins_len, draw_triangle, BandView, Bands, CachedVertex, Carry, Corner, DrawBand, FullFrame,
@@ -20,6 +20,10 @@ use fixshade::render::{
 };
 use fixshade::shade::{Textured, VertexIn};
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
+
+/// The sub-spans a run is cut into under a perspective projection: 8 pixels
+/// (the `raster::interp` docs), so a kernel shades at most 8 pixels a call.
+const PERSPECTIVE_SPAN: usize = 8;
 
 const W: u32 = 64;
 

@@ -47,8 +47,7 @@ use crate::lighting::{
     AnyLight, DirectionalLight, LightColors, LightDesc, LightKind, LightSet, PointLight, SpotLight,
 };
 use crate::lighting::{
-    BackFaces, BlinnPhong, ColorMaterial, InfiniteViewer, Lighting, LocalViewer, Model, NoFog,
-    Viewer,
+    BackFaces, ColorMaterial, InfiniteViewer, Lighting, LocalViewer, Model, NoFog, Viewer,
 };
 use crate::lighting::{Material, MaterialDesc};
 use crate::num::Mat4;
@@ -511,12 +510,6 @@ pub struct GlScene<'a> {
     pub color_material: Option<GlColorMaterial>,
 }
 
-/// The lighting [`GlScene::lighting`] builds with the usual types: up to 8 lights
-/// of any kind, OpenGL's Blinn-Phong model, a viewer at infinity (`V =
-/// LocalViewer<S>` for `GL_LIGHT_MODEL_LOCAL_VIEWER`).
-pub type GlLighting<S, V = InfiniteViewer<S>> =
-    Lighting<S, heapless::Vec<AnyLight<S>, 8>, BlinnPhong, V, NoFog>;
-
 impl<'a> GlScene<'a> {
     /// `lights` with `material` on both faces, no colour material.
     pub fn new(lights: &'a [GlLight], material: GlMaterial, model: GlLightModel) -> Self {
@@ -529,10 +522,11 @@ impl<'a> GlScene<'a> {
         }
     }
 
-    /// The lighting of the front faces in tier `S`: the light set `L`, reflection
-    /// model `M` (OpenGL's is [`BlinnPhong`]) and viewer `V` of the caller's
-    /// choosing, built from the GL state and [checked](Lighting::checked) against
-    /// the tier. `L` is one light type ([`DirectionalLight`], [`PointLight`],
+    /// The lighting of the front faces in tier `S`: the light set `L`,
+    /// reflection model `M` (OpenGL's is
+    /// [`BlinnPhong`](crate::lighting::BlinnPhong)) and viewer `V` of the
+    /// caller's choosing, built from the GL state and
+    /// [checked](Lighting::checked) against the tier. `L` is one light type ([`DirectionalLight`], [`PointLight`],
     /// [`SpotLight`] or [`AnyLight`], see [`GlLight::to_light`]) for exactly one
     /// enabled light, `[L; K]` for exactly `K`, `heapless::Vec<L, K>` for up to
     /// `K` (OpenGL guarantees 8).
@@ -543,7 +537,8 @@ impl<'a> GlScene<'a> {
     /// range ([`ParamError::TierRange`]).
     ///
     /// ```
-    /// use fixshade::lighting::gl::{GlLight, GlLightModel, GlLighting, GlMaterial, GlScene};
+    /// use fixshade::heapless;
+    /// use fixshade::lighting::gl::{GlLight, GlLightModel, GlMaterial, GlScene};
     /// use fixshade::prelude::*;
     /// let lights = [
     ///     GlLight { diffuse: [2.5, 2.5, 2.5, 1.0], ..GlLight::light0() },
@@ -552,7 +547,9 @@ impl<'a> GlScene<'a> {
     /// let mat = GlMaterial { diffuse: [0.2, 0.2, 0.2, 1.0], ..GlMaterial::default() };
     /// let model = GlLightModel { local_viewer: true, ..GlLightModel::default() };
     /// let scene = GlScene::new(&lights, mat, model);
-    /// let lit: GlLighting<Q14, LocalViewer<Q14>> = scene.lighting()?;
+    /// // up to 8 lights of any kind, OpenGL's model, GL_LIGHT_MODEL_LOCAL_VIEWER
+    /// let lit: Lighting<Q14, heapless::Vec<AnyLight<Q14>, 8>, BlinnPhong, LocalViewer<Q14>> =
+    ///     scene.lighting()?;
     /// // the wrong viewer type is an error, not another picture
     /// assert!(scene.lighting::<Q14, [AnyLight<Q14>; 2], BlinnPhong, InfiniteViewer<Q14>>().is_err());
     /// # Ok::<(), ParamError>(())

@@ -470,7 +470,7 @@ impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
 /// # Representation
 ///
 /// The coefficients keep the relative precision of the `f32` they are given as, in
-/// the form the geometry type stores them ([`GeoScalar::inv_quadratic`]): `f32` for
+/// the form the geometry type stores them: `f32` for
 /// the float tiers; for the fixed tiers (Q16.16 distances) the exact 24-bit
 /// mantissa and exponent of each (a 16-bit mantissa for `Q14`), multiplied with the
 /// normalised distance in 32-bit (`Q14`) or 64-bit (`Q30`) integer arithmetic. So

@@ -13,7 +13,8 @@ use core::fmt::Debug;
 
 /// A geometry scalar ([`Scalar::Geo`](super::Scalar::Geo)): [`Geo16`] for the
 /// fixed tiers, `f32` for the float tiers. It decides how distance coefficients are
-/// stored.
+/// stored. Sealed (issue 18): not re-exported, only the bound of `Scalar::Geo`
+/// (an [`Attenuation`](crate::lighting::Attenuation) stores the coefficients).
 pub trait GeoScalar: Copy + Debug + PartialEq + Default + Send + Sync + 'static {
     /// The coefficients of `1/(a + b·d + c·d²)`, in the form the tiers evaluate.
     type InvQuadratic: Copy + Debug + PartialEq + Send + Sync + 'static;
@@ -216,6 +217,8 @@ impl RampParts {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lighting::Attenuation;
+    use crate::num::{Scalar, Q14, Q30};
 
     #[test]
     fn split_is_exact() {
@@ -255,5 +258,90 @@ mod tests {
         assert_eq!(shift_u64(1, 64), u64::MAX);
         assert_eq!(shift_u64(1 << 63, -64), 1);
         assert_eq!(shift_u64(7, -300), 0);
+    }
+
+    /// Tiny coefficients: every decade from 10⁻⁴⁵ (a subnormal) to 10⁻³, and
+    /// the smallest normal `f32` (as `tests/attenuation_unbounded.rs` sweeps).
+    fn tiny() -> std::vec::Vec<f32> {
+        let mut v: std::vec::Vec<f32> = (3..=45).map(|k| 10f32.powi(-k)).collect();
+        v.extend([f32::MIN_POSITIVE, 1.0e-45, 3.0e-3, 0.3]);
+        v.retain(|&x| x > 0.0);
+        v
+    }
+
+    /// `geo_inv_quadratic_exp` beyond the range: `m·2^e` against the exact
+    /// `1/(a + b·d + c·d²)` over coefficients from 10⁻⁴⁵ to 10³⁸ and every binade of
+    /// the distance, within the tier's relative accuracy (`Q14` 2⁻¹³ plus the
+    /// quantisation of the sum in Q16.16, `Q30` 10⁻⁶ plus Q32.32), and `mul_pow2`
+    /// saturating.
+    #[test]
+    fn factor_beyond_the_range() {
+        fn tier<S: Scalar<Geo = Geo16>>(rel: f64, q_unit: f64, round: f64) {
+            let mut cs = tiny();
+            cs.extend([0.0, 1.0, 7.5, 1.0e6, 1.0e38]);
+            let mut checked = 0;
+            for &b in &cs {
+                for &c in &cs {
+                    let Ok(att) = Attenuation::new::<S>(0.0, b, c) else {
+                        continue;
+                    };
+                    let _ = att;
+                    let k = Geo16::inv_quadratic(0.0, b, c);
+                    for bits in (0..31).map(|k| 1i32 << k).chain([3, 5, 1000, i32::MAX]) {
+                        let d = Geo16::from_bits(bits);
+                        let (m, e) = S::geo_inv_quadratic_exp(&k, d);
+                        let dd = f64::from(bits) / 65536.0;
+                        let q = f64::from(b) * dd + f64::from(c) * dd * dd;
+                        let m = f64::from(m.to_f32());
+                        if e == 0 {
+                            assert!(m <= 2.0, "{} {m}", S::NAME);
+                        } else {
+                            assert!((1.0..=2.0).contains(&m), "{} {m}", S::NAME);
+                        }
+                        if e == u32::MAX {
+                            // the sum rounds to 0: below one unit of its fixed point
+                            assert!(q < q_unit, "{} b={b:e} c={c:e} d={dd}: q={q:e}", S::NAME);
+                            continue;
+                        }
+                        let got = m * 2f64.powi(e as i32);
+                        // the sum is formed in fixed point (each term rounded to
+                        // `q_unit`: one unit for both) with the tier's relative
+                        // error, then inverted with `m` rounded
+                        let dq = q_unit + q * rel;
+                        let (lo, hi) = (1.0 / (q + dq), 1.0 / (q - dq).max(q_unit / 2.0));
+                        let slack = 2f64.powi(e as i32) * round;
+                        assert!(
+                            got >= lo - slack && got <= hi + slack,
+                            "{}: b={b:e} c={c:e} d={dd}: {got:e} vs 1/q = {:e}",
+                            S::NAME,
+                            1.0 / q
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+            assert!(checked > 10_000, "{checked}");
+            // saturating powers of two
+            for (v, e) in [
+                (0.75f32, 1u32),
+                (0.75, 2),
+                (-0.75, 2),
+                (1.0e-4, 40),
+                (0.0, 200),
+            ] {
+                let x = S::from_f32(v).mul_pow2(e);
+                let want = (f64::from(v) * 2f64.powi(e as i32)).clamp(-2.0, 2.0);
+                let max = f64::from(S::MAX.to_f32());
+                assert!(
+                    (f64::from(x.to_f32()) - want.clamp(-max - 1e-9, max)).abs() < 1.0e-3,
+                    "{} {v}·2^{e}: {}",
+                    S::NAME,
+                    x.to_f32()
+                );
+            }
+            assert_eq!(S::from_f32(1.0e-4).mul_pow2(u32::MAX), S::MAX);
+        }
+        tier::<Q14<2>>(1.0 / 8192.0, 1.0 / 65536.0, 1.0 / 32768.0);
+        tier::<Q30<3>>(1.0e-6, 1.0 / 4294967296.0, 1.0e-9);
     }
 }

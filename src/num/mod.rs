@@ -16,7 +16,8 @@
 //! use [`Geo16`] (Q16.16, ±32768 scene units), the float tiers use `f32`. The
 //! parameters of the distance functions (attenuation coefficients, fog ranges) are
 //! not geometry: they keep the relative precision of their `f32` values over the
-//! whole legal range ([`GeoScalar`], [`Scalar::geo_inv_quadratic`], [`Scalar::ramp`]).
+//! whole legal range ([`Attenuation`](crate::lighting::Attenuation),
+//! [`Scalar::geo_inv_quadratic`], [`Scalar::ramp`]).
 //!
 //! # Overflow behaviour
 //!
@@ -44,7 +45,7 @@ mod vector;
 pub(crate) mod wide;
 
 pub use float::F32Fast;
-pub use geo::GeoScalar;
+pub(crate) use geo::GeoScalar;
 pub use matrix::Mat4;
 pub(crate) use matrix::{cross3, dot3, sub3};
 pub use pow::Exponent;
@@ -343,9 +344,9 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     /// vector and length zero. Lengths beyond the geometry range saturate.
     fn geo_direction(v: Vec3<Self::Geo>) -> (Vec3<Self>, Self::Geo);
 
-    /// The attenuation `1/(a + b·d + c·d²)` of the coefficients `k` (see
-    /// [`GeoScalar::inv_quadratic`]) at distance `d`; a negative (or NaN) distance
-    /// counts as 0. Saturates at [`Scalar::MAX`] where `a + b·d + c·d²` is below
+    /// The attenuation `1/(a + b·d + c·d²)` of the coefficients `k` (as an
+    /// [`Attenuation`](crate::lighting::Attenuation) stores them) at distance
+    /// `d`; a negative (or NaN) distance counts as 0. Saturates at [`Scalar::MAX`] where `a + b·d + c·d²` is below
     /// `1/MAX` (0.5 for the fixed tiers, 10⁻⁹ for the float tiers); the lights use
     /// [`Scalar::geo_inv_quadratic_exp`], which goes on beyond.
     ///

@@ -18,10 +18,9 @@
 //! - **Perspective-correct**, as OpenGL interpolates: with `βᵢ`
 //!   the screen-space barycentric weights and `wᵢ` the clip `w` of the
 //!   vertices, a pixel gets `Σ βᵢ·aᵢ/wᵢ / Σ βᵢ/wᵢ`. It is evaluated exactly
-//!   (to the arithmetic below) at the ends of sub-spans of
-//!   [`PERSPECTIVE_SPAN`](super::PERSPECTIVE_SPAN) = 8 pixels and linearly in
-//!   between; a run's last sub-span ends at the run's last pixel (inside
-//!   the triangle). Every value is a convex combination of the vertex
+//!   (to the arithmetic below) at the ends of sub-spans of 8 pixels and
+//!   linearly in between (a kernel is handed one sub-span at a time); a
+//!   run's last sub-span ends at the run's last pixel (inside the triangle). Every value is a convex combination of the vertex
 //!   values (the weights are clamped to `[0, 1]`): no clamping is needed.
 //!   Arithmetic: `1/wᵢ` as the product of the other two `w` (16-bit
 //!   mantissas, no division), the weights in Q15 from one table-and-Newton

@@ -57,8 +57,9 @@ pub(crate) const WINDOW_MIN: i32 = -(1 << 13);
 pub(crate) const WINDOW_MAX: i32 = (3 << 13) - 1;
 
 /// Length of the sub-spans whose ends are interpolated perspective-correctly
-/// under a perspective projection (8 pixels; see [`interp`]).
-pub const PERSPECTIVE_SPAN: usize = 8;
+/// under a perspective projection (8 pixels; see [`interp`]). Crate-private
+/// (issue 18): the value is stated in the [`interp`] docs.
+pub(crate) const PERSPECTIVE_SPAN: usize = 8;
 
 /// Which triangles are skipped.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]

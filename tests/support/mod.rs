@@ -28,6 +28,10 @@ use fixshade::shade::{Kernel, VertexIn};
 /// Sub-pixels per pixel.
 pub const S: i32 = 1 << SUBPIXEL_BITS;
 
+/// The sub-spans a run is cut into under a perspective projection: 8 pixels
+/// (the `raster::interp` docs), so a kernel shades at most 8 pixels a call.
+pub const PERSPECTIVE_SPAN: usize = 8;
+
 /// A corner in screen space ([`ClipSpace::SCREEN`]): sub-pixel position,
 /// depth `z`, and `value` (read by [`Record`] from `normal[0]`).
 pub fn corner(x: i32, y: i32, z: i32, value: i32) -> Corner {
