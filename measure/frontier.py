@@ -206,7 +206,7 @@ def svg(doc: dict) -> str:
     for row, (mesh, mname) in enumerate(MESHES):
         m = doc["meshes"][mesh]
         ymax = max(r["error"]["max"] for r in m["configs"].values())
-        ymax = math.ceil(ymax / 25) * 25
+        ymax = math.ceil(ymax * 1.1 / 25) * 25
         for col, (core, cname) in enumerate(CORES):
             x0, y0 = ml + col * (pw + gap), mt + row * (ph + 60) + 20
             pts = {c: r for c, r in m["configs"].items() if core in r["cost"]}
@@ -246,7 +246,9 @@ def svg(doc: dict) -> str:
                 o.append(f'<line x1="{x:.1f}" y1="{ya:.1f}" x2="{x:.1f}" y2="{yb:.1f}" stroke="{col_}" stroke-width="0.6"/>')
                 o.append(f'<circle cx="{x:.1f}" cy="{yb:.1f}" r="2.5" fill="white" stroke="{col_}"/>')
                 o.append(f'<circle cx="{x:.1f}" cy="{ya:.1f}" r="3" fill="{col_}"/>')
-                o.append(f'<text x="{x + 4:.1f}" y="{ya - 3:.1f}" fill="{col_}">{escape(SHORT.get(c, c))}</text>')
+                # the f32 tier's labels below their point (they sit beside the Q14 ones)
+                ly = ya + 11 if c.endswith("_f32") else ya - 3
+                o.append(f'<text x="{x + 4:.1f}" y="{ly:.1f}" fill="{col_}">{escape(SHORT.get(c, c))}</text>')
     o.append(f'<text x="{ml}" y="{H - 10}">lg: lambert_gouraud, lg+r: with silhouette refinement, bg: blinn_gouraud,'
              ' bp: blinn_phong, bpi: blinn_phong_inc; f32: the f32 tier (RV32IMC only); coarse sphere: the'
              ' standard scene\'s cost</text>')
