@@ -246,6 +246,16 @@ def frame_section() -> str:
     return f"{a}\n{body}\n{b}"
 
 
+def frontier_section() -> str:
+    """The Pareto fronts from measure/out/frontier.json, between the markers frontier.py rewrites."""
+    import frontier  # measure/frontier.py
+    a, b = frontier.MARK
+    path = ROOT / "measure" / "out" / "frontier.json"
+    body = (frontier.markdown(json.loads(path.read_text())) if path.exists()
+            else "Not measured yet: run `python3 measure/frontier.py`.")
+    return f"{a}\n{body}\n{b}"
+
+
 def markdown(d: Data, command: str, ran: bool) -> str:
     today = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d")
     pixels = sorted({r.get("pixels") for r in d.host.values() if r.get("pixels")})
@@ -260,6 +270,7 @@ def markdown(d: Data, command: str, ran: bool) -> str:
 
     add("## Whole frames (the mesh renderer)\n")
     add(frame_section() + "\n")
+    add(frontier_section() + "\n")
 
     add("## How to read\n")
     add(
