@@ -246,6 +246,18 @@ def frame_section() -> str:
     return f"{a}\n{body}\n{b}"
 
 
+def stage_section() -> str:
+    """The per-stage table of lambert_gouraud from frame.json's "breakdown", between the
+    markers frame.py rewrites."""
+    import frame  # measure/frame.py
+    a, b = frame.STAGE_MARK
+    path = ROOT / "measure" / "out" / "frame.json"
+    doc = json.loads(path.read_text()) if path.exists() else {}
+    body = frame.breakdown_markdown(doc.get("breakdown", {}), frame.CONFIGS[0])
+    return ("Where a Lambert + Gouraud frame goes, stage by stage, beside the floor's (issue 19):\n\n"
+            f"{a}\n{body}\n{b}")
+
+
 def frontier_section() -> str:
     """The Pareto fronts from measure/out/frontier.json, between the markers frontier.py rewrites."""
     import frontier  # measure/frontier.py
@@ -270,6 +282,7 @@ def markdown(d: Data, command: str, ran: bool) -> str:
 
     add("## Whole frames (the mesh renderer)\n")
     add(frame_section() + "\n")
+    add(stage_section() + "\n")
     add(frontier_section() + "\n")
 
     add("## How to read\n")

@@ -269,7 +269,9 @@ mod tests {
                 .collect();
             let visible = tris.iter().flatten().count();
             let bands = layout.bands() as usize;
-            let mut want: Vec<u16> = (0..n as u16).filter(|&t| tris[t as usize].is_some()).collect();
+            let mut want: Vec<u16> = (0..n as u16)
+                .filter(|&t| tris[t as usize].is_some())
+                .collect();
             want.sort_by_key(|&t| layout.band_of(tris[t as usize].unwrap().0));
             let mut got = Vec::new();
             for len in [2 * (bands + 1) + n, 2 * (bands + 1) + visible] {
@@ -280,8 +282,9 @@ mod tests {
                 };
                 let mut buf = std::vec![0xA5A5u16; len];
                 let bins = sort(&layout, n, classify, &mut buf).unwrap();
-                let all: Vec<u16> =
-                    (0..bands as u32).flat_map(|b| bins.band(b).iter().copied()).collect();
+                let all: Vec<u16> = (0..bands as u32)
+                    .flat_map(|b| bins.band(b).iter().copied())
+                    .collect();
                 assert_eq!(all, want, "case {case} len {len}");
                 got.push((calls.get(), bins.crossing));
             }
