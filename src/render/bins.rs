@@ -241,9 +241,8 @@ impl Kept {
 
 #[cfg(test)]
 mod tests {
-    use super::{sort, Layout};
+    use super::*;
     use crate::test_rng::Rng;
-    use core::cell::Cell;
     use std::vec::Vec;
 
     /// The bins of the single-classify path (room kept at the end of the
@@ -275,7 +274,7 @@ mod tests {
             want.sort_by_key(|&t| layout.band_of(tris[t as usize].unwrap().0));
             let mut got = Vec::new();
             for len in [2 * (bands + 1) + n, 2 * (bands + 1) + visible] {
-                let calls = Cell::new(0);
+                let calls = core::cell::Cell::new(0);
                 let classify = |t: usize| {
                     calls.set(calls.get() + 1);
                     tris[t]

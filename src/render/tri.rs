@@ -119,21 +119,11 @@ trait Runs<K: Kernel> {
         y: i32,
         out: &mut [K::Color],
     );
-    /// Depth-tests and shades the run in one pass when the kernel fuses
-    /// the two ([`Kernel::span_depth`]; depth `z.0 + k·z.1` at pixel `k`,
-    /// the depth strip `depth` as long as `out`); returns whether it did.
+    /// The screen-linear planes, if that is what these are (a kernel that
+    /// fuses the depth test takes their runs whole).
     #[inline(always)]
-    fn fused(
-        &self,
-        kernel: &K,
-        t: &K::Triangle,
-        (x, y): (i32, i32),
-        z: (i32, i32),
-        out: &mut [K::Color],
-        depth: &mut [u16],
-    ) -> bool {
-        let _ = (kernel, t, x, y, z, out, depth);
-        false
+    fn linear(&self) -> Option<&Linear<K::Varyings>> {
+        None
     }
 }
 
@@ -157,21 +147,8 @@ impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
     }
 
     #[inline(always)]
-    fn fused(
-        &self,
-        kernel: &K,
-        t: &K::Triangle,
-        (x, y): (i32, i32),
-        z: (i32, i32),
-        out: &mut [K::Color],
-        depth: &mut [u16],
-    ) -> bool {
-        if !K::FUSED_DEPTH {
-            return false;
-        }
-        let (a, d) = Linear::run::<false>(self, x, out.len(), K::USED);
-        kernel.span_depth(t, &a, &d, x, y, z, out, depth);
-        true
+    fn linear(&self) -> Option<&Linear<K::Varyings>> {
+        Some(self)
     }
 }
 
@@ -226,13 +203,18 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
                         (zp.at(lo), zp.dx)
                     };
                     if let Some(depth) = d.get_mut(at..at + n) {
-                        // values clamped per run are computed per passing run
-                        if CLAMP || !values.fused(kernel, t, (lo, y), (z0, dz), color, depth) {
-                            depth_runs(z0, dz, depth, |k0, k1| {
+                        match values.linear() {
+                            // a kernel that fuses the depth test takes the whole run
+                            Some(l) if K::FUSED_DEPTH && !CLAMP => {
+                                let (a, d) = l.run::<false>(lo, n, K::USED);
+                                kernel.span_depth(t, (&a, &d), (lo, y), (z0, dz), color, depth);
+                            }
+                            // else the values of each passing run (clamped per run)
+                            _ => depth_runs(z0, dz, depth, |k0, k1| {
                                 if let Some(c) = color.get_mut(k0..k1) {
                                     values.run::<CLAMP>(kernel, t, lo + k0 as i32, y, c);
                                 }
-                            });
+                            }),
                         }
                     }
                 } else {

@@ -33,7 +33,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     type Vertex = [i16; 3];
     type Triangle = FlatTriangle<C>;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
-    const FUSED_DEPTH: bool = !E::POSITIONAL;
+    const FUSED_DEPTH: bool = true;
 
     #[inline]
     fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
@@ -76,18 +76,17 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     fn span_depth(
         &self,
         t: &FlatTriangle<C>,
-        a: &[i32; 0],
-        d: &[i32; 0],
-        x: i32,
-        y: i32,
+        _: (&[i32; 0], &[i32; 0]),
+        (x, y): (i32, i32),
         z: (i32, i32),
         color: &mut [C],
         depth: &mut [u16],
     ) {
-        if Self::FUSED_DEPTH {
-            fill_depth(t.color, z, color, depth);
+        if E::POSITIONAL {
+            let (enc, a) = (self.encoder, t.a);
+            super::fused_depth(z, color, depth, x, |x| enc.pixel(a, *x, y), |x| *x += 1);
         } else {
-            super::split_span(self, t, a, d, (x, y), z, color, depth);
+            fill_depth(t.color, z, color, depth);
         }
     }
 
@@ -111,26 +110,12 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     }
 }
 
-/// One colour with the depth test fused in (see [`Kernel::span_depth`]): a
-/// pass that tests, writes the depth and the colour of a passing pixel.
+/// One colour with the depth test fused in
+/// ([`fused_depth`](super::fused_depth)): a pass that tests, writes the depth
+/// and the colour of a passing pixel.
 #[inline(never)]
 fn fill_depth<C: Copy>(c: C, z: (i32, i32), color: &mut [C], depth: &mut [u16]) {
-    let (mut z, dz) = (z.0 as u32, z.1 as u32);
-    let n = color.len().min(depth.len());
-    let (Some(color), Some(depth)) = (color.get_mut(..n), depth.get_mut(..n)) else {
-        return;
-    };
-    for k in 0..n {
-        // below 2^16: the run's depths need no clamping
-        let zi = z >> ATTR_FRAC;
-        if zi < u32::from(depth[k]) {
-            depth[k] = zi as u16;
-            color[k] = c;
-        }
-        // the value after the last pixel is not used: wrapping is harmless
-        z = z.wrapping_add(dz);
-        crate::num::no_unroll();
-    }
+    super::fused_depth(z, color, depth, (), |_| c, |_| {});
 }
 
 #[cfg(test)]

@@ -354,48 +354,61 @@ pub trait Kernel {
     /// gets the colour [`Kernel::span`] gives it with the values
     /// `start + k·step`. The default splits the run at the depth test and
     /// calls [`Kernel::span`] for each passing run; the Gouraud and flat
-    /// 5-6-5 kernels fuse the test into their loops (one pass over the pixels
+    /// kernels fuse the test into their loops (one pass over the pixels
     /// instead of two) and say so with [`Kernel::FUSED_DEPTH`].
-    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn span_depth(
         &self,
         t: &Self::Triangle,
-        start: &Self::Varyings,
-        step: &Self::Varyings,
-        x: i32,
-        y: i32,
+        (start, step): (&Self::Varyings, &Self::Varyings),
+        (x, y): (i32, i32),
         z: (i32, i32),
         out: &mut [Self::Color],
         depth: &mut [u16],
     ) {
-        split_span(self, t, start, step, (x, y), z, out, depth);
+        use crate::raster::interp::get;
+        depth_runs(z.0, z.1, depth, |k0, k1| {
+            if let Some(c) = out.get_mut(k0..k1) {
+                let a = Self::Varyings::from_fn(|i| {
+                    get(start, i).wrapping_add(get(step, i).wrapping_mul(k0 as i32))
+                });
+                self.span(t, &a, step, x + k0 as i32, y, c);
+            }
+        });
     }
 }
 
-/// [`Kernel::span_depth`] by [`depth_runs`] and [`Kernel::span`] per passing
-/// run: the default, and the path of a fusing kernel's other formats.
-#[allow(clippy::too_many_arguments)]
+/// The fused loop of [`Kernel::span_depth`]: pixel `k` has depth
+/// `(z.0 + k·z.1) >> ATTR_FRAC` and, when that is less than `depth[k]`,
+/// takes it and gets the colour `pixel(&s)`; `step(&mut s)` moves the
+/// kernel's state `s` a pixel on, passing or not. One pass, few live values
+/// (the 5-6-5 Gouraud loop keeps its state in two registers).
 #[inline(always)]
-pub(crate) fn split_span<K: Kernel + ?Sized>(
-    kernel: &K,
-    t: &K::Triangle,
-    start: &K::Varyings,
-    step: &K::Varyings,
-    (x, y): (i32, i32),
+pub(crate) fn fused_depth<C, S>(
     z: (i32, i32),
-    out: &mut [K::Color],
+    color: &mut [C],
     depth: &mut [u16],
+    mut s: S,
+    pixel: impl Fn(&S) -> C,
+    step: impl Fn(&mut S),
 ) {
-    use crate::raster::interp::get;
-    depth_runs(z.0, z.1, depth, |k0, k1| {
-        if let Some(c) = out.get_mut(k0..k1) {
-            let a = K::Varyings::from_fn(|i| {
-                get(start, i).wrapping_add(get(step, i).wrapping_mul(k0 as i32))
-            });
-            kernel.span(t, &a, step, x + k0 as i32, y, c);
+    let (mut z, dz) = (z.0 as u32, z.1 as u32);
+    let n = color.len().min(depth.len());
+    let (Some(color), Some(depth)) = (color.get_mut(..n), depth.get_mut(..n)) else {
+        return;
+    };
+    for k in 0..n {
+        // below 2^16: the run's depths need no clamping
+        let zi = z >> crate::raster::ATTR_FRAC;
+        if zi < u32::from(depth[k]) {
+            depth[k] = zi as u16;
+            color[k] = pixel(&s);
         }
-    });
+        // the values after the last pixel are not used: wrapping is harmless
+        z = z.wrapping_add(dz);
+        step(&mut s);
+        crate::num::no_unroll();
+    }
 }
 
 /// The depth test of the leading pixels of a run: pixel `k` has depth
