@@ -70,6 +70,11 @@ impl Exponent {
         self.frac
     }
 
+    /// `e·2^16`.
+    const fn units(self) -> u32 {
+        ((self.int as u32) << 16) | self.frac as u32
+    }
+
     /// Whether `e` is an integer (then `x^e` is [`Scalar::powi`]).
     pub const fn is_integer(self) -> bool {
         self.frac == 0
@@ -291,16 +296,15 @@ impl<const Q: u32> PowTable<Q> {
     /// One in `Q`-bit fixed point.
     const ONE: i32 = 1 << Q;
 
-    /// The table of `x^n` (`n ≥ 0`, rounded to 2⁻¹⁶ as [`Exponent`] rounds it;
-    /// `n = 0` gives 1 everywhere), in 32-bit integer arithmetic (no float
-    /// operation, no 64-bit multiply or divide routine on a Cortex-M0): see
-    /// [`pow_entry`]. Every entry is within `2^−Q·(½ + 2⁻¹²)` of `x^n`: `round(x^n·2^Q)`,
+    /// The table of `x^n` (`n = 0` gives 1 everywhere), in 32-bit integer
+    /// arithmetic (no float operation, no 64-bit multiply or divide routine on a
+    /// Cortex-M0): see [`pow_entry`]. Every entry is within `2^−Q·(½ + 2⁻¹²)` of `x^n`: `round(x^n·2^Q)`,
     /// or one off where `x^n·2^Q` lies within 2⁻¹² of a half (the test
     /// `pow_table_entries_match_f64`); `x0` is `⌊4096^(−1/n)·2^Q⌋`, or one less
     /// where that product lies within 2⁻¹⁰ above an integer.
-    pub(crate) fn new(n: f32) -> Self {
+    pub(crate) fn new(n: Exponent) -> Self {
         const { assert!(Q <= 15) };
-        let nu = exponent_units(n);
+        let nu = n.units();
         let x0q = if nu == 0 { 0 } else { pow_x0(nu, Q) };
         let width = (Self::ONE - x0q).max(1);
         let mut t = [0u16; POW_SEGMENTS + 2];
@@ -459,29 +463,6 @@ impl Scaled {
         } else {
             Some(0)
         }
-    }
-}
-
-/// `n·2^16` rounded to nearest (as [`Exponent::new`] rounds), from the bits of
-/// `n` (no float operation): 0 for `n ≤ 0`, saturated at `65535·2^16`.
-fn exponent_units(n: f32) -> u32 {
-    let b = n.to_bits();
-    let e = ((b >> 23) & 0xFF) as i32;
-    if b >> 31 != 0 || e == 0 {
-        return 0; // negative, zero or below 2^−126
-    }
-    if e >= 127 + 16 {
-        return 65535 << 16; // 65536 and above, infinity, NaN
-    }
-    let mant = (b & 0x7F_FFFF) | 0x80_0000;
-    // n·2^16 = mant·2^(e − 127 − 23 + 16)
-    let s = e - 134;
-    if s >= 0 {
-        (mant << s).min(65535 << 16) // s ≤ 8: below 2^32
-    } else if s < -25 {
-        0
-    } else {
-        (mant + (1 << (-s - 1))) >> -s
     }
 }
 
@@ -682,7 +663,8 @@ mod tests {
     #[test]
     fn pow_table_matches_powf() {
         for n in [0.0f32, 1.0, 1.5, 8.0, 12.8, 32.0, 256.0, 1024.0] {
-            let t = PowTable::<15>::new(n);
+            let e = Exponent::new("n", n).unwrap();
+            let t = PowTable::<15>::new(e);
             let x0 = t.x0() as f32 / 32768.0;
             for i in (0..=POW_END).step_by(61) {
                 let x = x0 + (1.0 - x0) * i as f32 / POW_END as f32;
@@ -692,7 +674,7 @@ mod tests {
             }
             assert_eq!(t.at(POW_END + 3 * POW_SEG + 77), 32768);
             assert_eq!(t.at_clamped(-5), 0);
-            let t14 = PowTable::<14>::new(n);
+            let t14 = PowTable::<14>::new(e);
             for x in (0..=20000).step_by(7) {
                 let want = if x <= t14.x0() {
                     0.0
@@ -740,7 +722,8 @@ mod tests {
         let (mut worst, mut worst_at, mut off, mut entries) = (0.0f64, (0.0, 0, 0), 0u32, 0u32);
         let (mut x0_low, mut x0_worst) = (0u32, 0.0f64);
         for n in ns {
-            let nu = exponent_units(n);
+            let n = Exponent::new("n", n).unwrap();
+            let nu = n.units();
             let ne = f64::from(nu) / 65536.0;
             for q in [14u32, 15] {
                 let (x0, t) = if q == 14 {
@@ -753,7 +736,7 @@ mod tests {
                 let one = f64::from(1u32 << q);
                 if nu == 0 {
                     assert_eq!(x0, 0);
-                    assert!(t.iter().all(|&v| f64::from(v) == one), "n {n}");
+                    assert!(t.iter().all(|&v| f64::from(v) == one), "n {n:?}");
                     continue;
                 }
                 let v = libm::pow(4096.0, -1.0 / ne) * one;
@@ -761,7 +744,7 @@ mod tests {
                 if f64::from(x0) != fl {
                     assert!(
                         f64::from(x0) == fl - 1.0 && v - fl < 1.0 / 1024.0,
-                        "n {n} Q{q}: x0 {x0}, 4096^(-1/n)·2^Q = {v}"
+                        "n {ne} Q{q}: x0 {x0}, 4096^(-1/n)·2^Q = {v}"
                     );
                     x0_low += 1;
                     x0_worst = x0_worst.max(v - fl);
@@ -790,35 +773,6 @@ mod tests {
         );
     }
 
-    /// The exponent's units from the bits of an `f32` equal [`Exponent::new`]'s.
-    #[test]
-    fn exponent_units_round_as_exponent() {
-        for n in [
-            0.0f32,
-            1.0e-30,
-            1.0e-6,
-            7.6e-6,
-            0.01,
-            0.5,
-            1.0,
-            12.8,
-            2.999_999_9,
-            27.8974,
-            255.99,
-            256.0,
-            1000.3,
-            4097.7,
-            65534.9,
-            65535.0,
-        ] {
-            let e = Exponent::new("n", n).unwrap();
-            let want = (u32::from(e.integer_part()) << 16) | u32::from(e.fraction());
-            assert_eq!(exponent_units(n), want, "{n}");
-        }
-        assert_eq!(exponent_units(-1.0), 0);
-        assert_eq!(exponent_units(70000.0), 65535 << 16);
-    }
-
     /// The unrounded power against `f64` at every point `x = m/2^21` of the
     /// tables' grid, for exponents across the range (an exhaustive search of
     /// the worst case in `x`): absolute error below 2⁻²⁵ (2⁻¹⁰ LSB of a `Q` = 15
@@ -829,7 +783,7 @@ mod tests {
         for n in [
             0.01f32, 0.5, 1.0, 2.0, 5.0, 10.0, 12.8, 32.0, 100.0, 128.0, 1024.0, 65535.0,
         ] {
-            let nu = exponent_units(n);
+            let nu = Exponent::new("n", n).unwrap().units();
             let ne = f64::from(nu) / 65536.0;
             for m in 1..1u32 << 21 {
                 let want = libm::pow(f64::from(m) / 2097152.0, ne);
