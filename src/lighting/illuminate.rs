@@ -4,7 +4,7 @@
 
 use super::{FogModel, LightSet, Lighting, LitColor, Model, Specular, Viewer};
 use crate::color::Rgb;
-use crate::num::{Flag, Off, Point3, Scalar, Vec3};
+use crate::num::{Exponent, Flag, Off, Point3, Scalar, Vec3};
 
 /// What the shading stage lights with: anything that gives the colour of a surface
 /// point. Implemented by every [`Lighting`] configuration (and by [`BackFaces`] and
@@ -83,7 +83,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illumina
                 Rgb::BLACK
             },
             base: self.base(),
-            shininess: self.material().shininess.to_f32(),
+            shininess: self.material().shininess,
         })
     }
     #[inline(always)]
@@ -112,7 +112,7 @@ pub struct DirectionalTerms<S> {
     /// Emission and ambient.
     pub base: Rgb<S>,
     /// The specular exponent.
-    pub shininess: f32,
+    pub shininess: Exponent,
 }
 
 /// Two-sided lighting (`GL_LIGHT_MODEL_TWO_SIDE`): lights back faces with the

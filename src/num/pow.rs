@@ -11,6 +11,7 @@
 //! `2⁻¹⁶/(e·e_)` (`e_` = 2.718…) for `e ≥ 1`: 8·10⁻⁷ at `e = 12.8`, 1.4·10⁻⁵ below
 //! `e = 1` (0.004 of an 8-bit step).
 
+use super::wide::{div_u64_u32, mul_u32};
 use super::Scalar;
 use crate::error::{finite, ParamError};
 
@@ -67,6 +68,11 @@ impl Exponent {
     /// The fraction `e − ⌊e⌋` in 2⁻¹⁶ units.
     pub const fn fraction(self) -> u16 {
         self.frac
+    }
+
+    /// `e·2^16`.
+    const fn units(self) -> u32 {
+        ((self.int as u32) << 16) | self.frac as u32
     }
 
     /// Whether `e` is an integer (then `x^e` is [`Scalar::powi`]).
@@ -290,23 +296,26 @@ impl<const Q: u32> PowTable<Q> {
     /// One in `Q`-bit fixed point.
     const ONE: i32 = 1 << Q;
 
-    /// The table of `x^n` (`n ≥ 0`; `n = 0` gives 1 everywhere).
-    pub(crate) fn new(n: f32) -> Self {
-        // f32 (libm's powf is exact to an ulp) so that the fast path links no f64
-        let x0 = if n == 0.0 {
-            0.0
-        } else {
-            libm::powf(4096.0, -1.0 / n)
-        };
-        let one = Self::ONE as f32;
-        let x0q = libm::floorf(x0 * one) as i32;
+    /// The table of `x^n` (`n = 0` gives 1 everywhere), in 32-bit integer
+    /// arithmetic (no float operation, no 64-bit multiply or divide routine on a
+    /// Cortex-M0): see [`pow_entry`]. Every entry is within `2^−Q·(½ + 2⁻¹²)` of `x^n`: `round(x^n·2^Q)`,
+    /// or one off where `x^n·2^Q` lies within 2⁻¹² of a half (the test
+    /// `pow_table_entries_match_f64`); `x0` is `⌊4096^(−1/n)·2^Q⌋`, or one less
+    /// where that product lies within 2⁻¹⁰ above an integer.
+    pub(crate) fn new(n: Exponent) -> Self {
+        const { assert!(Q <= 15) };
+        let nu = n.units();
+        let x0q = if nu == 0 { 0 } else { pow_x0(nu, Q) };
         let width = (Self::ONE - x0q).max(1);
         let mut t = [0u16; POW_SEGMENTS + 2];
         for (i, v) in t.iter_mut().enumerate() {
-            let x = (x0q as f32 + width as f32 * i.min(POW_SEGMENTS) as f32 / POW_SEGMENTS as f32)
-                / one;
-            let p = if n == 0.0 { 1.0 } else { libm::powf(x, n) };
-            *v = libm::roundf(p * one).clamp(0.0, one) as u16;
+            // x = (x0 + width·i/64)/2^Q = m/2^21 (exact: m ≤ 2^21)
+            let m = ((64 * x0q + width * i.min(POW_SEGMENTS) as i32) as u32) << (15 - Q);
+            *v = if nu == 0 || m >= 1 << 21 {
+                Self::ONE as u16
+            } else {
+                pow_entry(nu, m, Q) as u16
+            };
         }
         Self {
             x0: x0q,
@@ -349,6 +358,212 @@ impl<const Q: u32> PowTable<Q> {
             self.at(u)
         }
     }
+}
+
+// ---------------------------------------------------- the power table in integers
+//
+// `x^n = 2^−(n·(−log₂ x))` for `x = m/2^21` (exact: the table's points), `n` in
+// 2⁻¹⁶ units: `−log₂ x` from a 32-entry table of `2^(−j/32)` and a series (near
+// `x = 1` a series in `1 − x`, relative: no cancellation for a large `n`), the
+// product with `n` in 32 significant bits, `2^−y` from the same table and a
+// series; products from `mul_u32` (16-bit halves: no `__aeabi_lmul` on a
+// Cortex-M0). The power's error is below 2⁻²⁵ (2⁻¹⁰ of an LSB at `Q` = 15,
+// far below the entries' rounding).
+
+/// `2^(−j/32)` in Q31 for `j` in 0..=32: the table of [`exp2_neg`] and the
+/// reduction of [`neg_log2`].
+static EXP2_32: [u32; 33] = table::<33>(Sampled::Exp2, 31);
+/// `ln 2` in Q32.
+const LN2_Q32: u32 = 2_977_044_472;
+/// `log₂ e` in Q31.
+const LOG2E_Q31: u32 = 3_098_164_009;
+/// `1/k` in Q31 for `k` in 1..=6 (index `k − 1`).
+const INV_Q31: [u32; 6] = [
+    2_147_483_648,
+    1_073_741_824,
+    715_827_883,
+    536_870_912,
+    429_496_730,
+    357_913_941,
+];
+/// `1/k!` in Q31 for `k` in 0..=4.
+const INV_FACT_Q31: [u32; 5] = [
+    2_147_483_648,
+    2_147_483_648,
+    1_073_741_824,
+    357_913_941,
+    89_478_485,
+];
+
+/// `(a·b) >> s`, truncated (`s` such that the result fits).
+#[inline(always)]
+fn mulq(a: u32, b: u32, s: u32) -> u32 {
+    (mul_u32(a, b) >> s) as u32
+}
+
+/// An unsigned number `m·2^e`, `m` normalised (`2^31 ≤ m < 2^32`): 32
+/// significant bits (a product is truncated: relative error below 2⁻³¹).
+#[derive(Clone, Copy)]
+struct Scaled {
+    m: u32,
+    e: i32,
+}
+
+impl Scaled {
+    /// `v·2^e` (`v > 0`).
+    fn new(v: u32, e: i32) -> Self {
+        let z = v.leading_zeros();
+        Self {
+            m: v << z,
+            e: e - z as i32,
+        }
+    }
+
+    /// `v·2^e` (`v > 0`), truncated to 32 significant bits.
+    fn from_u64(v: u64, e: i32) -> Self {
+        let hi = (v >> 32) as u32;
+        if hi == 0 {
+            Self::new(v as u32, e)
+        } else {
+            let z = hi.leading_zeros();
+            Self {
+                m: ((v << z) >> 32) as u32,
+                e: e + 32 - z as i32,
+            }
+        }
+    }
+
+    fn mul(self, o: Self) -> Self {
+        let p = mul_u32(self.m, o.m); // in [2^62, 2^64)
+        if p >> 63 != 0 {
+            Self {
+                m: (p >> 32) as u32,
+                e: self.e + o.e + 32,
+            }
+        } else {
+            Self {
+                m: (p >> 31) as u32,
+                e: self.e + o.e + 31,
+            }
+        }
+    }
+
+    /// The value in Q32 (truncated); `None` at or above 32.
+    fn to_q32(self) -> Option<u64> {
+        let s = self.e + 32;
+        if s >= 1 {
+            // the value is at least 2^(31 + e) = 2^(s − 1)
+            if s >= 6 {
+                None
+            } else {
+                Some(u64::from(self.m) << s)
+            }
+        } else if s > -64 {
+            Some(u64::from(self.m) >> -s)
+        } else {
+            Some(0)
+        }
+    }
+}
+
+/// `−log₂(m/2^21)` for `m` in 1..2^21: relative error below 2⁻²⁸ for
+/// `x > 31/32`, absolute below 2⁻³⁰ elsewhere.
+fn neg_log2(m: u32) -> Scaled {
+    let d = (1 << 21) - m; // 1 − x in 2^−21
+    if d < 1 << 16 {
+        // x > 31/32: −ln(1 − d) = d·(1 + d/2 + d²/3 + … + d⁵/6), relative error
+        // below d⁶/7 < 2^−32 (no cancellation: a relative error near x = 1)
+        let dq = d << 16; // Q37, < 2^32
+        let mut s = INV_Q31[5];
+        for &c in INV_Q31[..5].iter().rev() {
+            s = c + mulq(dq, s, 37); // < 1.02·2^31
+        }
+        Scaled::new(d, -21)
+            .mul(Scaled { m: s, e: -31 })
+            .mul(Scaled {
+                m: LOG2E_Q31,
+                e: -31,
+            })
+    } else {
+        // x = r·2^(k − 21), r in [1, 2): −log₂ x = 21 − k − log₂ r
+        let z = m.leading_zeros(); // ≥ 11
+        let k = 31 - z;
+        let r = m << z; // Q31
+                        // j: the largest in 0..32 with r ≥ 2^(j/32), i.e. r/2 ≥ 2^(−(32 − j)/32)
+        let mut j = 0;
+        for step in [16, 8, 4, 2, 1] {
+            if r >> 1 >= EXP2_32[32 - (j + step)] {
+                j += step;
+            }
+        }
+        // r·2^(−j/32) = 1 + t, t in [0, 2^−5.5) (the table's rounding: 2^−32)
+        let t = (mul_u32(r, EXP2_32[j]).saturating_sub(1 << 62) >> 25) as u32; // Q37
+                                                                               // ln(1 + t) = t·(1 − t/2 + t²/3 − t³/4 + t⁴/5): error below t⁶/6 < 2^−35
+        let mut s = INV_Q31[4];
+        for &c in INV_Q31[..4].iter().rev() {
+            s = c - mulq(t, s, 37);
+        }
+        let lg = mulq(mulq(t, s, 31), LOG2E_Q31, 31); // log₂(1 + t), Q37
+                                                      // L = 21 − k − j/32 − log₂(1 + t) in Q37: above 0.045 (x < 31/32), absolute
+                                                      // error ≈ 2^−31 (the table)
+        let l = (u64::from(21 - k) << 37) - ((j as u64) << 32) - u64::from(lg);
+        Scaled::from_u64(l, -37)
+    }
+}
+
+/// `2^−y` for `y` in Q32 below 2^37 as `(r, q)`: `r·2^−(31 + q)`, `r` in
+/// (2^30, 2^31], relative error below 2⁻²⁹.
+fn exp2_neg(y: u64) -> (u32, u32) {
+    let (q, s) = ((y >> 32) as u32, y as u32);
+    let j = (s >> 27) as usize;
+    // u = (s − j/32)·ln 2 < 2^−5.5, Q37
+    let u = mulq((s & ((1 << 27) - 1)) << 5, LN2_Q32, 32);
+    // e^−u = 1 − u·(1 − u·(1/2 − u·(1/6 − u/24))): error below u⁵/120 < 2^−34
+    let mut p = INV_FACT_Q31[4];
+    for &c in INV_FACT_Q31[..4].iter().rev() {
+        p = c - mulq(u, p, 37);
+    }
+    (mulq(EXP2_32[j], p, 31), q)
+}
+
+/// `(m/2^21)^n` (`n = nu/2^16 > 0`, `m` in 1..2^21) as `(r, k)`: `r·2^−(31 + k)`,
+/// `None` below `2^−(q + 2)` (`q ≤ 15`). Absolute error below 2⁻²⁵, relative below 2⁻²³ (the
+/// test `pow_error_is_far_below_an_lsb`).
+fn pow_parts(nu: u32, m: u32, q: u32) -> Option<(u32, u32)> {
+    let y = Scaled::new(nu, -16).mul(neg_log2(m)).to_q32()?;
+    if y >> 32 > u64::from(q + 1) {
+        return None;
+    }
+    Some(exp2_neg(y))
+}
+
+/// `round((m/2^21)^n·2^q)` (`n = nu/2^16 > 0`, `m` in 0..2^21, `q ≤ 15`).
+fn pow_entry(nu: u32, m: u32, q: u32) -> u32 {
+    if m == 0 {
+        return 0;
+    }
+    let Some((r, k)) = pow_parts(nu, m, q) else {
+        return 0; // below 2^−(q + 2)
+    };
+    // r·2^(q − 31 − k), the shift ≤ 32
+    let sh = 31 - q + k;
+    ((u64::from(r) + (1 << (sh - 1))) >> sh) as u32
+}
+
+/// `⌊4096^(−1/n)·2^q⌋` (`n = nu/2^16 > 0`, `q ≤ 15`) from `2^−(12/n)`: never above,
+/// one below where the product lies within 2⁻²⁶ (relative) above an integer.
+fn pow_x0(nu: u32, q: u32) -> i32 {
+    // 12/n = 12·2^16/nu in Q32 (truncated)
+    let num = 12 << 16;
+    let (whole, rem) = (num / nu, num % nu);
+    if whole > q {
+        return 0; // 2^−(12/n)·2^q < 1
+    }
+    let frac = div_u64_u32(u64::from(rem) << 32, nu).0;
+    let (r, k) = exp2_neg((u64::from(whole) << 32) | u64::from(frac));
+    // the margin (2^−26 relative) exceeds the error of 12/n and of exp2_neg
+    let r = r - (r >> 26) - 1;
+    (r >> (31 - q + k)) as i32
 }
 
 #[cfg(test)]
@@ -448,7 +663,8 @@ mod tests {
     #[test]
     fn pow_table_matches_powf() {
         for n in [0.0f32, 1.0, 1.5, 8.0, 12.8, 32.0, 256.0, 1024.0] {
-            let t = PowTable::<15>::new(n);
+            let e = Exponent::new("n", n).unwrap();
+            let t = PowTable::<15>::new(e);
             let x0 = t.x0() as f32 / 32768.0;
             for i in (0..=POW_END).step_by(61) {
                 let x = x0 + (1.0 - x0) * i as f32 / POW_END as f32;
@@ -458,7 +674,7 @@ mod tests {
             }
             assert_eq!(t.at(POW_END + 3 * POW_SEG + 77), 32768);
             assert_eq!(t.at_clamped(-5), 0);
-            let t14 = PowTable::<14>::new(n);
+            let t14 = PowTable::<14>::new(e);
             for x in (0..=20000).step_by(7) {
                 let want = if x <= t14.x0() {
                     0.0
@@ -472,5 +688,128 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Every entry and `x0` of the integer table against `f64` for both
+    /// precisions, at the table's own points and exponent (`n` in 2⁻¹⁶ units): 0,
+    /// every integer to 1024 (the tests' shininess: 1..=1024, 614), every multiple
+    /// of 1/16 to 128 (12.8's neighbours, 0.0625…), fractional and large values
+    /// and 4000 pseudo-random exponents in (0, 65535]. An entry is within
+    /// `½ + 2⁻¹²` LSB of the exact `x^n·2^Q`: `round` of it, or one off where
+    /// `x^n·2^Q` lies within 2⁻¹² of a half. `x0` is `⌊4096^(−1/n)·2^Q⌋`, or one
+    /// less where that product is within 2⁻¹⁰ above an integer.
+    #[test]
+    fn pow_table_entries_match_f64() {
+        let mut state = 0x2545_F491u32;
+        let random = core::iter::repeat_with(move || {
+            state = state.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            // exponents spread over the octaves: n = 2^(s/256 − 8), up to 65535
+            let s = (state >> 8) % (24 * 256);
+            let n = libm::exp2(f64::from(s) / 256.0 - 8.0).min(65535.0);
+            n as f32
+        })
+        .take(4000);
+        let ns = [
+            0.0f32, 0.01, 0.1, 0.25, 0.3, 0.5, 0.75, 1.5, 2.5, 12.8, 27.8974,
+        ]
+        .into_iter()
+        .chain((1..=1024).map(|i| i as f32))
+        .chain((1..=2048).map(|i| i as f32 / 16.0))
+        .chain([
+            100.5, 1000.3, 1500.0, 2048.0, 2100.0, 4096.0, 10000.0, 30000.0, 65535.0,
+        ])
+        .chain(random);
+        let (mut worst, mut worst_at, mut off, mut entries) = (0.0f64, (0.0, 0, 0), 0u32, 0u32);
+        let (mut x0_low, mut x0_worst) = (0u32, 0.0f64);
+        for n in ns {
+            let n = Exponent::new("n", n).unwrap();
+            let nu = n.units();
+            let ne = f64::from(nu) / 65536.0;
+            for q in [14u32, 15] {
+                let (x0, t) = if q == 14 {
+                    let t = PowTable::<14>::new(n);
+                    (t.x0, t.t)
+                } else {
+                    let t = PowTable::<15>::new(n);
+                    (t.x0, t.t)
+                };
+                let one = f64::from(1u32 << q);
+                if nu == 0 {
+                    assert_eq!(x0, 0);
+                    assert!(t.iter().all(|&v| f64::from(v) == one), "n {n:?}");
+                    continue;
+                }
+                let v = libm::pow(4096.0, -1.0 / ne) * one;
+                let fl = libm::floor(v);
+                if f64::from(x0) != fl {
+                    assert!(
+                        f64::from(x0) == fl - 1.0 && v - fl < 1.0 / 1024.0,
+                        "n {ne} Q{q}: x0 {x0}, 4096^(-1/n)·2^Q = {v}"
+                    );
+                    x0_low += 1;
+                    x0_worst = x0_worst.max(v - fl);
+                }
+                let width = (1i32 << q) - x0;
+                for (i, &got) in t.iter().enumerate() {
+                    let m = 64 * x0 + width * i.min(POW_SEGMENTS) as i32;
+                    let x = f64::from(m) / f64::from(1u32 << (q + 6));
+                    let want = libm::pow(x, ne) * one;
+                    let err = (f64::from(got) - want).abs();
+                    entries += 1;
+                    off += u32::from(f64::from(got) != libm::round(want));
+                    if err > worst {
+                        (worst, worst_at) = (err, (ne, q, i));
+                    }
+                    assert!(
+                        err <= 0.5 + 1.0 / 4096.0,
+                        "n {ne} Q{q} entry {i}: {got}, x^n·2^Q = {want}"
+                    );
+                }
+            }
+        }
+        std::println!(
+            "entries {entries}: worst |entry − x^n·2^Q| {worst:.6} LSB at (n, Q, i) {worst_at:?}, \
+             {off} not round(x^n·2^Q); x0 one below the floor {x0_low} times (fraction ≤ {x0_worst:e})"
+        );
+    }
+
+    /// The unrounded power against `f64` at every point `x = m/2^21` of the
+    /// tables' grid, for exponents across the range (an exhaustive search of
+    /// the worst case in `x`): absolute error below 2⁻²⁵ (2⁻¹⁰ LSB of a `Q` = 15
+    /// entry before its rounding), relative error below 2⁻²³.
+    #[test]
+    fn pow_error_is_far_below_an_lsb() {
+        let (mut abs, mut rel) = ((0.0f64, 0.0, 0), (0.0f64, 0.0, 0));
+        for n in [
+            0.01f32, 0.5, 1.0, 2.0, 5.0, 10.0, 12.8, 32.0, 100.0, 128.0, 1024.0, 65535.0,
+        ] {
+            let nu = Exponent::new("n", n).unwrap().units();
+            let ne = f64::from(nu) / 65536.0;
+            for m in 1..1u32 << 21 {
+                let want = libm::pow(f64::from(m) / 2097152.0, ne);
+                match pow_parts(nu, m, 15) {
+                    Some((r, k)) => {
+                        let got = f64::from(r) * libm::exp2(-31.0 - f64::from(k));
+                        let e = (got - want).abs();
+                        if e > abs.0 {
+                            abs = (e, ne, m);
+                        }
+                        if e / want > rel.0 {
+                            rel = (e / want, ne, m);
+                        }
+                    }
+                    // below 2^−17: an entry rounds to 0
+                    None => assert!(want < 1.0 / 131072.0 * (1.0 + 1e-6), "n {ne} m {m}: {want}"),
+                }
+            }
+        }
+        std::println!(
+            "worst absolute error 2^{:.2} at (n, m) {:?}, relative 2^{:.2} at {:?}",
+            libm::log2(abs.0),
+            (abs.1, abs.2),
+            libm::log2(rel.0),
+            (rel.1, rel.2)
+        );
+        assert!(abs.0 < libm::exp2(-25.0) && rel.0 < libm::exp2(-23.0));
     }
 }

@@ -7,7 +7,7 @@ use crate::color::{OutputColor, Rgb};
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
 use crate::lighting::{DirectionalLight, DirectionalTerms, Illuminate};
 use crate::num::rsqrt::rsqrt_q28_q14;
-use crate::num::{Scalar, Vec3, Q14};
+use crate::num::{Exponent, Scalar, Vec3, Q14};
 use crate::raster::interp::Varyings;
 
 /// The models [`IncrementalPhongShading`] evaluates: [`Lambert`] and [`BlinnPhong`].
@@ -105,7 +105,7 @@ impl<const K: usize> IncrementalState<K> {
         IncrementalState {
             lights,
             base: first.map_or([128; 3], |t| channel_units::<C, S>(t.base).map(|v| v + 128)),
-            pow: PowTable::new(first.map_or(0.0, |t| t.shininess)),
+            pow: PowTable::new(first.map_or(Exponent::ZERO, |t| t.shininess)),
             spec: lights.iter().any(|l| l.ks != [0; 3]),
         }
     }
@@ -148,7 +148,7 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
                 diffuse: pre.diffuse,
                 specular: pre.specular,
                 base: lighting.base(),
-                shininess: lighting.material().shininess.to_f32(),
+                shininess: lighting.material().shininess,
             }
         }))
     }

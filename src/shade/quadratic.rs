@@ -15,7 +15,7 @@ use crate::lighting::{
     BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Phong, Specular,
 };
 use crate::num::Vec3;
-use crate::num::{F32Fast, Scalar, Q14};
+use crate::num::{Exponent, F32Fast, Scalar, Q14};
 use crate::raster::ATTR_FRAC;
 use probe::{F32Probe, Q14Probe};
 
@@ -184,8 +184,8 @@ struct Desc<const K: usize> {
     l: [[f32; 3]; K],
     h: [[f32; 3]; K],
     v: [f32; 3],
-    /// The shininess (real).
-    n: f32,
+    /// The shininess.
+    n: Exponent,
     specular: Specular,
 }
 
@@ -321,7 +321,7 @@ impl<S: QuadraticTier, const K: usize, M: QuadraticModel, C: OutputColor>
                     .unwrap_or([0.0; 3]),
             }),
             v,
-            n: lighting.material().shininess.to_f32(),
+            n: lighting.material().shininess,
             specular: M::SPECULAR,
         };
         state::<K, C>(&desc)
