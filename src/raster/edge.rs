@@ -161,19 +161,18 @@ pub(crate) struct Walker {
 impl Walker {
     /// The walker positioned at `row` (at least the triangle's first row).
     pub(crate) fn new(s: &Setup, row: i32) -> Walker {
-        let y = row.max(s.rows.0);
-        Walker::build(s, y, |xy, i, j, _| edge_near(xy, i, j, y))
+        Walker::build(s, row.max(s.rows.0), None)
     }
 
     /// The walker at row `y` with the long edge and the short edge in use
-    /// there from `edge(xy, i, j, long)` (the edge between vertices `i` and
-    /// `j`), built in place (no copy of a finished walker).
-    #[inline(always)]
-    fn build(
-        s: &Setup,
-        y: i32,
-        edge: impl Fn(&[(i32, i32); 3], usize, usize, bool) -> Edge,
-    ) -> Walker {
+    /// there: searched from the edges' upper vertices (`cols` `None`), or
+    /// from the bound columns `cols` of [`Walker::snapshot`]; built in place
+    /// (no copy of a finished walker).
+    fn build(s: &Setup, y: i32, cols: Option<(i32, i32)>) -> Walker {
+        let edge = |xy: &[(i32, i32); 3], i, j, long: bool| match cols {
+            None => edge_near(xy, i, j, y),
+            Some(c) => edge_from(xy, i, j, y, if long { c.0 } else { c.1 }),
+        };
         let [t, m, b] = s.tmb;
         let xy = s.xy;
         let half = 1 << (SUBPIXEL_BITS - 1);
@@ -308,9 +307,7 @@ impl Walker {
     /// The walker at `row` given the bound columns from [`Walker::snapshot`]
     /// taken at that row: positioning costs no division and no walk.
     pub(crate) fn resume(s: &Setup, row: i32, cols: (i32, i32)) -> Walker {
-        Walker::build(s, row, |xy, i, j, long| {
-            edge_from(xy, i, j, row, if long { cols.0 } else { cols.1 })
-        })
+        Walker::build(s, row, Some(cols))
     }
 }
 

@@ -205,8 +205,9 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
                     if let Some(depth) = d.get_mut(at..at + n) {
                         match values.linear() {
                             // a kernel that fuses the depth test takes the whole run
-                            Some(l) if K::FUSED_DEPTH && !CLAMP => {
-                                let (a, d) = l.run::<false>(lo, n, K::USED);
+                            // (its values clamped over the whole run)
+                            Some(l) if K::FUSED_DEPTH => {
+                                let (a, d) = l.run::<CLAMP>(lo, n, K::USED);
                                 kernel.span_depth(t, (&a, &d), (lo, y), (z0, dz), color, depth);
                             }
                             // else the values of each passing run (clamped per run)

@@ -282,8 +282,9 @@ pub trait Kernel {
     const NEEDS_TANGENT: bool = false;
     /// Whether [`Kernel::span_depth`] fuses the depth test into the
     /// kernel's own loop: the pipeline then hands it every screen-linear run
-    /// whose values need no clamping (the common case); else it splits runs
-    /// at the depth test itself and calls [`Kernel::span`] per passing run.
+    /// whole (values that need clamping clamped over the whole run); else it
+    /// splits runs at the depth test itself and calls [`Kernel::span`] per
+    /// passing run.
     /// The default is `false`.
     const FUSED_DEPTH: bool = false;
 
@@ -398,7 +399,7 @@ pub(crate) fn fused_depth<C, S>(
         return;
     };
     for k in 0..n {
-        // below 2^16: the run's depths need no clamping
+        // below 2^16: the run's depths are in range (clamped where they needed it)
         let zi = z >> crate::raster::ATTR_FRAC;
         if zi < u32::from(depth[k]) {
             depth[k] = zi as u16;
