@@ -490,15 +490,17 @@ fn neg_log2(m: u32) -> Scaled {
         let k = 31 - z;
         let r = m << z; // Q31
                         // j: the largest in 0..32 with r ≥ 2^(j/32), i.e. r/2 ≥ 2^(−(32 − j)/32)
+                        // (`j + step ≤ 31` and `j ≤ 31`: the `get`s only drop the panic paths)
+        let exp2 = |i: usize| EXP2_32.get(i).copied().unwrap_or(0);
         let mut j = 0;
         for step in [16, 8, 4, 2, 1] {
-            if r >> 1 >= EXP2_32[32 - (j + step)] {
+            if r >> 1 >= exp2(32usize.wrapping_sub(j + step)) {
                 j += step;
             }
         }
         // r·2^(−j/32) = 1 + t, t in [0, 2^−5.5) (the table's rounding: 2^−32)
-        let t = (mul_u32(r, EXP2_32[j]).saturating_sub(1 << 62) >> 25) as u32; // Q37
-                                                                               // ln(1 + t) = t·(1 − t/2 + t²/3 − t³/4 + t⁴/5): error below t⁶/6 < 2^−35
+        let t = (mul_u32(r, exp2(j)).saturating_sub(1 << 62) >> 25) as u32; // Q37
+                                                                            // ln(1 + t) = t·(1 − t/2 + t²/3 − t³/4 + t⁴/5): error below t⁶/6 < 2^−35
         let mut s = INV_Q31[4];
         for &c in INV_Q31[..4].iter().rev() {
             s = c - mulq(t, s, 37);
