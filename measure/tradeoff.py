@@ -236,36 +236,34 @@ def front_text(pts, idx, with_shading=False):
 # ----------------------------------------------------------------------------- markdown
 
 
+def marked(mark: tuple[str, str], name: str, render) -> str:
+    """`render(doc)` of measure/out/<name> between the markers `mark` that its script rewrites
+    (a line naming the command before the first measurement)."""
+    path = ROOT / "measure" / "out" / name
+    doc = json.loads(path.read_text()) if path.exists() else None
+    body = render(doc) if doc is not None else f"Not measured yet: run `python3 measure/{name.split('.')[0]}.py`."
+    return f"{mark[0]}\n{body}\n{mark[1]}"
+
+
 def frame_section() -> str:
     """The whole-frame table from measure/out/frame.json, between the markers frame.py rewrites."""
     import frame  # measure/frame.py
-    a, b = frame.MARK
-    path = ROOT / "measure" / "out" / "frame.json"
-    body = (frame.frame_markdown(json.loads(path.read_text())) if path.exists()
-            else "Not measured yet: run `python3 measure/frame.py`.")
-    return f"{a}\n{body}\n{b}"
+    return marked(frame.MARK, "frame.json", frame.frame_markdown)
 
 
 def stage_section() -> str:
     """The per-stage table of lambert_gouraud from frame.json's "breakdown", between the
     markers frame.py rewrites."""
     import frame  # measure/frame.py
-    a, b = frame.STAGE_MARK
-    path = ROOT / "measure" / "out" / "frame.json"
-    doc = json.loads(path.read_text()) if path.exists() else {}
-    body = frame.breakdown_markdown(doc.get("breakdown", {}), frame.CONFIGS[0])
     return ("Where a Lambert + Gouraud frame goes, stage by stage, beside the floor's (issue 19):\n\n"
-            f"{a}\n{body}\n{b}")
+            + marked(frame.STAGE_MARK, "frame.json",
+                     lambda doc: frame.breakdown_markdown(doc.get("breakdown", {}), frame.CONFIGS[0])))
 
 
 def frontier_section() -> str:
     """The Pareto fronts from measure/out/frontier.json, between the markers frontier.py rewrites."""
     import frontier  # measure/frontier.py
-    a, b = frontier.MARK
-    path = ROOT / "measure" / "out" / "frontier.json"
-    body = (frontier.markdown(json.loads(path.read_text())) if path.exists()
-            else "Not measured yet: run `python3 measure/frontier.py`.")
-    return f"{a}\n{body}\n{b}"
+    return marked(frontier.MARK, "frontier.json", frontier.markdown)
 
 
 def markdown(d: Data, command: str, ran: bool) -> str:
