@@ -88,15 +88,16 @@ SECTIONS = {
 FORBIDDEN = ("u64_div_rem", "__aeabi_ldivmod", "__aeabi_uldivmod", "__aeabi_lmul",
              "__udivmoddi4", "__divdi3", "__muldi3")
 CROSS_CHECK = "flat_band8"  # --check runs it with both block counters
-NO_WIDE = [c + k for c in ("lambert_gouraud", "blinn_gouraud", "blinn_phong", "flat") for k in ("", "_band8")]
+NO_WIDE = [c + k for c in ("lambert_gouraud", "blinn_gouraud", "blinn_phong", "blinn_phong_inc", "flat")
+           for k in ("", "_band8")]
 # RV32IMC (issue 22): on the Q14 frame path no soft-float helper and no 64-bit division
 # helper (compiler-builtins' RISC-V names; RV32IM multiplies and divides 32-bit in hardware)
 RV_WIDE = ("__udivdi3", "__divdi3", "__umoddi3", "__moddi3", "__udivmoddi4", "__divmoddi4",
            "u64_div_rem", "i64_div_rem", "__muldi3")
 RV_NO_FLOAT = list(ENTRIES)  # every Q14 entry is checked; RV_ENFORCED's fail, the others are reported
-# NO_WIDE and blinn_phong_inc: its shader (the power table, issue 19) is built in integers; on the
-# M0 it is not in NO_WIDE (its span set-up multiplies in 64 bits: __aeabi_lmul)
-RV_ENFORCED = NO_WIDE + ["blinn_phong_inc", "blinn_phong_inc_band8"]
+# every NO_WIDE entry (blinn_phong_inc too: its power table and its span set-up are in 32-bit
+# multiplications, issue 19)
+RV_ENFORCED = NO_WIDE
 PAINT = 0x4000  # bytes of stack painted below the initial SP
 PATTERN = 0xA5C3_5A3C
 TIMEOUT_S = 300  # seconds per call before the emulator gives up
@@ -1070,8 +1071,8 @@ def rv_check(data: dict, res: dict) -> tuple[int, int, list[str]]:
     """RV32IMC, issue 22: no soft-float helper (`__addsf3`, `__mulsf3`, `__fixsfsi`…, libm) and
     no 64-bit division helper (`__udivdi3`, `__divdi3`, `__umoddi3`, `u64_div_rem`…) reachable
     from the entry (static call graph) or executed by the frame, for the Q14 configurations of
-    the M0's rule (NO_WIDE: Lambert/Blinn-Phong Gouraud, Phong, flat; whole and 8-row) and
-    `blinn_phong_inc` (RV_ENFORCED). The other Q14 entries are reported as `known` (not failed):
+    the M0's rule (RV_ENFORCED = NO_WIDE: Lambert/Blinn-Phong Gouraud, both Phong kernels, flat;
+    whole and 8-row). The other Q14 entries are reported as `known` (not failed):
     `lambert_gouraud_refine` divides in 64 bits."""
     emu, lines, ok, bad = data["emu"], [], 0, 0
     for ent in RV_NO_FLOAT:

@@ -18,6 +18,38 @@ pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
     (hh << 32) + (hl << 16) + (lh << 16) + ll
 }
 
+/// `a·b` exactly, from 32-bit multiplications ([`mul_u32`]: no 64-bit
+/// multiply helper on the M0).
+#[inline]
+pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
+    // |a·b| ≤ 2^62
+    let m = mul_u32(a.unsigned_abs(), b.unsigned_abs()) as i64;
+    if (a < 0) != (b < 0) {
+        -m
+    } else {
+        m
+    }
+}
+
+/// `x·k` for `|x·k| < 2^63`, from 32-bit multiplications (saturating beyond).
+#[inline]
+pub(crate) fn mul_i64_u32(x: i64, k: u32) -> i64 {
+    let u = x.unsigned_abs();
+    let hi = mul_u32((u >> 32) as u32, k);
+    let m = if hi >> 31 != 0 {
+        i64::MAX
+    } else {
+        (hi << 32)
+            .saturating_add(mul_u32(u as u32, k))
+            .min(i64::MAX as u64) as i64
+    };
+    if x < 0 {
+        -m
+    } else {
+        m
+    }
+}
+
 /// `(⌊n / d⌋, n mod d)` for `d > 0` and a quotient below 2^32 (`n >> 32 < d`),
 /// by restoring division (32 steps). A zero `d` or a quotient that does not fit
 /// gives `(u32::MAX, 0)`.
@@ -90,6 +122,48 @@ mod tests {
         ] {
             assert_eq!(mul_u32(a, b), u64::from(a) * u64::from(b), "{a} {b}");
         }
+    }
+
+    #[test]
+    fn signed_products_are_exact() {
+        let edges = [
+            0,
+            1,
+            -1,
+            7,
+            -7,
+            0xFFFF,
+            -0x10000,
+            i32::MAX,
+            i32::MIN,
+            123_456_789,
+            -987_654_321,
+        ];
+        for a in edges {
+            for b in edges {
+                assert_eq!(mul_i32(a, b), i64::from(a) * i64::from(b), "{a} {b}");
+            }
+        }
+        let wide = [
+            0i64,
+            1,
+            -1,
+            (1 << 40) + 12_345,
+            -(1 << 52) - 3,
+            i64::from(i32::MIN),
+            1 << 32,
+        ];
+        for x in wide {
+            for k in [0u32, 1, 4095, 1 << 11, 65_535] {
+                let want = (i128::from(x) * i128::from(k))
+                    .clamp(-i128::from(i64::MAX), i128::from(i64::MAX));
+                assert_eq!(i128::from(mul_i64_u32(x, k)), want, "{x} {k}");
+            }
+        }
+        // beyond i64: saturated, never wrapped
+        assert_eq!(mul_i64_u32(i64::MAX, 2), i64::MAX);
+        assert_eq!(mul_i64_u32(-(1 << 62), 4), -i64::MAX);
+        assert_eq!(mul_i64_u32(1 << 33, u32::MAX), i64::MAX);
     }
 
     #[test]

@@ -19,7 +19,7 @@
 
 use super::{WINDOW_MAX, WINDOW_MIN};
 use crate::camera::{Clip, ClipSpace};
-use crate::num::wide::{lerp_i32, mul_u32};
+use crate::num::wide::{lerp_i32, mul_i32, mul_u32};
 use core::cmp::Ordering;
 
 /// At most 3 + 5 vertices: each plane adds at most one.
@@ -49,15 +49,6 @@ pub(crate) fn screen<const PERSP: bool>(s: &ClipSpace, c: Clip) -> Screen {
     }
 }
 
-/// A vertex the clipper can cut edges at.
-pub(crate) trait ClipPoint: Copy {
-    /// The clip coordinates.
-    fn clip(&self) -> Clip;
-    /// The point `num/den` of the way from `self` to `other` (`num ≤ den`),
-    /// with clip coordinates `c`.
-    fn cut(&self, other: &Self, num: u32, den: u32, c: Clip) -> Self;
-}
-
 /// The planes, as signed distances (inside: ≥ 0).
 #[derive(Clone, Copy)]
 enum Plane {
@@ -80,7 +71,8 @@ impl Plane {
     #[inline]
     fn distance<const PERSP: bool>(self, c: &Clip, s: &ClipSpace) -> i64 {
         let w = i64::from(c.w);
-        let times_w = |k: i64| if PERSP { mul_i64(k, c.w) } else { k };
+        // |k| < 2^17
+        let times_w = |k: i64| if PERSP { mul_i32(k as i32, c.w) } else { k };
         let lo = |centre: i32| times_w(i64::from(WINDOW_MIN) - i64::from(centre));
         let hi = |centre: i32| times_w(i64::from(WINDOW_MAX) - i64::from(centre));
         let centre = s.centre();
@@ -94,84 +86,128 @@ impl Plane {
     }
 }
 
-/// A convex polygon in clip space.
-pub(crate) struct Polygon<V: ClipPoint> {
-    v: [V; MAX],
+/// How a corner of a polygon cut by a plane is made from the polygon before
+/// the cut: its corner `a` (`den == 0`), or the point `num/den` of the way
+/// from corner `a` to corner `b` (`a` the smaller clip coordinates: the cut
+/// of an edge is the same from both triangles sharing it).
+#[derive(Clone, Copy, Default)]
+struct Step {
+    a: u8,
+    b: u8,
+    num: u32,
+    den: u32,
+}
+
+/// A convex polygon in clip space: its corners' clip coordinates. Not
+/// generic: the values a kernel interpolates follow the cuts in
+/// [`clipped`], so one copy of the clipper serves every kernel.
+pub(crate) struct Polygon {
+    c: [Clip; MAX],
     n: usize,
 }
 
-impl<V: ClipPoint> Polygon<V> {
-    /// Triangle `t` clipped to the near plane (`PERSP`: a perspective clip
-    /// space) and the window.
-    pub(crate) fn clipped<const PERSP: bool>(t: &[V; 3], s: &ClipSpace) -> Self {
-        let mut v = [t[0]; MAX];
-        v[..3].copy_from_slice(t);
-        let mut p = Polygon { v, n: 3 };
-        let planes = [
-            Plane::Near,
-            Plane::XMin,
-            Plane::XMax,
-            Plane::YMin,
-            Plane::YMax,
-        ];
-        for plane in planes.iter().skip(usize::from(!PERSP)) {
-            if p.n < 3 {
-                break;
-            }
-            p.clip::<PERSP>(*plane, s);
-        }
+/// Triangle `t` (clip coordinates, values `v`) clipped to the near plane
+/// (`PERSP`: a perspective clip space) and the window: the polygon and its
+/// corners' values, each cut made by `lerp(a, b, num, den)` (the point
+/// `num/den` of the way from `a` to `b`), which is the perspective-correct
+/// value there.
+#[inline]
+pub(crate) fn clipped<V: Copy, const PERSP: bool>(
+    t: [Clip; 3],
+    v: &[V; 3],
+    lerp: impl Fn(&V, &V, u32, u32) -> V,
+    s: &ClipSpace,
+) -> (Polygon, [V; MAX]) {
+    let mut c = [t[0]; MAX];
+    let mut vs = [v[0]; MAX];
+    for ((c, v), (t, tv)) in c.iter_mut().zip(vs.iter_mut()).zip(t.iter().zip(v)) {
+        (*c, *v) = (*t, *tv);
+    }
+    let mut p = Polygon { c, n: 3 };
+    let planes = [
+        Plane::Near,
+        Plane::XMin,
+        Plane::XMax,
+        Plane::YMin,
+        Plane::YMax,
+    ];
+    for plane in planes.iter().skip(usize::from(!PERSP)) {
         if p.n < 3 {
-            p.n = 0;
+            break;
         }
-        p
+        if let Some(steps) = p.clip::<PERSP>(*plane, s) {
+            let old = vs;
+            for (out, st) in vs.iter_mut().zip(&steps).take(p.n) {
+                let at = |i: u8| old[usize::from(i) & (MAX - 1)];
+                *out = if st.den == 0 {
+                    at(st.a)
+                } else {
+                    lerp(&at(st.a), &at(st.b), st.num, st.den)
+                };
+            }
+        }
+    }
+    if p.n < 3 {
+        p.n = 0;
+    }
+    (p, vs)
+}
+
+impl Polygon {
+    /// The corners' clip coordinates.
+    pub(crate) fn vertices(&self) -> &[Clip] {
+        self.c.get(..self.n).unwrap_or(&[])
     }
 
-    /// The vertices.
-    pub(crate) fn vertices(&self) -> &[V] {
-        self.v.get(..self.n).unwrap_or(&[])
+    /// All corners' clip coordinates, the first [`Polygon::vertices`] of
+    /// them valid.
+    pub(crate) fn corners(&self) -> &[Clip; MAX] {
+        &self.c
     }
 
+    /// Cuts the polygon by `plane`: how each new corner is made, `None`
+    /// when every corner is inside (nothing changes).
     #[inline(never)]
-    fn clip<const PERSP: bool>(&mut self, plane: Plane, s: &ClipSpace) {
+    fn clip<const PERSP: bool>(&mut self, plane: Plane, s: &ClipSpace) -> Option<[Step; MAX]> {
         let n = self.n.min(MAX);
         let d: [i64; MAX] = core::array::from_fn(|i| {
             if i < n {
-                plane.distance::<PERSP>(&self.v[i].clip(), s)
+                plane.distance::<PERSP>(&self.c[i], s)
             } else {
                 0
             }
         });
         if d[..n].iter().all(|&x| x >= 0) {
-            return;
+            return None;
         }
-        let mut out = [self.v[0]; MAX];
+        let mut out = [self.c[0]; MAX];
+        let mut steps = [Step::default(); MAX];
         let mut m = 0;
         for i in 0..n {
             // (i + 1) mod n without a division; indices below MAX (no panic path)
             let j = if i + 1 < n { i + 1 } else { 0 };
             let (pin, qin) = (d[i] >= 0, d[j] >= 0);
             if pin && m < MAX {
-                out[m] = self.v[i];
+                out[m] = self.c[i];
+                steps[m].a = i as u8;
                 m += 1;
             }
             if pin != qin && m < MAX {
-                out[m] = cut(&self.v[i], d[i], &self.v[j], d[j]);
+                (out[m], steps[m]) = cut((i, &self.c[i], d[i]), (j, &self.c[j], d[j]));
                 m += 1;
             }
         }
-        self.v = out;
+        self.c = out;
         self.n = m;
+        Some(steps)
     }
 }
 
-/// The point of segment `p`–`q` on the plane (distances `dp`, `dq` of opposite
-/// signs), from the endpoints in canonical order.
-fn cut<V: ClipPoint>(p: &V, dp: i64, q: &V, dq: i64) -> V {
-    let ((a, da), (b, db)) = if p.clip() <= q.clip() {
-        ((p, dp), (q, dq))
-    } else {
-        ((q, dq), (p, dp))
-    };
+/// The point of segment `p`–`q` (corner index, clip coordinates, distance;
+/// distances of opposite signs) on the plane, and how it is made, from the
+/// endpoints in canonical order.
+fn cut(p: (usize, &Clip, i64), q: (usize, &Clip, i64)) -> (Clip, Step) {
+    let ((ia, ca, da), (ib, cb, db)) = if p.1 <= q.1 { (p, q) } else { (q, p) };
     // t = da / (da − db) ∈ [0, 1], both below 2^50: scaled to 32 bits
     let mut num = da.unsigned_abs();
     let mut den = (da - db).unsigned_abs();
@@ -181,7 +217,6 @@ fn cut<V: ClipPoint>(p: &V, dp: i64, q: &V, dq: i64) -> V {
     }
     let (num, den) = (num as u32, (den as u32).max(1));
     let num = num.min(den);
-    let (ca, cb) = (a.clip(), b.clip());
     let l = |x: i32, y: i32| lerp_i32(x, y, num, den);
     let c = Clip {
         x: l(ca.x, cb.x),
@@ -189,18 +224,13 @@ fn cut<V: ClipPoint>(p: &V, dp: i64, q: &V, dq: i64) -> V {
         z: l(ca.z, cb.z),
         w: l(ca.w, cb.w),
     };
-    a.cut(b, num, den, c)
-}
-
-/// `k·w` exactly (`|k| < 2^17`), from 32-bit multiplications.
-#[inline]
-fn mul_i64(k: i64, w: i32) -> i64 {
-    let m = mul_u32(k.unsigned_abs() as u32, w.unsigned_abs()) as i64;
-    if (k < 0) != (w < 0) {
-        -m
-    } else {
-        m
-    }
+    let step = Step {
+        a: ia as u8,
+        b: ib as u8,
+        num,
+        den,
+    };
+    (c, step)
 }
 
 /// `sign(a·b − c·d)` for differences of `i32` values (magnitudes below 2^32),
@@ -260,27 +290,34 @@ mod tests {
 
     #[derive(Clone, Copy, Debug, PartialEq)]
     struct P(Clip);
-    impl ClipPoint for P {
-        fn clip(&self) -> Clip {
-            self.0
-        }
-        fn cut(&self, _: &Self, _: u32, _: u32, c: Clip) -> Self {
-            P(c)
-        }
-    }
     fn c(x: i32, y: i32, w: i32) -> P {
         P(Clip { x, y, z: 0, w })
+    }
+    /// The clip coordinates of triangle `t` clipped, each corner also
+    /// carried as a value (the values must follow the cuts).
+    fn poly<const PERSP: bool>(t: &[P; 3], s: &ClipSpace) -> Vec<P> {
+        let lerp = |a: &Clip, b: &Clip, num: u32, den: u32| {
+            let l = |x: i32, y: i32| lerp_i32(x, y, num, den);
+            Clip {
+                x: l(a.x, b.x),
+                y: l(a.y, b.y),
+                z: l(a.z, b.z),
+                w: l(a.w, b.w),
+            }
+        };
+        let (p, v) = clipped::<Clip, PERSP>(t.map(|p| p.0), &t.map(|p| p.0), lerp, s);
+        assert_eq!(p.vertices(), &v[..p.vertices().len()]);
+        p.vertices().iter().map(|&c| P(c)).collect()
     }
     const PERSP: ClipSpace = ClipSpace::perspective([1920, 1920], 1000);
 
     #[test]
     fn near_plane_cuts_are_canonical_and_on_the_plane() {
         let (a, b) = (c(-500, 300, -7000), c(900, -100, 40000));
-        let t1 = Polygon::clipped::<true>(&[a, b, c(0, 5000, 30000)], &PERSP);
-        let t2 = Polygon::clipped::<true>(&[b, a, c(7, -5000, 25000)], &PERSP);
-        let on = |p: &Polygon<P>| -> Vec<Clip> {
-            p.vertices()
-                .iter()
+        let t1 = poly::<true>(&[a, b, c(0, 5000, 30000)], &PERSP);
+        let t2 = poly::<true>(&[b, a, c(7, -5000, 25000)], &PERSP);
+        let on = |p: &Vec<P>| -> Vec<Clip> {
+            p.iter()
                 .map(|v| v.0)
                 .filter(|v| (v.w - 1000).abs() <= 1)
                 .collect()
@@ -288,24 +325,20 @@ mod tests {
         let (c1, c2) = (on(&t1), on(&t2));
         // the cut of the shared edge a–b appears in both, bit for bit
         assert!(c1.iter().any(|p| c2.contains(p)), "{c1:?} {c2:?}");
-        for v in t1.vertices().iter().chain(t2.vertices()) {
+        for v in t1.iter().chain(&t2) {
             assert!(v.0.w >= 999, "{v:?}");
         }
     }
 
     #[test]
     fn behind_the_eye_is_empty_and_the_window_holds() {
-        assert!(
-            Polygon::clipped::<true>(&[c(0, 0, -5), c(10, 0, -5), c(0, 10, -1)], &PERSP)
-                .vertices()
-                .is_empty()
-        );
-        let far = Polygon::clipped::<true>(
+        assert!(poly::<true>(&[c(0, 0, -5), c(10, 0, -5), c(0, 10, -1)], &PERSP).is_empty());
+        let far = poly::<true>(
             &[c(i32::MAX, 0, 1000), c(0, i32::MAX, 1000), c(0, 0, 1000)],
             &PERSP,
         );
-        assert!(!far.vertices().is_empty());
-        for v in far.vertices() {
+        assert!(!far.is_empty());
+        for v in &far {
             // on or inside the window up to the rounding of the cut
             let x = PERSP.screen::<true>(v.0).x;
             assert!(x <= WINDOW_MAX + 1, "{v:?} {x}");
@@ -314,12 +347,12 @@ mod tests {
 
     #[test]
     fn orthographic_clips_to_the_window_only() {
-        let p = Polygon::clipped::<false>(
+        let p = poly::<false>(
             &[c(-100_000, 0, 1), c(100, 0, 1), c(100, 200, 1)],
             &ClipSpace::SCREEN,
         );
-        assert!(p.vertices().len() >= 3);
-        for v in p.vertices() {
+        assert!(p.len() >= 3);
+        for v in &p {
             assert!(v.0.x >= WINDOW_MIN - 1, "{v:?}");
         }
     }

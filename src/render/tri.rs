@@ -6,7 +6,7 @@
 use super::BandView;
 use crate::camera::{Clip, ClipSpace};
 use crate::error::RenderError;
-use crate::raster::clip::{self, ClipPoint, Polygon, Screen};
+use crate::raster::clip::{self, Screen};
 use crate::raster::interp::{self, eighth, step_over, within, Linear, Persp, Varyings};
 use crate::raster::setup::at3;
 use crate::raster::{Cull, Plane, Setup, Walker, ATTR_FRAC, PERSPECTIVE_SPAN, SUBPIXEL_BITS};
@@ -18,20 +18,6 @@ use crate::shade::{depth_runs, Kernel, VertexIn};
 pub(crate) struct ClipCorner<V> {
     pub c: Clip,
     pub v: V,
-}
-
-impl<V: Varyings> ClipPoint for ClipCorner<V> {
-    #[inline]
-    fn clip(&self) -> Clip {
-        self.c
-    }
-
-    fn cut(&self, o: &Self, num: u32, den: u32, c: Clip) -> Self {
-        ClipCorner {
-            c,
-            v: interp::lerp(&self.v, &o.v, num, den),
-        }
-    }
 }
 
 /// A corner on the screen, inside the set-up window, with the kernel's values.
@@ -321,20 +307,16 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     space: &ClipSpace,
     mut f: impl FnMut(&[ScreenCorner<V>; 3]),
 ) {
-    let poly = Polygon::clipped::<PERSP>(c, space);
-    let vs = poly.vertices();
-    let mut clips = [Clip::default(); clip::MAX];
-    for (q, v) in clips.iter_mut().zip(vs) {
-        *q = v.c;
-    }
-    let Some((s, keep, n)) = outline::<PERSP>(c.map(|k| k.c), &clips, vs.len(), space) else {
+    let tri = c.map(|k| k.c);
+    let (poly, vs) = clip::clipped::<_, PERSP>(tri, &c.map(|k| k.v), interp::lerp, space);
+    let Some((s, keep, n)) = outline::<PERSP>(tri, &poly, space) else {
         return;
     };
     let corner = |k: usize| {
         let i = usize::from(*keep.get(k)?);
         Some(ScreenCorner {
             s: *s.get(i)?,
-            v: vs.get(i)?.v,
+            v: *vs.get(i)?,
         })
     };
     let Some(a) = corner(0) else {
@@ -347,20 +329,20 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     }
 }
 
-/// The screen positions of the clipped polygon `clips[..n]` of the
-/// triangle `tri` and the corners of its convex fan ([`convex`]); `None` for
-/// a triangle of zero area. Not generic over the values: one copy per
+/// The screen positions of the clipped polygon `poly` of the triangle
+/// `tri` and the corners of its convex fan ([`convex`]); `None` for a
+/// triangle of zero area. Not generic over the values: one copy per
 /// projection.
 #[inline(never)]
 fn outline<const PERSP: bool>(
     tri: [Clip; 3],
-    clips: &[Clip; clip::MAX],
-    n: usize,
+    poly: &clip::Polygon,
     space: &ClipSpace,
 ) -> Option<([Screen; clip::MAX], [u8; clip::MAX], usize)> {
     let front = clip::facing::<PERSP>(tri)?;
     let mut s = [Screen::default(); clip::MAX];
-    for (q, c) in s.iter_mut().zip(clips.iter().take(n)) {
+    let n = poly.vertices().len();
+    for (q, c) in s.iter_mut().zip(poly.corners()).take(n) {
         *q = clip::screen::<PERSP>(space, *c);
     }
     let (keep, n) = convex(&s, n, front);
@@ -476,19 +458,20 @@ fn clipped_bounds<const PERSP: bool>(
 ) -> Option<((i32, i32, i32, i32), bool)> {
     let (c, space) = clip()?;
     let front = clip::facing::<PERSP>(c)?;
-    let corners = c.map(|c| ClipCorner { c, v: [0i32; 0] });
+    let (poly, _) = clip::clipped::<(), PERSP>(c, &[(); 3], |_, _, _, _| (), &space);
+    // the corners of the fan [`pieces`] draws
+    let (s, keep, n) = outline::<PERSP>(c, &poly, &space)?;
     let mut bbox = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
-    pieces::<_, PERSP>(&corners, &space, |t| {
-        for p in t {
-            bbox = (
-                bbox.0.min(p.s.x),
-                bbox.1.max(p.s.x),
-                bbox.2.min(p.s.y),
-                bbox.3.max(p.s.y),
-            );
-        }
-    });
-    (bbox.0 <= bbox.1).then_some((bbox, front))
+    for &k in keep.iter().take(n) {
+        let p = s[usize::from(k) & (clip::MAX - 1)];
+        bbox = (
+            bbox.0.min(p.x),
+            bbox.1.max(p.x),
+            bbox.2.min(p.y),
+            bbox.3.max(p.y),
+        );
+    }
+    (n >= 3).then_some((bbox, front))
 }
 
 /// One corner of a triangle a program brings itself: its clip coordinates

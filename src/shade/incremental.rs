@@ -7,6 +7,7 @@ use crate::color::{OutputColor, Rgb};
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
 use crate::lighting::{DirectionalLight, DirectionalTerms, Illuminate};
 use crate::num::rsqrt::rsqrt_q28_q14;
+use crate::num::wide::{mul_i32, mul_i64_u32, mul_u32};
 use crate::num::{Exponent, Scalar, Vec3, Q14};
 use crate::raster::interp::Varyings;
 
@@ -172,7 +173,6 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
     d: &[i32],
     out: &mut [C],
 ) {
-    let n = out.len() as i64;
     // Q28 → Q26
     let q26 = |v: Option<&i32>| v.copied().unwrap_or(0) >> 2;
     let (n0, dn) = (
@@ -184,13 +184,6 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
         .iter()
         .map(|&c| ((c >> 12) * (c >> 12)) as u32 as i64)
         .sum::<i64>();
-    let nd = n0
-        .iter()
-        .zip(dn)
-        .map(|(&a, b)| a as i64 * b as i64)
-        .sum::<i64>()
-        >> 24;
-    let dd = dn.iter().map(|&b| b as i64 * b as i64).sum::<i64>() >> 24;
     let general = |out: &mut [C]| {
         let g = |v: &[i32]| {
             [0, 1, 2, 6, 6, 6].map(|i| v.get(i).copied().unwrap_or(0) * i32::from(i < 3))
@@ -207,23 +200,38 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
             out,
         )
     };
+    // spans lie in the set-up window (below 2^12 pixels); longer ones (none)
+    // take the general path, which holds at any length
+    if out.len() >= 1 << 12 {
+        return general(out);
+    }
+    let (n, n1) = (out.len() as i64, out.len().saturating_sub(1) as u32);
+    // every product from 32-bit multiplications (no 64-bit multiply helper on
+    // the M0): |N0|, |dN| < 2^27 (Q26), |N0·dN| < 2^55, |dN|² < 2^54
+    let nd = (0..3).map(|k| mul_i32(n0[k], dn[k])).sum::<i64>() >> 24;
+    let dd = (0..3).map(|k| mul_i32(dn[k], dn[k])).sum::<i64>() >> 24;
     if dd > 1 << 24 {
         // |dN| above ¼ per pixel
         return general(out);
     }
     // the extremes of the convex |N(k)|² over the span: the ends, and the vertex
-    // when it is inside (tested as s0·dd − nd² ≥ ¼·dd, i.e. min ≥ ¼, no division)
-    let s_end = s0 + (n - 1).max(0) * (2 * nd + (n - 1).max(0) * dd);
-    let interior = nd < 0 && nd + (n - 1) * dd > 0;
+    // when it is inside (tested as s0·dd − nd² ≥ ¼·dd, i.e. min ≥ ¼, no division);
+    // dd ≤ 2^24 and n < 2^12: k·dd < 2^36
+    let kdd = |k: u32| mul_u32(k, dd as u32) as i64;
+    let s_end = s0 + mul_i64_u32(2 * nd + kdd(n1), n1);
+    let interior = nd < 0 && nd + kdd(n1) > 0;
     let (lo, hi) = (s0.min(s_end), s0.max(s_end));
     let lo = if interior { 1 << 26 } else { lo };
     // |N|² change per pixel: ds(k) = 2·N0·dN + (2k + 1)·|dN|², largest at an end
     let ds_max = (2 * nd + dd)
         .abs()
-        .max((2 * nd + (2 * n - 3).max(1) * dd).abs());
+        .max((2 * nd + kdd((2 * n - 3).max(1) as u32)).abs());
+    // where the product is taken (after `hi`) s0 < 2^30, so |nd| ≤ √(s0·dd) <
+    // 2^28 (a larger one, impossible, would take the general path)
+    let nd2 = || i32::try_from(nd).map_or(i64::MAX, |v| mul_i32(v, v));
     if lo < 1 << 26
         || hi >= 1 << 30
-        || (interior && s0 * dd - nd * nd < dd << 26)
+        || (interior && mul_u32(s0 as u32, dd as u32) as i64 - nd2() < dd << 26)
         || ds_max > lo >> 3
     {
         // |N| outside [½, 2), or changing by more than 1/8 per pixel: the general path
