@@ -5,9 +5,26 @@
 //! shifts (inline instructions) and a bit-serial division, so no such routine
 //! is linked.
 
-/// `a · b` exactly, from four 16 × 16 → 32-bit products.
-#[inline]
+/// ARMv6-M, told apart on stable Rust by its lack of 32-bit atomics (as
+/// `recip::div_2p31`; the Arm target features are not stable in `cfg`).
+const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// `a · b` exactly: on ARMv6-M (no 32 × 32 → 64-bit multiply instruction)
+/// from four 16 × 16 → 32-bit products ([`mul_u32_halves`]), elsewhere the
+/// core's own widening multiply (`UMULL` on Armv7-M, `MUL` + `MULHU` on
+/// RV32IM).
+#[inline(always)]
 pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
+    if ARMV6M {
+        mul_u32_halves(a, b)
+    } else {
+        u64::from(a) * u64::from(b)
+    }
+}
+
+/// `a · b` exactly, from four 16 × 16 → 32-bit products.
+#[inline(always)]
+fn mul_u32_halves(a: u32, b: u32) -> u64 {
     let (ah, al) = (a >> 16, a & 0xFFFF);
     let (bh, bl) = (b >> 16, b & 0xFFFF);
     // each partial product < 2^32
@@ -20,8 +37,11 @@ pub(crate) fn mul_u32(a: u32, b: u32) -> u64 {
 
 /// `a·b` exactly, from 32-bit multiplications ([`mul_u32`]: no 64-bit
 /// multiply helper on the M0).
-#[inline]
+#[inline(always)]
 pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
+    if !ARMV6M {
+        return i64::from(a) * i64::from(b);
+    }
     // |a·b| ≤ 2^62
     let m = mul_u32(a.unsigned_abs(), b.unsigned_abs()) as i64;
     if (a < 0) != (b < 0) {
@@ -32,7 +52,7 @@ pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
 }
 
 /// `x·k` for `|x·k| < 2^63`, from 32-bit multiplications (saturating beyond).
-#[inline]
+#[inline(always)]
 pub(crate) fn mul_i64_u32(x: i64, k: u32) -> i64 {
     let u = x.unsigned_abs();
     let hi = mul_u32((u >> 32) as u32, k);
@@ -53,7 +73,9 @@ pub(crate) fn mul_i64_u32(x: i64, k: u32) -> i64 {
 /// `(⌊n / d⌋, n mod d)` for `d > 0` and a quotient below 2^32 (`n >> 32 < d`),
 /// by restoring division (32 steps). A zero `d` or a quotient that does not fit
 /// gives `(u32::MAX, 0)`.
-#[inline]
+// not inlined: its 32 steps unrolled at every cut of the clipper (four per
+// cut) were 3.7 KiB of the M4F's O3 image; the call is nothing beside them
+#[inline(never)]
 pub(crate) fn div_u64_u32(n: u64, d: u32) -> (u32, u32) {
     if d == 0 || (n >> 32) >= u64::from(d) {
         return (u32::MAX, 0);
@@ -120,6 +142,7 @@ mod tests {
             (123_456_789, 987_654_321),
             (1 << 31, 3),
         ] {
+            assert_eq!(mul_u32_halves(a, b), u64::from(a) * u64::from(b), "{a} {b}");
             assert_eq!(mul_u32(a, b), u64::from(a) * u64::from(b), "{a} {b}");
         }
     }
