@@ -11,7 +11,7 @@ use super::SUBPIXEL_BITS;
 use super::{Camera, ClipSpace, EyeRows, MeshTransform, NormalRows, Projection, Row};
 use crate::error::ParamError;
 use crate::num::at3;
-use crate::num::wide::mul_u32;
+use crate::num::wide::mul_i32;
 use core::marker::PhantomData;
 
 /// An angle as a fraction of a turn: `65536` is 360°, so every `u16` is an
@@ -190,17 +190,6 @@ impl Pose {
             let s: i64 = (0..3).map(|k| mul_i32(self.linear[i][k], p[k])).sum();
             saturate(round_shift(s, 24) + i64::from(self.translate[i]))
         })
-    }
-}
-
-/// `a·b` exactly, without a 64-bit multiply.
-#[inline]
-fn mul_i32(a: i32, b: i32) -> i64 {
-    let m = mul_u32(a.unsigned_abs(), b.unsigned_abs()) as i64;
-    if (a < 0) != (b < 0) {
-        -m
-    } else {
-        m
     }
 }
 

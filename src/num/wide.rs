@@ -37,7 +37,7 @@ fn mul_u32_halves(a: u32, b: u32) -> u64 {
 
 /// `a·b` exactly, from 32-bit multiplications ([`mul_u32`]: no 64-bit
 /// multiply helper on the M0).
-#[inline(always)]
+#[inline]
 pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
     if !ARMV6M {
         return i64::from(a) * i64::from(b);
