@@ -130,10 +130,62 @@ pub struct Bary {
     h: u32,
 }
 
+impl Bary {
+    /// The barycentric coefficients of the oriented triangle `xy` relative to
+    /// its top vertex `t`, whose pixel rows are `rows` (one reciprocal, no
+    /// division).
+    #[inline(always)]
+    fn new(xy: &[(i32, i32); 3], t: usize, rows: (i32, i32)) -> Bary {
+        let (i1, i2) = (next3(t), next3(next3(t)));
+        let (o, p1, p2) = (at3(xy, t), at3(xy, i1), at3(xy, i2));
+        let d1 = (p1.0 - o.0, p1.1 - o.1);
+        let d2 = (p2.0 - o.0, p2.1 - o.1);
+        // A' = d1 × d2 = the doubled area (the orientation is kept by rotation)
+        let a = d1.0 * d2.1 - d1.1 * d2.0;
+        // 1/A' ≈ R·2^−(31 + sh) with a_n = A' / 2^sh in [2^15, 2^16)
+        let bits = bit_length(a as u32) as i32;
+        let sh = bits - 16;
+        let an = if sh >= 0 { a >> sh } else { a << -sh };
+        // R in (2^15, 2^16]: relative error ≤ 2^−15 each for a_n and R
+        // (`an` ≥ 2^15 for a triangle with an area: `max(1)` only drops the panic path)
+        // (exactly the quotient, without a library division)
+        let r = crate::num::recip::div_2p31(an as u32) as i32;
+        // ∂β1/∂X = d2.y/A', ∂β2/∂X = −d1.y/A', ∂β1/∂Y = −d2.x/A', ∂β2/∂Y = d1.x/A'
+        // |d|·R < 2^15·2^16 = 2^31
+        let raw = [d2.1 * r, -(d1.1 * r), -(d2.0 * r), d1.0 * r];
+        let m = raw.iter().fold(0u32, |m, &c| m.max(c.unsigned_abs()));
+        // |C| < 2^14
+        let shift = (bit_length(m) as i32 - 14).max(0);
+        let c = raw.map(|v| scale(v, -shift));
+        let k = 31 + sh - shift;
+        let half = 1 << (SUBPIXEL_BITS - 1);
+        let c0 = o.0 >> SUBPIXEL_BITS;
+        let dys = (rows.0 << SUBPIXEL_BITS) + half - o.1;
+        Bary {
+            other: [i1, i2],
+            c1x: c[0],
+            c2x: c[1],
+            c1y: c[2],
+            c2y: c[3],
+            s: ATTR_FRAC as i32 + SUBPIXEL_BITS as i32 - k,
+            c0,
+            dxs: (c0 << SUBPIXEL_BITS) + half - o.0,
+            rows: dys >> SUBPIXEL_BITS,
+            rem: dys & ((1 << SUBPIXEL_BITS) - 1),
+            w: {
+                let (x0, x1) = (o.0.min(p1.0).min(p2.0), o.0.max(p1.0).max(p2.0));
+                ((x1 - x0) >> SUBPIXEL_BITS) as u32 + 2
+            },
+            h: (rows.1 - rows.0).max(0) as u32 + 3,
+        }
+    }
+}
+
 impl Setup {
     /// Orients and culls three sub-pixel positions already inside the window.
-    /// `None` for zero-area or culled triangles. Needs no division.
-    #[inline]
+    /// `None` for zero-area or culled triangles; else with its barycentric
+    /// coefficients (one reciprocal, no division).
+    #[inline(always)]
     pub(crate) fn new(p: [(i32, i32); 3], cull: Cull) -> Option<Setup> {
         // A = (x1 − x0)(y2 − y0) − (y1 − y0)(x2 − x0): each product < 2^30
         let area = (p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0);
@@ -166,62 +218,15 @@ impl Setup {
         // rows whose centre Y = 16y + 8 lies in [y_t, y_b]
         let first = (xy[t].1 - half + (1 << SUBPIXEL_BITS) - 1) >> SUBPIXEL_BITS;
         let last = (xy[b].1 - half) >> SUBPIXEL_BITS;
+        let rows = (first, last);
         Some(Setup {
             xy,
             order,
             tmb: [t, m, b],
-            rows: (first, last),
-            bary: Bary::default(),
+            rows,
+            // built in place (a default first was a memclr per triangle)
+            bary: Bary::new(&xy, t, rows),
         })
-    }
-
-    /// Computes the barycentric coefficients (one division). Needed before
-    /// [`Setup::plane`].
-    #[inline]
-    pub(crate) fn prepare_planes(&mut self) {
-        let t = self.tmb[0];
-        let (i1, i2) = (next3(t), next3(next3(t)));
-        let (o, p1, p2) = (at3(&self.xy, t), at3(&self.xy, i1), at3(&self.xy, i2));
-        let d1 = (p1.0 - o.0, p1.1 - o.1);
-        let d2 = (p2.0 - o.0, p2.1 - o.1);
-        // A' = d1 × d2 = the doubled area (the orientation is kept by rotation)
-        let a = d1.0 * d2.1 - d1.1 * d2.0;
-        // 1/A' ≈ R·2^−(31 + sh) with a_n = A' / 2^sh in [2^15, 2^16)
-        let bits = bit_length(a as u32) as i32;
-        let sh = bits - 16;
-        let an = if sh >= 0 { a >> sh } else { a << -sh };
-        // R in (2^15, 2^16]: relative error ≤ 2^−15 each for a_n and R
-        // (`an` ≥ 2^15 for a triangle with an area: `max(1)` only drops the panic path)
-        // (exactly the quotient, without a library division)
-        let r = crate::num::recip::div_2p31(an as u32) as i32;
-        // ∂β1/∂X = d2.y/A', ∂β2/∂X = −d1.y/A', ∂β1/∂Y = −d2.x/A', ∂β2/∂Y = d1.x/A'
-        // |d|·R < 2^15·2^16 = 2^31
-        let raw = [d2.1 * r, -(d1.1 * r), -(d2.0 * r), d1.0 * r];
-        let m = raw.iter().fold(0u32, |m, &c| m.max(c.unsigned_abs()));
-        // |C| < 2^14
-        let shift = (bit_length(m) as i32 - 14).max(0);
-        let c = raw.map(|v| scale(v, -shift));
-        let k = 31 + sh - shift;
-        let half = 1 << (SUBPIXEL_BITS - 1);
-        let c0 = o.0 >> SUBPIXEL_BITS;
-        let dys = (self.rows.0 << SUBPIXEL_BITS) + half - o.1;
-        self.bary = Bary {
-            other: [i1, i2],
-            c1x: c[0],
-            c2x: c[1],
-            c1y: c[2],
-            c2y: c[3],
-            s: ATTR_FRAC as i32 + SUBPIXEL_BITS as i32 - k,
-            c0,
-            dxs: (c0 << SUBPIXEL_BITS) + half - o.0,
-            rows: dys >> SUBPIXEL_BITS,
-            rem: dys & ((1 << SUBPIXEL_BITS) - 1),
-            w: {
-                let (x0, x1) = (o.0.min(p1.0).min(p2.0), o.0.max(p1.0).max(p2.0));
-                ((x1 - x0) >> SUBPIXEL_BITS) as u32 + 2
-            },
-            h: (self.rows.1 - self.rows.0).max(0) as u32 + 3,
-        };
     }
 
     /// An upper bound of `|computed − exact|` (in the plane's units) of every
@@ -274,7 +279,7 @@ impl Setup {
     /// `2^ATTR_FRAC` units of `a >> sa`, where `sa` is chosen so that the
     /// differences fit 16 bits (0 for differences below 2^16). The row value
     /// is positioned at the pixel centre `(c0, rows.0)` (the column of the top
-    /// vertex, the triangle's first row). Needs [`Setup::prepare_planes`].
+    /// vertex, the triangle's first row).
     #[inline]
     pub(crate) fn plane(&self, a: [i32; 3]) -> Plane {
         let b = &self.bary;

@@ -46,8 +46,7 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
     resume: Option<(i32, i32)>,
     band: &mut BandView<'_, K::Color>,
 ) -> Option<(i32, i32)> {
-    let mut s = Setup::new(xy, Cull::None)?;
-    s.prepare_planes();
+    let s = Setup::new(xy, Cull::None)?;
     let row0 = s.rows.0;
     // depth with ATTR_FRAC bits, + ½ so that the shift rounds; values must stay
     // in 0..65536
