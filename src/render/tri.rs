@@ -449,7 +449,9 @@ pub(crate) fn classify<const PERSP: bool>(
 }
 
 /// The bounding box and facing of what remains of a clip-space triangle after
-/// clipping (the rare path).
+/// clipping (the rare path): exactly the fan's box under a perspective
+/// projection, the window's part of the triangle's box under an orthographic
+/// one.
 #[inline(never)]
 #[cold]
 fn clipped_bounds<const PERSP: bool>(
@@ -457,6 +459,21 @@ fn clipped_bounds<const PERSP: bool>(
 ) -> Option<((i32, i32, i32, i32), bool)> {
     let (c, space) = clip()?;
     let front = clip::facing::<PERSP>(c)?;
+    if !PERSP {
+        // orthographic: the clipped polygon lies in the triangle's box (its
+        // cuts are on the edges) and in the window, so that box clamped to the
+        // window holds it. A few bands more than the fan covers at most (they
+        // draw nothing), without clipping twice.
+        let s = c.map(|c| clip::screen::<false>(&space, c));
+        let (xs, ys) = (s.map(|p| p.x), s.map(|p| p.y));
+        let bbox = (
+            xs[0].min(xs[1]).min(xs[2]),
+            xs[0].max(xs[1]).max(xs[2]),
+            ys[0].min(ys[1]).min(ys[2]),
+            ys[0].max(ys[1]).max(ys[2]),
+        );
+        return Some((bbox, front));
+    }
     let (poly, _) = clip::clipped::<(), PERSP>(c, &[(); 3], |_, _, _, _| (), &space);
     // the corners of the fan [`pieces`] draws
     let (s, keep, n) = outline::<PERSP>(c, &poly, &space)?;
