@@ -184,22 +184,7 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
         .iter()
         .map(|&c| ((c >> 12) * (c >> 12)) as u32 as i64)
         .sum::<i64>();
-    let general = |out: &mut [C]| {
-        let g = |v: &[i32]| {
-            [0, 1, 2, 6, 6, 6].map(|i| v.get(i).copied().unwrap_or(0) * i32::from(i < 3))
-        };
-        perpixel::span::<Plain, _, _, C, false>(
-            lighting,
-            &Linear,
-            &().get(),
-            &PixelTriangle::default(),
-            &g(a),
-            &g(d),
-            x,
-            y,
-            out,
-        )
-    };
+    let general = |out: &mut [C]| general::<I, C>(lighting, x, y, a, d, out);
     // spans lie in the set-up window (below 2^12 pixels); longer ones (none)
     // take the general path, which holds at any length
     if out.len() >= 1 << 12 {
@@ -260,6 +245,36 @@ pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPE
     } else {
         run::<C, K, 2, SPEC>(st_c, span, dots, out);
     }
+}
+
+/// The span of [`shade_run`] whose normal leaves the fast path's range: the
+/// per-pixel lighting of `lighting` on the interpolated normal (`a`/`d` as
+/// in [`shade_run`]). Out of line and cold: inlined, its registers and stack
+/// weighed on the fast path's span set-up (27 instructions a span on the
+/// Cortex-M4F).
+#[inline(never)]
+#[cold]
+fn general<I: Illuminate, C: OutputColor>(
+    lighting: &I,
+    x: i32,
+    y: i32,
+    a: &[i32],
+    d: &[i32],
+    out: &mut [C],
+) {
+    let g =
+        |v: &[i32]| [0, 1, 2, 6, 6, 6].map(|i| v.get(i).copied().unwrap_or(0) * i32::from(i < 3));
+    perpixel::span::<Plain, _, _, C, false>(
+        lighting,
+        &Linear,
+        &().get(),
+        &PixelTriangle::default(),
+        &g(a),
+        &g(d),
+        x,
+        y,
+        out,
+    )
 }
 
 /// The `Kernel` for `K` lights, with `N = 3 + 2K` values.
