@@ -1,9 +1,11 @@
 //! 64-bit results from 32-bit operations, for the rare paths (clipping,
-//! perspective sub-span ends) of a frame: on a Cortex-M0 a 64-bit multiply or
-//! divide is a library routine (`__aeabi_lmul`, `__aeabi_uldivmod`); these
-//! helpers use only 32 × 32 → 32-bit multiplications, 64-bit additions and
-//! shifts (inline instructions) and a bit-serial division, so no such routine
-//! is linked.
+//! perspective sub-span ends) and the incremental Phong kernel's span set-up:
+//! on a Cortex-M0 a 64-bit multiply or divide is a library routine
+//! (`__aeabi_lmul`, `__aeabi_uldivmod`); there these helpers use only
+//! 32 × 32 → 32-bit multiplications, 64-bit additions and shifts (inline
+//! instructions) and a bit-serial division, so no such routine is linked.
+//! Cores with a widening multiply (Armv7-M `UMULL`/`SMULL`, RV32IM
+//! `MULH[U]`) use it: the same values.
 
 /// ARMv6-M, told apart on stable Rust by its lack of 32-bit atomics (as
 /// `recip::div_2p31`; the Arm target features are not stable in `cfg`).
@@ -35,8 +37,8 @@ fn mul_u32_halves(a: u32, b: u32) -> u64 {
     (hh << 32) + (hl << 16) + (lh << 16) + ll
 }
 
-/// `a·b` exactly, from 32-bit multiplications ([`mul_u32`]: no 64-bit
-/// multiply helper on the M0).
+/// `a·b` exactly: the core's widening multiply, on ARMv6-M from 32-bit
+/// multiplications ([`mul_u32`]: no 64-bit multiply helper on the M0).
 #[inline]
 pub(crate) fn mul_i32(a: i32, b: i32) -> i64 {
     if !ARMV6M {
