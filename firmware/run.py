@@ -36,7 +36,8 @@ opt-level 3 with LTO):
     rv32imc: the `minstret` CSR, exact under `-icount shift=0` (QEMU returns
     its instruction counter): the checker requires that a loop of 4n
     instructions reads exactly 2n more than one of 2n, and the image that the
-    CLINT's mtime (100 instructions per tick) agrees within one tick;
+    CLINT's mtime (100 instructions per tick) agrees within four ticks (it is
+    read at translation-block edges);
   * stack: the painted stack's low-water mark (cortex-m-rt `paint-stack`):
     the image's peak (bytes below the top after start-up, set-up and both
     frames) and the frame's own (below the SP at the call of the frame

@@ -95,6 +95,8 @@ const TEST: usize = 0x0010_0000;
 const MTIME: usize = 0x0200_BFF8;
 /// Instructions per `mtime` tick under `-icount shift=0` (1 ns each, 100 ns a tick).
 const PER_TICK: u64 = 100;
+/// How far mtime may lag or lead `minstret / PER_TICK` over a frame (ticks).
+const TICK_SLACK: u64 = 4;
 
 /// The stack paint.
 const PAINT: u32 = 0xcccc_cccc;
@@ -350,7 +352,11 @@ fn main() -> ! {
             "frames differ: checksums {sums:x?}, instructions {counts:?}"
         ));
     }
-    if ticks[0].abs_diff(counts[0] / PER_TICK) > 1 {
+    // mtime is read at a translation block's edge under -icount (each of
+    // the two reads up to a block late: one CI run saw 38 816 ticks for
+    // 3 881 490 instructions, the run before 38 815); without -icount the
+    // ratio is off by far more than these few ticks
+    if ticks[0].abs_diff(counts[0] / PER_TICK) > TICK_SLACK {
         fail(format_args!(
             "minstret counted {} instructions, mtime {} ticks: is -icount shift=0 in effect?",
             counts[0], ticks[0]
