@@ -363,7 +363,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     }
 
     /// Vertex `i` of the mesh and the refinement's new vertices after it.
-    #[inline(always)]
+    #[inline]
     fn vertex(&self, i: usize) -> Option<&CachedVertex<K::Vertex>> {
         let nv = self.mesh.vertex_count();
         if i < nv {
@@ -374,7 +374,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     }
 
     /// The raw position of vertex `i` (mesh, then new vertices).
-    #[inline(always)]
+    #[inline]
     fn position(&self, i: usize) -> Option<[i16; 3]> {
         let nv = self.mesh.vertex_count();
         if i < nv {
@@ -386,7 +386,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
 
     /// The vertices of triangle `t`: a mesh triangle (`None` when the
     /// refinement replaces it), then the refinement's.
-    #[inline(always)]
+    #[inline]
     fn indices(&self, t: usize) -> Option<[usize; 3]> {
         let nt = self.mesh.triangle_count();
         if t < nt {
