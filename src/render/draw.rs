@@ -551,15 +551,15 @@ impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
                 (None, Some(&n)) => (Carry::default(), n, false),
                 (None, None) => break,
             };
-            let next = if take_old {
+            let (tri, resume) = if take_old {
                 i += 1;
-                let resume =
-                    (c.long != Carry::CLIPPED).then_some((i32::from(c.long), i32::from(c.short)));
-                self.triangle(c.tri, resume, band)
+                let cols = (i32::from(c.long), i32::from(c.short));
+                (c.tri, (c.long != Carry::CLIPPED).then_some(cols))
             } else {
                 j += 1;
-                self.triangle(t, None, band)
+                (t, None)
             };
+            let next = self.triangle(tri, resume, band);
             if let Some(c) = next {
                 if let Some(slot) = out.get_mut(written) {
                     *slot = c;
