@@ -191,15 +191,16 @@ impl<V: Varyings> Linear<V> {
     }
 
     /// `(start, step)` of a run of `n ≥ 1` pixels from column `x` (the first
-    /// `used` values; the others zero).
+    /// `used` values; the others zero), clamped to the vertex range when
+    /// `clamp` holds.
     #[inline(always)]
-    pub(crate) fn run<const CLAMP: bool>(&self, x: i32, n: usize, used: usize) -> (V, V) {
+    pub(crate) fn run(&self, x: i32, n: usize, used: usize, clamp: bool) -> (V, V) {
         let mut start = V::from_fn(|_| 0);
         let mut step = start;
         let (starts, steps) = (start.values_mut(), step.values_mut());
         for (i, p) in first(self.planes.as_ref(), used).iter().enumerate() {
             if let (Some(s), Some(d)) = (starts.get_mut(i), steps.get_mut(i)) {
-                (*s, *d) = if CLAMP {
+                (*s, *d) = if clamp {
                     p.clamped(x, n as i32)
                 } else {
                     (p.at(x), p.dx)

@@ -70,21 +70,14 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
         if skip > 0 {
             p.skip_rows(skip);
         }
-        if zclamp {
-            draw_rows::<K, _, true>(kernel, t, &mut w, last, &mut zp, band, &mut p);
-        } else {
-            draw_rows::<K, _, false>(kernel, t, &mut w, last, &mut zp, band, &mut p);
-        }
+        clamped_rows(kernel, t, &mut w, last, &mut zp, band, &mut p, zclamp);
     } else {
         let mut l = Linear::new(&s, v, K::USED, |i| kernel.safe(i), |i| kernel.exact(i));
         if skip > 0 {
             l.skip_rows(skip, K::USED);
         }
-        if l.clamp || zclamp {
-            draw_rows::<K, _, true>(kernel, t, &mut w, last, &mut zp, band, &mut l);
-        } else {
-            draw_rows::<K, _, false>(kernel, t, &mut w, last, &mut zp, band, &mut l);
-        }
+        let clamp = l.clamp || zclamp;
+        clamped_rows(kernel, t, &mut w, last, &mut zp, band, &mut l, clamp);
     }
     w.more().then(|| w.snapshot())
 }
@@ -94,16 +87,9 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
 trait Runs<K: Kernel> {
     /// Moves the values a row down.
     fn next_row(&mut self);
-    /// Shades the `out.len()` pixels of row `y` from column `x`; `CLAMP`:
+    /// Shades the `out.len()` pixels of row `y` from column `x`; `clamp`:
     /// the values are clamped to the vertex range per run.
-    fn run<const CLAMP: bool>(
-        &self,
-        kernel: &K,
-        t: &K::Triangle,
-        x: i32,
-        y: i32,
-        out: &mut [K::Color],
-    );
+    fn run(&self, kernel: &K, t: &K::Triangle, x: i32, y: i32, out: &mut [K::Color], clamp: bool);
     /// The screen-linear planes, if that is what these are (a kernel that
     /// fuses the depth test takes their runs whole).
     #[inline(always)]
@@ -119,15 +105,8 @@ impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
     }
 
     #[inline(always)]
-    fn run<const CLAMP: bool>(
-        &self,
-        kernel: &K,
-        t: &K::Triangle,
-        x: i32,
-        y: i32,
-        out: &mut [K::Color],
-    ) {
-        let (a, d) = Linear::run::<CLAMP>(self, x, out.len(), K::USED);
+    fn run(&self, kernel: &K, t: &K::Triangle, x: i32, y: i32, out: &mut [K::Color], clamp: bool) {
+        let (a, d) = Linear::run(self, x, out.len(), K::USED, clamp);
         kernel.span(t, &a, &d, x, y, out)
     }
 
@@ -144,24 +123,44 @@ impl<K: Kernel> Runs<K> for Persp<K::Varyings> {
     }
 
     #[inline(always)]
-    fn run<const CLAMP: bool>(
-        &self,
-        kernel: &K,
-        t: &K::Triangle,
-        x: i32,
-        y: i32,
-        out: &mut [K::Color],
-    ) {
+    fn run(&self, kernel: &K, t: &K::Triangle, x: i32, y: i32, out: &mut [K::Color], _: bool) {
         perspective_run(kernel, t, self, x, y, out)
     }
 }
 
-/// The rows `w.y..=last` of a set-up triangle: the walker's columns, the
-/// depth test of each run (the depth plane `zp`), and the kernel on the
-/// passing pixels (all of them without a depth buffer: a branch per row, not
-/// a second copy of the loop). `CLAMP`: depth and values clamped per run.
+/// Whether a triangle's runs are clamped ([`draw_rows`]): a constant, so that
+/// each case gets its own copy of the row loop, or a flag read per row, so
+/// that one copy serves both.
+trait Clamp: Copy {
+    fn on(self) -> bool;
+}
+
+impl Clamp for bool {
+    #[inline(always)]
+    fn on(self) -> bool {
+        self
+    }
+}
+
+/// [`Clamp`] as a constant.
+#[derive(Clone, Copy)]
+struct Fixed<const ON: bool>;
+
+impl<const ON: bool> Clamp for Fixed<ON> {
+    #[inline(always)]
+    fn on(self) -> bool {
+        ON
+    }
+}
+
+/// [`draw_rows`] of a triangle whose runs are clamped when `clamp` holds.
+/// Built for speed, each case gets its own copy of the row loop; built for
+/// size (opt-level "s" or "z": `cfg(fixshade_opt_size)`, set by `build.rs`),
+/// one copy reads the flag per row (about 0.4 KiB less code on the
+/// Cortex-M0).
 #[inline(always)]
-fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
+#[allow(clippy::too_many_arguments)]
+fn clamped_rows<K: Kernel, R: Runs<K>>(
     kernel: &K,
     t: &K::Triangle,
     w: &mut Walker,
@@ -169,6 +168,34 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
     zp: &mut Plane,
     band: &mut BandView<'_, K::Color>,
     values: &mut R,
+    clamp: bool,
+) {
+    #[cfg(fixshade_opt_size)]
+    draw_rows(kernel, t, w, last, zp, band, values, clamp);
+    #[cfg(not(fixshade_opt_size))]
+    if clamp {
+        draw_rows(kernel, t, w, last, zp, band, values, Fixed::<true>);
+    } else {
+        draw_rows(kernel, t, w, last, zp, band, values, Fixed::<false>);
+    }
+}
+
+/// The rows `w.y..=last` of a set-up triangle: the walker's columns, the
+/// depth test of each run (the depth plane `zp`), and the kernel on the
+/// passing pixels (all of them without a depth buffer: a branch per row, not
+/// a second copy of the loop). `mode`: whether depth and values are clamped
+/// per run ([`clamped_rows`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn draw_rows<K: Kernel, R: Runs<K>, M: Clamp>(
+    kernel: &K,
+    t: &K::Triangle,
+    w: &mut Walker,
+    last: i32,
+    zp: &mut Plane,
+    band: &mut BandView<'_, K::Color>,
+    values: &mut R,
+    mode: M,
 ) {
     let width = band.width as i32;
     let start = band.rows.start;
@@ -182,7 +209,7 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
             let at = row + lo as usize;
             if let Some(color) = band.color.get_mut(at..at + n) {
                 if let Some(d) = band.depth.as_deref_mut() {
-                    let (z0, dz) = if CLAMP {
+                    let (z0, dz) = if mode.on() {
                         zp.clamped(lo, n as i32)
                     } else {
                         (zp.at(lo), zp.dx)
@@ -192,19 +219,19 @@ fn draw_rows<K: Kernel, R: Runs<K>, const CLAMP: bool>(
                             // a kernel that fuses the depth test takes the whole run
                             // (its values clamped over the whole run)
                             Some(l) if K::FUSED_DEPTH => {
-                                let (a, d) = l.run::<CLAMP>(lo, n, K::USED);
+                                let (a, d) = l.run(lo, n, K::USED, mode.on());
                                 kernel.span_depth(t, (&a, &d), (lo, y), (z0, dz), color, depth);
                             }
                             // else the values of each passing run (clamped per run)
                             _ => depth_runs(z0, dz, depth, |k0, k1| {
                                 if let Some(c) = color.get_mut(k0..k1) {
-                                    values.run::<CLAMP>(kernel, t, lo + k0 as i32, y, c);
+                                    values.run(kernel, t, lo + k0 as i32, y, c, mode.on());
                                 }
                             }),
                         }
                     }
                 } else {
-                    values.run::<CLAMP>(kernel, t, lo, y, color);
+                    values.run(kernel, t, lo, y, color, mode.on());
                 }
             }
         }
