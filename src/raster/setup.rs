@@ -278,8 +278,8 @@ impl Setup {
     /// (`a[i]` belongs to `xy[i]`), relative to the top vertex's value, in
     /// `2^ATTR_FRAC` units of `a >> sa`, where `sa` is chosen so that the
     /// differences fit 16 bits (0 for differences below 2^16). The row value
-    /// is positioned at the pixel centre `(c0, rows.0)` (the column of the top
-    /// vertex, the triangle's first row).
+    /// is positioned at the triangle's first row, column 0 (computed at the
+    /// top vertex's column `c0` and carried to column 0, wrapping).
     #[inline]
     pub(crate) fn plane(&self, a: [i32; 3]) -> Plane {
         let b = &self.bary;
@@ -310,10 +310,9 @@ impl Setup {
         let lo = 0.min(d1).min(d2);
         let hi = 0.max(d1).max(d2);
         Plane {
-            row: v,
+            row: v.wrapping_sub(dx.wrapping_mul(b.c0)),
             dx,
             dy,
-            c0: b.c0,
             lo: lo << ATTR_FRAC,
             hi: hi << ATTR_FRAC,
             spread: d1.unsigned_abs() + d2.unsigned_abs(),
@@ -383,10 +382,9 @@ impl Setup {
             .wrapping_add((dy >> SUBPIXEL_BITS) * b.rem)
             .wrapping_add(dy.wrapping_mul(b.rows));
         Plane {
-            row: v,
+            row: v.wrapping_sub(dx.wrapping_mul(b.c0)),
             dx,
             dy,
-            c0: b.c0,
             lo: 0.min(d1).min(d2) << ATTR_FRAC,
             hi: 0.max(d1).max(d2) << ATTR_FRAC,
             // the error bound of `Setup::err` with no coefficient error: one
@@ -396,21 +394,20 @@ impl Setup {
     }
 }
 
-/// One attribute over a triangle: the value at column `c0` of the current row
-/// and its changes per pixel and per row, in `2^ATTR_FRAC` units of
+/// One attribute over a triangle: the value at column 0 of the current row
+/// (the plane extended there) and its changes per pixel and per row, in `2^ATTR_FRAC` units of
 /// `attribute >> sa`, relative to the top vertex's value. Values are computed
 /// with wrapping arithmetic: only values inside the triangle are read, and
 /// those are clamped to the vertex range.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Plane {
-    /// Value at the centre of pixel `(c0, current row)`.
+    /// Value at the centre of pixel `(0, current row)`: a pixel of the
+    /// triangle is one multiply and one add away (wrapping, as every value).
     pub(crate) row: i32,
     /// Change per pixel to the right.
     pub(crate) dx: i32,
     /// Change per row down.
     pub(crate) dy: i32,
-    /// The reference column.
-    pub(crate) c0: i32,
     /// The vertex range (relative values).
     pub(crate) lo: i32,
     pub(crate) hi: i32,
@@ -435,7 +432,7 @@ impl Plane {
     /// Value at the centre of pixel `x` of the current row.
     #[inline(always)]
     pub(crate) fn at(&self, x: i32) -> i32 {
-        self.row.wrapping_add(self.dx.wrapping_mul(x - self.c0))
+        self.row.wrapping_add(self.dx.wrapping_mul(x))
     }
 
     /// Moves to the next row.
