@@ -134,17 +134,16 @@ fn corner<V: Varyings>(s: &Setup, v: &[V; 3], k: usize, i: usize) -> i32 {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Linear<V: Varyings> {
     planes: V::Planes,
-    /// Whether runs are clamped to the vertex range.
-    pub clamp: bool,
 }
 
 impl<V: Varyings> Linear<V> {
     /// The planes of the first `used` of the vertices' values `v` (in the
     /// order given to [`Setup::new`]; clamped to ±[`VARYING_LIMIT`]; the
-    /// others are not interpolated), and whether a run must be clamped so
-    /// that every value stays in `safe(i)` (with [`ATTR_FRAC`] bits),
-    /// positioned at the triangle's first row; the values for which `exact(i)`
-    /// holds get planes exact to rounding (`Setup::plane_exact`).
+    /// others are not interpolated), positioned at the triangle's first row;
+    /// the values for which `exact(i)` holds get planes exact to rounding
+    /// (`Setup::plane_exact`). With `check`, `clamp` is set when a run must
+    /// be clamped (to the vertex range) so that every value stays in
+    /// `safe(i)` (with [`ATTR_FRAC`] bits), given the planes' error bounds.
     #[inline(always)]
     pub(crate) fn new(
         s: &Setup,
@@ -152,8 +151,9 @@ impl<V: Varyings> Linear<V> {
         used: usize,
         safe: impl Fn(usize) -> (i32, i32),
         exact: impl Fn(usize) -> bool,
+        check: bool,
+        clamp: &mut bool,
     ) -> Self {
-        let mut clamp = false;
         let mut recip = None;
         // built in place (no zeroed array copied over: a memclr and a memcpy of
         // the planes per triangle)
@@ -168,10 +168,12 @@ impl<V: Varyings> Linear<V> {
                 s.plane(a)
             };
             let base = super::setup::at3(&a, s.tmb[0]) << ATTR_FRAC;
-            clamp |= !within(s, &plane, base, safe(i));
+            if check {
+                *clamp |= !within(s, &plane, base, safe(i));
+            }
             plane.absolute(base)
         });
-        Linear { planes, clamp }
+        Linear { planes }
     }
 
     /// The next row.

@@ -2,7 +2,7 @@
 
 use super::bins::{self, Bins};
 use super::refine::{self, Refine, RefineStats, Refined};
-use super::tri::{self, ClipCorner};
+use super::tri::{self, ClipCorner, Resume};
 use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
 use crate::camera::{MeshTransform, Orthographic, Projection};
@@ -11,8 +11,10 @@ use crate::num::Zeroed;
 use crate::raster::Cull;
 use crate::shade::Kernel;
 
-/// What a triangle that continues into the next band keeps: its index and
-/// the bound columns of its two edges at the band's first row (6 bytes).
+/// What a triangle that continues into the next band keeps: its index, the
+/// bound columns of its two edges at the band's first row and whether its
+/// runs are clamped (the short edge's column doubled plus that flag: columns
+/// of the set-up window fit 12 bits), 6 bytes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Carry {
     tri: u16,
@@ -440,7 +442,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     fn triangle(
         &self,
         tri: u16,
-        resume: Option<(i32, i32)>,
+        resume: Option<Resume>,
         band: &mut BandView<'_, K::Color>,
     ) -> Option<Carry> {
         let idx = self.indices(usize::from(tri))?;
@@ -472,8 +474,8 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         }?;
         Some(Carry {
             tri,
-            long: next.0 as i16,
-            short: next.1 as i16,
+            long: next.cols.0 as i16,
+            short: (next.cols.1 << 1 | i32::from(next.clamp)) as i16,
         })
     }
 
@@ -553,8 +555,11 @@ impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
             };
             let (tri, resume) = if take_old {
                 i += 1;
-                let cols = (i32::from(c.long), i32::from(c.short));
-                (c.tri, (c.long != Carry::CLIPPED).then_some(cols))
+                let resume = Resume {
+                    cols: (i32::from(c.long), i32::from(c.short) >> 1),
+                    clamp: c.short & 1 != 0,
+                };
+                (c.tri, (c.long != Carry::CLIPPED).then_some(resume))
             } else {
                 j += 1;
                 (t, None)

@@ -27,11 +27,21 @@ pub(crate) struct ScreenCorner<V> {
     pub v: V,
 }
 
+/// Where a set-up triangle continues in the next band: its edges' bound
+/// columns at that band's first row (long edge, short edge) and whether its
+/// runs are clamped. The set-up is the same in every band, so the clamp
+/// decision (an error bound per plane) is made once, in the first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Resume {
+    pub cols: (i32, i32),
+    pub clamp: bool,
+}
+
 /// Sets up the triangle of screen positions `xy` (inside the window), depths
 /// `z`, clip `cw` and values `v` and draws the part of it in `band` with
 /// `kernel` (triangle constants `t`), starting at the band's first row from
-/// the edge columns `resume` when given. Returns the edge columns at the next
-/// band's first row when the triangle continues. `PERSP`:
+/// `resume` when given. Returns where it continues in the next band, if it
+/// does. `PERSP`:
 /// perspective-correct values (from `cw`), else screen-linear. Not inlined:
 /// the common path and the clipping path share one copy.
 #[inline(never)]
@@ -43,9 +53,9 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
     z: [u16; 3],
     cw: [i32; 3],
     v: &[K::Varyings; 3],
-    resume: Option<(i32, i32)>,
+    resume: Option<Resume>,
     band: &mut BandView<'_, K::Color>,
-) -> Option<(i32, i32)> {
+) -> Option<Resume> {
     let s = Setup::new(xy, Cull::None)?;
     let row0 = s.rows.0;
     // depth with ATTR_FRAC bits, + ½ so that the shift rounds; values must stay
@@ -53,11 +63,14 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
     let z = interp::oriented(&s, &z.map(i32::from));
     let zp = s.plane(z);
     let zbase = (at3(&z, s.tmb[0]) << ATTR_FRAC) + (1 << (ATTR_FRAC - 1));
-    let zclamp = !within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1));
+    // whether values and depth are clamped: decided (with the planes' error
+    // bounds) in the triangle's first band, kept for the others
+    let known = resume.map(|r| r.clamp);
+    let zclamp = known.unwrap_or_else(|| !within(&s, &zp, zbase, (0, (1 << (16 + ATTR_FRAC)) - 1)));
     let mut zp = zp.absolute(zbase);
     let rows = band.rows();
     let mut w = match resume {
-        Some(cols) => Walker::resume(&s, rows.start, cols),
+        Some(r) => Walker::resume(&s, rows.start, r.cols),
         None => Walker::new(&s, rows.start),
     };
     let skip = w.y - row0;
@@ -65,21 +78,27 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
     if skip > 0 {
         zp.skip_rows(skip);
     }
-    if PERSP {
+    let clamp = if PERSP {
         let mut p = Persp::new(&s, v, cw);
         if skip > 0 {
             p.skip_rows(skip);
         }
         clamped_rows(kernel, t, &mut w, last, &mut zp, band, &mut p, zclamp);
+        zclamp
     } else {
-        let mut l = Linear::new(&s, v, K::USED, |i| kernel.safe(i), |i| kernel.exact(i));
+        let mut clamp = zclamp;
+        let (safe, exact) = (|i| kernel.safe(i), |i| kernel.exact(i));
+        let mut l = Linear::new(&s, v, K::USED, safe, exact, known.is_none(), &mut clamp);
         if skip > 0 {
             l.skip_rows(skip, K::USED);
         }
-        let clamp = l.clamp || zclamp;
         clamped_rows(kernel, t, &mut w, last, &mut zp, band, &mut l, clamp);
-    }
-    w.more().then(|| w.snapshot())
+        clamp
+    };
+    w.more().then(|| Resume {
+        cols: w.snapshot(),
+        clamp,
+    })
 }
 
 /// How a triangle's values reach the kernel along its rows: screen-linear
