@@ -141,9 +141,10 @@ impl<V: Varyings> Linear<V> {
     /// order given to [`Setup::new`]; clamped to ±[`VARYING_LIMIT`]; the
     /// others are not interpolated), positioned at the triangle's first row;
     /// the values for which `exact(i)` holds get planes exact to rounding
-    /// (`Setup::plane_exact`). With `check`, `clamp` is set when a run must
-    /// be clamped (to the vertex range) so that every value stays in
-    /// `safe(i)` (with [`ATTR_FRAC`] bits), given the planes' error bounds.
+    /// (`Setup::plane_exact`). With `clamp`, it is set when a run must be
+    /// clamped (to the vertex range) so that every value stays in `safe(i)`
+    /// (with [`ATTR_FRAC`] bits), given the planes' error bounds; `None`: the
+    /// decision was made before (an earlier band of the same set-up).
     #[inline(always)]
     pub(crate) fn new(
         s: &Setup,
@@ -151,8 +152,7 @@ impl<V: Varyings> Linear<V> {
         used: usize,
         safe: impl Fn(usize) -> (i32, i32),
         exact: impl Fn(usize) -> bool,
-        check: bool,
-        clamp: &mut bool,
+        mut clamp: Option<&mut bool>,
     ) -> Self {
         let mut recip = None;
         // built in place (no zeroed array copied over: a memclr and a memcpy of
@@ -168,8 +168,8 @@ impl<V: Varyings> Linear<V> {
                 s.plane(a)
             };
             let base = super::setup::at3(&a, s.tmb[0]) << ATTR_FRAC;
-            if check {
-                *clamp |= !within(s, &plane, base, safe(i));
+            if let Some(c) = clamp.as_deref_mut() {
+                *c |= !within(s, &plane, base, safe(i));
             }
             plane.absolute(base)
         });

@@ -33,6 +33,23 @@ impl Carry {
     /// `long` of a triangle drawn through the clipping path: it is clipped and
     /// set up again in every band.
     const CLIPPED: i16 = i16::MIN;
+
+    /// The record of triangle `tri` continuing as `r` says.
+    fn new(tri: u16, r: Resume) -> Carry {
+        Carry {
+            tri,
+            long: r.cols.0 as i16,
+            short: (r.cols.1 << 1 | i32::from(r.clamp)) as i16,
+        }
+    }
+
+    /// Where the triangle continues (`None` for one through the clipping path).
+    fn resume(self) -> Option<Resume> {
+        (self.long != Carry::CLIPPED).then_some(Resume {
+            cols: (i32::from(self.long), i32::from(self.short) >> 1),
+            clamp: self.short & 1 != 0,
+        })
+    }
 }
 
 /// Per-mesh drawing options.
@@ -472,11 +489,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         } else {
             tri::draw::<K, false>(&self.kernel, &t, xy, z, w, &var, resume, band)
         }?;
-        Some(Carry {
-            tri,
-            long: next.cols.0 as i16,
-            short: (next.cols.1 << 1 | i32::from(next.clamp)) as i16,
-        })
+        Some(Carry::new(tri, next))
     }
 
     /// A triangle with a vertex outside the set-up window (or, in perspective,
@@ -555,11 +568,7 @@ impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
             };
             let (tri, resume) = if take_old {
                 i += 1;
-                let resume = Resume {
-                    cols: (i32::from(c.long), i32::from(c.short) >> 1),
-                    clamp: c.short & 1 != 0,
-                };
-                (c.tri, (c.long != Carry::CLIPPED).then_some(resume))
+                (c.tri, c.resume())
             } else {
                 j += 1;
                 (t, None)

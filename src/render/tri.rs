@@ -88,7 +88,8 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
     } else {
         let mut clamp = zclamp;
         let (safe, exact) = (|i| kernel.safe(i), |i| kernel.exact(i));
-        let mut l = Linear::new(&s, v, K::USED, safe, exact, known.is_none(), &mut clamp);
+        let decide = known.is_none().then_some(&mut clamp);
+        let mut l = Linear::new(&s, v, K::USED, safe, exact, decide);
         if skip > 0 {
             l.skip_rows(skip, K::USED);
         }
