@@ -157,24 +157,25 @@ pub trait DrawBand<C> {
     /// per frame.
     fn draw_band(&mut self, band: &mut BandView<'_, C>);
 
-    /// The layout the item was prepared for, if it depends on one (a mesh's
-    /// bins do): [`Bands::render`] and [`FullFrame::render`] refuse to draw
-    /// an item prepared for another layout. `None` (the default): any.
-    fn layout(&self) -> Option<Layout> {
-        None
+    /// Whether the item can be drawn in frames of `layout`, checked by
+    /// [`Bands::render`] and [`FullFrame::render`] before anything is
+    /// drawn. A mesh's bins are built for one layout
+    /// ([`RenderError::LayoutMismatch`] for another), and it needs its
+    /// resume records ([`RenderError::BufferTooSmall`]). The default: any
+    /// layout.
+    ///
+    /// # Errors
+    ///
+    /// Why the item cannot be drawn in `layout`.
+    fn check(&self, layout: Layout) -> Result<(), RenderError> {
+        let _ = layout;
+        Ok(())
     }
 }
 
-/// [`RenderError::LayoutMismatch`] unless every item fits `layout`.
-fn check_layouts<C>(layout: Layout, items: &[&mut dyn DrawBand<C>]) -> Result<(), RenderError> {
-    if items
-        .iter()
-        .any(|i| i.layout().is_some_and(|l| l != layout))
-    {
-        Err(RenderError::LayoutMismatch)
-    } else {
-        Ok(())
-    }
+/// The first item's error from [`DrawBand::check`].
+fn check_items<C>(layout: Layout, items: &[&mut dyn DrawBand<C>]) -> Result<(), RenderError> {
+    items.iter().try_for_each(|i| i.check(layout))
 }
 
 /// The memory of [`Bands`] and [`FullFrame`]: colours and (optional) depth values
@@ -209,6 +210,11 @@ impl<'a, C: Copy> Buffers<'a, C> {
         })
     }
 
+    /// Colours (and depth values) a band needs: `width · band_rows`.
+    fn needed(&self) -> usize {
+        self.layout.width as usize * self.layout.band_rows as usize
+    }
+
     /// Draws the band of `rows`: clears its colours to `clear` and its depth
     /// values to `u16::MAX`, lets every item draw, and returns the view (`None`
     /// for buffers too short, which [`Buffers::new`] excludes).
@@ -238,13 +244,104 @@ impl<'a, C: Copy> Buffers<'a, C> {
     }
 }
 
-/// A frame drawn in horizontal bands through a caller-owned strip, each band
-/// flushed to a [`DrawTarget`] (a display driver, the simulator).
+/// Where finished bands go: a display driver sending each band as it comes
+/// (every embedded-graphics [`DrawTarget`] is one, through
+/// `fill_contiguous`), or one that starts a transfer (DMA) and lets the next
+/// band be drawn meanwhile ([`Bands::with_second_strip`]).
 ///
-/// RAM: `width · band_rows` colours and (with depth testing) as many `u16`s:
-/// 7.5 KiB for a 240 × 240 `Rgb565` frame in 8-row bands.
+/// A sink that keeps the strip while its transfer runs owns it until
+/// [`finish`](BandSink::finish) gives it back: with `'a = 'static` (strips
+/// in `static`s, e.g. through `static_cell::ConstStaticCell`), a DMA
+/// transfer can take it as its read buffer without `unsafe`. One transfer
+/// runs at a time: [`Bands`] calls `finish` before the next `start`.
+///
+/// ```
+/// use core::convert::Infallible;
+/// use embedded_graphics_core::{pixelcolor::Rgb565, primitives::Rectangle};
+/// use fixshade::framebuffer::BandSink;
+///
+/// /// A sink that keeps the strip until asked, as a DMA transfer would.
+/// struct Later<'a> {
+///     held: Option<&'a mut [Rgb565]>,
+///     sent: usize,
+/// }
+///
+/// impl<'a> BandSink<'a, Rgb565> for Later<'a> {
+///     type Error = Infallible;
+///     fn start(&mut self, area: &Rectangle, strip: &'a mut [Rgb565])
+///         -> Result<Option<&'a mut [Rgb565]>, Infallible> {
+///         // a DMA sink starts the transfer of the first `area` pixels here
+///         self.sent += (area.size.width * area.size.height) as usize;
+///         self.held = Some(strip);
+///         Ok(None)
+///     }
+///     fn finish(&mut self) -> Result<&'a mut [Rgb565], Infallible> {
+///         // ... and waits for it here
+///         Ok(self.held.take().unwrap_or(&mut []))
+///     }
+/// }
+/// ```
+pub trait BandSink<'a, C> {
+    /// The sink's error ([`RenderError::Display`] carries it).
+    type Error;
+
+    /// Starts sending the band `area`: the first `width · height` colours of
+    /// `strip`, row-major. Returns the strip when it is sent (a blocking
+    /// sink), or `None` when a transfer still reads it, which
+    /// [`finish`](BandSink::finish) waits for.
+    fn start(
+        &mut self,
+        area: &Rectangle,
+        strip: &'a mut [C],
+    ) -> Result<Option<&'a mut [C]>, Self::Error>;
+
+    /// Waits until the transfer [`start`](BandSink::start) left running has
+    /// ended and gives its strip back (the same slice: a shorter one is
+    /// [`RenderError::BufferTooSmall`] at the next band).
+    fn finish(&mut self) -> Result<&'a mut [C], Self::Error>;
+}
+
+/// The blocking sink: each band sent with one `fill_contiguous` (what
+/// display drivers accelerate) before the next is drawn.
+impl<'a, C: PixelColor, D: DrawTarget<Color = C>> BandSink<'a, C> for D {
+    type Error = D::Error;
+
+    fn start(
+        &mut self,
+        area: &Rectangle,
+        strip: &'a mut [C],
+    ) -> Result<Option<&'a mut [C]>, D::Error> {
+        let n = area.size.width as usize * area.size.height as usize;
+        let px = strip.get(..n).unwrap_or(&[]);
+        self.fill_contiguous(area, px.iter().copied())?;
+        Ok(Some(strip))
+    }
+
+    /// Never called: [`start`](BandSink::start) gives every strip back.
+    fn finish(&mut self) -> Result<&'a mut [C], D::Error> {
+        Ok(&mut [])
+    }
+}
+
+/// A frame drawn in horizontal bands through a caller-owned strip, each band
+/// sent to a [`BandSink`]: any [`DrawTarget`] (a display driver, the
+/// simulator), or a DMA transfer that runs while the next band is drawn into
+/// a second strip ([`Bands::with_second_strip`]).
+///
+/// RAM: `width · band_rows` colours (twice with a second strip) and (with
+/// depth testing) as many `u16`s: 7.5 KiB for a 240 × 240 `Rgb565` frame in
+/// 8-row bands, 11.25 KiB with a second strip.
+///
+/// Several band renderers can draw one frame, each its own bands, each with
+/// its own `Bands` and its own view of every mesh
+/// ([`MeshDraw::share`](crate::render::MeshDraw::share)): for example one
+/// per core of an RP2040 ([`Bands::render_bands`]).
 #[derive(Debug)]
-pub struct Bands<'a, C>(Buffers<'a, C>);
+pub struct Bands<'a, C> {
+    buf: Buffers<'a, C>,
+    /// The second strip (empty without).
+    spare: &'a mut [C],
+}
 
 impl<'a, C: PixelColor> Bands<'a, C> {
     /// A band renderer for `layout` over `strip` (at least `width · band_rows`
@@ -258,43 +355,116 @@ impl<'a, C: PixelColor> Bands<'a, C> {
         strip: &'a mut [C],
         depth: Option<&'a mut [u16]>,
     ) -> Result<Self, RenderError> {
-        Buffers::new(layout, ["colour strip", "depth strip"], strip, depth).map(Bands)
+        let buf = Buffers::new(layout, ["colour strip", "depth strip"], strip, depth)?;
+        Ok(Bands {
+            buf,
+            spare: &mut [],
+        })
+    }
+
+    /// This renderer with a second colour strip (as long as the first): a
+    /// band is drawn into one strip while a sink that does not block
+    /// ([`BandSink::start`] returning `None`, e.g. DMA) sends the other.
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::BufferTooSmall`] for a short strip.
+    pub fn with_second_strip(mut self, strip: &'a mut [C]) -> Result<Self, RenderError> {
+        let needed = self.buf.needed();
+        if strip.len() < needed {
+            return Err(RenderError::BufferTooSmall {
+                which: "second colour strip",
+                needed,
+                got: strip.len(),
+            });
+        }
+        self.spare = strip;
+        Ok(self)
     }
 
     /// The layout.
     pub fn layout(&self) -> Layout {
-        self.0.layout
+        self.buf.layout
     }
 
-    /// Renders a frame: for every band, clears the strip to `clear` and the
-    /// depth strip to `u16::MAX`, lets every item draw, and sends the band to
-    /// `display` with one `fill_contiguous`.
+    /// Renders a frame: [`Bands::render_bands`] of every band, from the top.
     ///
     /// # Errors
     ///
-    /// [`RenderError::LayoutMismatch`] (nothing drawn) when an item was
-    /// prepared for another layout; [`RenderError::Display`] with the
-    /// display's first error (drawing stops there).
-    pub fn render<D: DrawTarget<Color = C>>(
+    /// As [`Bands::render_bands`].
+    pub fn render<S: BandSink<'a, C>>(
         &mut self,
-        display: &mut D,
+        sink: &mut S,
         clear: C,
         items: &mut [&mut dyn DrawBand<C>],
-    ) -> Result<(), RenderError<D::Error>> {
-        let layout = self.0.layout;
-        check_layouts(layout, items).map_err(RenderError::widen)?;
-        for b in 0..layout.bands() {
+    ) -> Result<(), RenderError<S::Error>> {
+        let bands = self.buf.layout.bands();
+        self.render_bands(sink, clear, items, 0..bands)
+    }
+
+    /// Renders the bands `bands` (indices in increasing order; those beyond
+    /// the layout are skipped): for each, clears the strip to `clear` and
+    /// the depth strip to `u16::MAX`, lets every item draw, and hands the
+    /// band to `sink`. With a second strip and a sink that does not block,
+    /// the next band is drawn while the last one is sent; the last transfer
+    /// has ended when this returns.
+    ///
+    /// The other bands are another renderer's: with each item's view
+    /// [`MeshDraw::share`](crate::render::MeshDraw::share)d, renderers on
+    /// other cores draw them at the same time, into their own strips, and
+    /// the frame is the one [`Bands::render`] draws alone, bit for bit.
+    ///
+    /// # Errors
+    ///
+    /// An item's error from [`DrawBand::check`] (nothing drawn: a mesh
+    /// prepared for another layout, or without resume records);
+    /// [`RenderError::Display`] with the sink's first error (drawing stops there; a strip the sink kept is
+    /// not given back); [`RenderError::BufferTooSmall`] when a sink gave
+    /// back a shorter strip than it took.
+    pub fn render_bands<S: BandSink<'a, C>>(
+        &mut self,
+        sink: &mut S,
+        clear: C,
+        items: &mut [&mut dyn DrawBand<C>],
+        bands: impl IntoIterator<Item = u32>,
+    ) -> Result<(), RenderError<S::Error>> {
+        let layout = self.buf.layout;
+        check_items(layout, items).map_err(RenderError::widen)?;
+        // whether a transfer is running (holding one strip)
+        let mut running = false;
+        for b in bands {
+            if b >= layout.bands() {
+                continue;
+            }
             let rows = layout.rows(b);
-            let Some(view) = self.0.draw(rows.clone(), clear, items) else {
-                return Ok(());
-            };
+            if self.buf.draw(rows.clone(), clear, items).is_none() {
+                return Err(RenderError::BufferTooSmall {
+                    which: "colour strip",
+                    needed: self.buf.needed(),
+                    got: self.buf.color.len(),
+                });
+            }
             let area = Rectangle::new(
                 Point::new(0, rows.start),
                 Size::new(layout.width, (rows.end - rows.start) as u32),
             );
-            display
-                .fill_contiguous(&area, view.color.iter().copied())
-                .map_err(RenderError::Display)?;
+            // one transfer at a time: the one before ends first
+            if running {
+                self.spare = sink.finish().map_err(RenderError::Display)?;
+                running = false;
+            }
+            let strip = core::mem::take(&mut self.buf.color);
+            self.buf.color = match sink.start(&area, strip).map_err(RenderError::Display)? {
+                Some(strip) => strip,
+                None if self.spare.is_empty() => sink.finish().map_err(RenderError::Display)?,
+                None => {
+                    running = true;
+                    core::mem::take(&mut self.spare)
+                }
+            };
+        }
+        if running {
+            self.spare = sink.finish().map_err(RenderError::Display)?;
         }
         Ok(())
     }
@@ -332,14 +502,13 @@ impl<'a, C: PixelColor> FullFrame<'a, C> {
     ///
     /// # Errors
     ///
-    /// [`RenderError::LayoutMismatch`] (nothing drawn) when an item was
-    /// prepared for another layout.
+    /// An item's error from [`DrawBand::check`] (nothing drawn).
     pub fn render(
         &mut self,
         clear: C,
         items: &mut [&mut dyn DrawBand<C>],
     ) -> Result<(), RenderError> {
-        check_layouts(self.0.layout, items)?;
+        check_items(self.0.layout, items)?;
         self.0.draw(0..self.0.layout.height as i32, clear, items);
         Ok(())
     }

@@ -10,7 +10,7 @@
 use super::{Layout, RenderError};
 
 /// The sorted bins of one mesh (views into the caller's slice).
-#[derive(Debug, Default)]
+#[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Bins<'a> {
     heads: &'a [u16],
     indices: &'a [u16],

@@ -8,7 +8,7 @@ use super::{BandView, DrawBand, Layout, RenderError};
 use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
 use crate::num::Zeroed;
-use crate::raster::Cull;
+use crate::raster::{Cull, SUBPIXEL_BITS};
 use crate::shade::Kernel;
 
 /// What a triangle that continues into the next band keeps: its index, the
@@ -30,9 +30,19 @@ impl Carry {
         short: 0,
     };
 
-    /// `long` of a triangle drawn through the clipping path: it is clipped and
-    /// set up again in every band.
-    const CLIPPED: i16 = i16::MIN;
+    /// `long` of a triangle set up again in the band it continues into: one
+    /// drawn through the clipping path (clipped and set up again in every
+    /// band), or one a band renderer did not draw in the band before.
+    const COLD: i16 = i16::MIN;
+
+    /// The record of triangle `tri`, set up again where it continues.
+    fn cold(tri: u16) -> Carry {
+        Carry {
+            tri,
+            long: Carry::COLD,
+            short: 0,
+        }
+    }
 
     /// The record of triangle `tri` continuing as `r` says.
     fn new(tri: u16, r: Resume) -> Carry {
@@ -43,12 +53,42 @@ impl Carry {
         }
     }
 
-    /// Where the triangle continues (`None` for one through the clipping path).
+    /// Where the triangle continues (`None`: set up again).
     fn resume(self) -> Option<Resume> {
-        (self.long != Carry::CLIPPED).then_some(Resume {
+        (self.long != Carry::COLD).then_some(Resume {
             cols: (i32::from(self.long), i32::from(self.short) >> 1),
             clamp: self.short & 1 != 0,
         })
+    }
+}
+
+/// One band renderer's way through a mesh's bands: its resume records, in
+/// two halves (the band drawn writes one, the next band reads it), and the
+/// band they continue into.
+#[derive(Debug, Default)]
+struct Progress<'c> {
+    carry: &'c mut [Carry],
+    /// Entries of the current half of `carry` and which half (0 or 1).
+    carried: usize,
+    half: usize,
+    /// The band the current half's records continue into (0 before any).
+    next: u32,
+}
+
+impl Progress<'_> {
+    /// The current half (read) and the other (written).
+    fn halves(&mut self) -> (&[Carry], &mut [Carry]) {
+        let cap = self.carry.len() / 2;
+        let (a, b) = self.carry.split_at_mut(cap);
+        let (read, write) = if self.half == 0 { (a, b) } else { (b, a) };
+        let n = self.carried.min(read.len());
+        (&read[..n], write)
+    }
+
+    /// Makes the half written (`written` records) the current one.
+    fn flip(&mut self, written: usize) {
+        self.carried = written;
+        self.half ^= 1;
     }
 }
 
@@ -173,10 +213,8 @@ pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
     layout: Layout,
     cache: &'a [CachedVertex<K::Vertex>],
     bins: Bins<'a>,
-    carry: &'a mut [Carry],
-    /// Entries of the current half of `carry` and which half (0 or 1).
-    carried: usize,
-    half: usize,
+    /// This renderer's resume records and where it is in the frame.
+    progress: Progress<'a>,
     /// Silhouette refinement's vertices and triangles (empty without).
     refined: Refined<'a, K::Vertex>,
     cull: Cull,
@@ -236,9 +274,62 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         opts: DrawOptions,
         memory: MeshMemory<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
-        Self::prepare(layout, mesh, transform, kernel, opts, memory, |_, _, _| {
-            Ok(Refined::default())
-        })
+        Self::prepare(
+            layout,
+            mesh,
+            transform,
+            kernel,
+            opts,
+            memory,
+            false,
+            |_, _, _| Ok(Refined::default()),
+        )
+    }
+
+    /// The vertex stage of vertices `first .. first + part.len()` of `mesh`
+    /// (fewer at the mesh's end) into `part`, the same entries of the vertex
+    /// cache: the vertex stage in pieces, for example half of the cache on
+    /// each core (`split_at_mut`), before [`MeshDraw::with_lit_vertices`].
+    /// The same work as the vertex stage of [`MeshDraw::new`], entry for
+    /// entry.
+    pub fn light_vertices(
+        mesh: &Mesh<'_>,
+        transform: &MeshTransform<P>,
+        kernel: &K,
+        first: usize,
+        part: &mut [CachedVertex<K::Vertex>],
+    ) {
+        vertex::stage(mesh, transform, kernel, first, part);
+    }
+
+    /// [`MeshDraw::with_options`] over a vertex cache whose vertex stage has
+    /// been run, every vertex of `mesh`, with [`MeshDraw::light_vertices`]
+    /// for this frame's `transform` and `kernel` (in pieces, for example on
+    /// two cores): only the bins are built. A cache not filled so draws a
+    /// wrong picture; every other requirement is checked as by
+    /// [`MeshDraw::new`].
+    ///
+    /// # Errors
+    ///
+    /// As [`MeshDraw::new`].
+    pub fn with_lit_vertices(
+        layout: Layout,
+        mesh: Mesh<'a>,
+        transform: &MeshTransform<P>,
+        kernel: K,
+        opts: DrawOptions,
+        memory: MeshMemory<'a, K::Vertex>,
+    ) -> Result<Self, RenderError> {
+        Self::prepare(
+            layout,
+            mesh,
+            transform,
+            kernel,
+            opts,
+            memory,
+            true,
+            |_, _, _| Ok(Refined::default()),
+        )
     }
 
     /// [`MeshDraw::with_options`] with silhouette refinement: after the vertex
@@ -295,17 +386,28 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         memory: MeshMemory<'a, K::Vertex>,
         refine: Refine<'a, K::Vertex>,
     ) -> Result<Self, RenderError> {
-        Self::prepare(layout, mesh, transform, kernel, opts, memory, |m, t, k| {
-            refine::build(m, t, k, refine).map_err(|e| RenderError::BufferTooSmall {
-                which: e.buffer,
-                needed: e.needed,
-                got: e.got,
-            })
-        })
+        Self::prepare(
+            layout,
+            mesh,
+            transform,
+            kernel,
+            opts,
+            memory,
+            false,
+            |m, t, k| {
+                refine::build(m, t, k, refine).map_err(|e| RenderError::BufferTooSmall {
+                    which: e.buffer,
+                    needed: e.needed,
+                    got: e.got,
+                })
+            },
+        )
     }
 
-    /// The vertex stage, the refinement (`refine`: none for a plain mesh, so
-    /// that its code is not linked) and the bins.
+    /// The vertex stage (unless `lit`: run by the caller), the refinement
+    /// (`refine`: none for a plain mesh, so that its code is not linked) and
+    /// the bins.
+    #[allow(clippy::too_many_arguments)]
     fn prepare(
         layout: Layout,
         mesh: Mesh<'a>,
@@ -313,6 +415,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         kernel: K,
         opts: DrawOptions,
         memory: MeshMemory<'a, K::Vertex>,
+        lit: bool,
         refine: impl FnOnce(
             &Mesh<'a>,
             &MeshTransform<P>,
@@ -338,7 +441,9 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
                 got: cache.len(),
             });
         }
-        vertex::stage(&mesh, transform, &kernel, cache);
+        if !lit {
+            vertex::stage(&mesh, transform, &kernel, 0, cache);
+        }
         let refined = refine(&mesh, transform, &kernel)?;
         let mut draw = MeshDraw {
             mesh,
@@ -347,9 +452,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             layout,
             cache,
             bins: Bins::default(),
-            carry: &mut [],
-            carried: 0,
-            half: 0,
+            progress: Progress::default(),
             refined,
             cull: opts.cull,
         };
@@ -358,16 +461,99 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             .saturating_add(draw.refined.triangles.len());
         let classify = |t: usize| draw.classify(t);
         let sorted = bins::sort(&layout, total, classify, bins)?;
-        if carry.len() < 2 * sorted.crossing {
+        draw.bins = sorted;
+        // none: drawn only through shares (checked again before drawing)
+        if !carry.is_empty() {
+            draw.check_carry(carry.len())?;
+        }
+        draw.progress.carry = carry;
+        Ok(draw)
+    }
+
+    /// [`RenderError::BufferTooSmall`] for fewer than the resume records this
+    /// frame needs.
+    fn check_carry(&self, got: usize) -> Result<(), RenderError> {
+        let needed = self.carry_needed();
+        if got < needed {
             return Err(RenderError::BufferTooSmall {
                 which: "carry",
-                needed: 2 * sorted.crossing,
-                got: carry.len(),
+                needed,
+                got,
             });
         }
-        draw.bins = sorted;
-        draw.carry = carry;
-        Ok(draw)
+        Ok(())
+    }
+
+    /// This prepared mesh for another band renderer, with its own resume
+    /// records `carry` (as many as [`MeshDraw::carry_needed`]): the vertex
+    /// cache, the bins and the shader are shared, read only. Several band
+    /// renderers, each with its own strip, depth strip and records, draw
+    /// disjoint sets of bands of one frame, for example one on each core
+    /// ([`Bands::render_bands`](super::Bands::render_bands)); the frame is
+    /// the one a single renderer draws, bit for bit.
+    ///
+    /// Each renderer takes its bands from the top down. Consecutive bands
+    /// are cheapest: a triangle continuing into the next band resumes where
+    /// it left off, while at a band after a gap every triangle reaching
+    /// into it from above is set up again (so give each core one run of
+    /// bands, e.g. the upper and the lower half, rather than every other
+    /// band).
+    ///
+    /// ```
+    /// # use fixshade::prelude::*;
+    /// # use fixshade::render::{bins_len, Bands, Carry, Layout, MeshBuffers, MeshDraw};
+    /// # use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+    /// # let lighting = fixshade::standard::lambert::<Q14>().unwrap();
+    /// # let t = fixshade::standard::transform().unwrap();
+    /// let layout = Layout::banded(240, 240, 8)?;
+    /// let mut mem: MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 0> = MeshBuffers::new();
+    /// let shader = Shader::new(GouraudShading, &lighting, Linear);
+    /// let draw = MeshDraw::new(layout, fixshade::standard::SPHERE.mesh(), &t, shader, mem.memory())?;
+    /// let mut carry = [[Carry::ZERO; 64]; 2];
+    /// let mut strips = [[Rgb565::BLACK; 240 * 8]; 2];
+    /// let mut depths = [[0u16; 240 * 8]; 2];
+    /// std::thread::scope(|s| {
+    ///     for (((half, carry), strip), depth) in
+    ///         [0..15, 15..30].into_iter().zip(&mut carry).zip(&mut strips).zip(&mut depths)
+    ///     {
+    ///         let draw = &draw;
+    ///         s.spawn(move || -> Result<(), fixshade::error::Error> {
+    ///             let mut mine = draw.share(carry)?;
+    ///             let mut bands = Bands::new(layout, strip, Some(depth))?;
+    ///             let mut display = fixshade::framebuffer::Checksum::new((240, 240).into());
+    ///             bands.render_bands(&mut display, Rgb565::BLACK, &mut [&mut mine], half)?;
+    ///             Ok(())
+    ///         });
+    ///     }
+    /// });
+    /// # Ok::<(), fixshade::error::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`RenderError::BufferTooSmall`] for fewer records than
+    /// [`MeshDraw::carry_needed`].
+    pub fn share<'b>(&'b self, carry: &'b mut [Carry]) -> Result<MeshDraw<'b, K, P>, RenderError>
+    where
+        K: Clone,
+    {
+        Ok(MeshDraw {
+            mesh: self.mesh,
+            transform: self.transform,
+            kernel: self.kernel.clone(),
+            layout: self.layout,
+            cache: self.cache,
+            bins: self.bins,
+            progress: Progress {
+                carry: {
+                    self.check_carry(carry.len())?;
+                    carry
+                },
+                ..Progress::default()
+            },
+            refined: self.refined,
+            cull: self.cull,
+        })
     }
 
     /// What this frame's silhouette refinement produced (zeros without).
@@ -525,37 +711,26 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         } else {
             tri::draw_clipped::<K, false>(&self.kernel, t, &c, &space, band)
         };
-        more.then_some(Carry {
-            tri,
-            long: Carry::CLIPPED,
-            short: 0,
-        })
-    }
-}
-
-impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
-    fn layout(&self) -> Option<Layout> {
-        Some(self.layout)
+        more.then_some(Carry::cold(tri))
     }
 
-    fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
+    /// Draws `band` as the band renderer whose progress `p` is: the
+    /// triangles starting in the band merged, in mesh order, with those
+    /// continuing into it.
+    fn draw_with(&self, p: &mut Progress<'_>, band: &mut BandView<'_, K::Color>) {
         let rows = band.rows();
         let b = self.layout.band_of(rows.start.max(0) as u32);
-        let new = self.bins.band(b);
-        // a new band without a carried list (the first band, or a full frame)
-        if b == 0 {
-            self.carried = 0;
+        // a band above the one expected: a new frame
+        if b < p.next {
+            p.carried = 0;
+            p.next = 0;
         }
-        // the carry slice is taken out of `self` while triangles are drawn
-        let carry = core::mem::take(&mut self.carry);
-        let cap = carry.len() / 2;
-        let (read, write) = carry.split_at_mut(cap);
-        let (old, out) = if self.half == 0 {
-            (read, write)
-        } else {
-            (write, read)
-        };
-        let old = &old[..self.carried.min(old.len())];
+        // bands this renderer did not draw: gather what continues into `b`
+        if b > p.next {
+            self.catch_up(p, b, rows.start);
+        }
+        let new = self.bins.band(b);
+        let (old, out) = p.halves();
         let mut written = 0;
         let (mut i, mut j) = (0, 0);
         // merge by triangle index: within the band, mesh order
@@ -581,8 +756,77 @@ impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
                 }
             }
         }
-        self.carried = written;
-        self.half ^= 1;
-        self.carry = carry;
+        p.flip(written);
+        p.next = b + 1;
+    }
+
+    /// Brings `p` from band `p.next` to band `b` (first row `row`) without
+    /// drawing the bands between: the records become those of every
+    /// triangle starting above `b` and reaching `row`, in mesh order, each
+    /// to be set up again. At most the triangles crossing one boundary,
+    /// which the records hold.
+    #[inline(never)]
+    #[cold]
+    fn catch_up(&self, p: &mut Progress<'_>, b: u32, row: i32) {
+        for s in p.next..b {
+            let new = self.bins.band(s);
+            let (old, out) = p.halves();
+            let mut written = 0;
+            let (mut i, mut j) = (0, 0);
+            loop {
+                let tri = match (old.get(i), new.get(j)) {
+                    (Some(o), Some(&n)) if o.tri < n => {
+                        i += 1;
+                        o.tri
+                    }
+                    (_, Some(&n)) => {
+                        j += 1;
+                        n
+                    }
+                    (Some(o), None) => {
+                        i += 1;
+                        o.tri
+                    }
+                    (None, None) => break,
+                };
+                if self.last_row(usize::from(tri)) >= row {
+                    if let Some(slot) = out.get_mut(written) {
+                        *slot = Carry::cold(tri);
+                        written += 1;
+                    }
+                }
+            }
+            p.flip(written);
+        }
+        p.next = b;
+    }
+
+    /// The last frame row of triangle `t` (−1 when it is not drawn): from
+    /// the cached screen positions, as [`MeshDraw::classify`] computes it.
+    fn last_row(&self, t: usize) -> i32 {
+        let inside = self.indices(t).and_then(|idx| {
+            let y = |i: usize| self.vertex(i).filter(|v| v.inside()).map(|v| v.y);
+            Some(y(idx[0])?.max(y(idx[1])?).max(y(idx[2])?))
+        });
+        match inside {
+            Some(ymax) => (i32::from(ymax) - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS,
+            None => self.classify(t).map_or(-1, |(_, r1)| r1 as i32),
+        }
+    }
+}
+
+impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
+    fn check(&self, layout: Layout) -> Result<(), RenderError> {
+        if layout != self.layout {
+            return Err(RenderError::LayoutMismatch);
+        }
+        self.check_carry(self.progress.carry.len()).map(|_| ())
+    }
+
+    fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
+        // the progress is taken out of `self` while triangles are drawn
+        let mut p = core::mem::take(&mut self.progress);
+        self.draw_with(&mut p, band);
+        self.progress = p;
     }
 }

@@ -30,7 +30,7 @@ mod tests;
 mod tri;
 pub mod vertex;
 
-pub use crate::framebuffer::{BandView, Bands, DrawBand, FullFrame, Layout};
+pub use crate::framebuffer::{BandSink, BandView, Bands, DrawBand, FullFrame, Layout};
 pub use draw::{Carry, DrawOptions, MeshBuffers, MeshDraw, MeshMemory};
 pub use refine::{Refine, RefineBuffers, RefineMemory, RefineStats};
 pub use tri::{draw_triangle, Corner};

@@ -702,7 +702,7 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
                 sub = s;
             }
         }
-        vertex::stage(&sub, t, kernel, vertices);
+        vertex::stage(&sub, t, kernel, 0, vertices);
     }
     let vertices: &'a [CachedVertex<K::Vertex>] = vertices;
     let words: &'a [u16] = words;

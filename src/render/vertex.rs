@@ -68,24 +68,29 @@ pub(crate) fn window<const PERSP: bool>(space: &ClipSpace, c: Clip) -> Option<(i
     (inside(s.x) && inside(s.y)).then_some((s.x as i16, s.y as i16, s.z))
 }
 
-/// Runs the vertex stage of a mesh: `cache[i]` for every vertex `i` (the cache
-/// holds at least `mesh.vertex_count()` entries). A vertex behind the near
-/// plane or outside the set-up window is marked [`CachedVertex::OUTSIDE`].
+/// Runs the vertex stage of a mesh's vertices from `first` on: `cache[i]`
+/// for vertex `first + i`, as many as `cache` holds (up to the last vertex).
+/// A vertex behind the near plane or outside the set-up window is marked
+/// [`CachedVertex::OUTSIDE`].
 pub(crate) fn stage<K: Kernel, P: Projection>(
     mesh: &Mesh<'_>,
     t: &MeshTransform<P>,
     kernel: &K,
+    first: usize,
     cache: &mut [CachedVertex<K::Vertex>],
 ) {
     let space = t.clip_space();
     let uvs = mesh.texcoords();
     let tangents = mesh.tangents();
+    let positions = mesh.positions().get(first..).unwrap_or(&[]);
+    let normals = mesh.normals().get(first..).unwrap_or(&[]);
     for (i, ((slot, p), n)) in cache
         .iter_mut()
-        .zip(mesh.positions().iter())
-        .zip(mesh.normals().iter())
+        .zip(positions.iter())
+        .zip(normals.iter())
         .enumerate()
     {
+        let i = first + i;
         let c = t.clip(*p);
         let s = if P::PERSPECTIVE {
             window::<true>(&space, c)
