@@ -98,6 +98,13 @@ RV_NO_FLOAT = list(ENTRIES)  # every Q14 entry is checked; RV_ENFORCED's fail, t
 # every NO_WIDE entry (blinn_phong_inc too: its power table and its span set-up are in 32-bit
 # multiplications, issue 19)
 RV_ENFORCED = NO_WIDE
+# Issue 23: the standard scene on two M0 cores in 8-row bands (`<config>_2core`): each core
+# half of the vertex stage, core 0 the bins, then each core half of the bands (core 0 the
+# upper, core 1 the lower), each with its own strips and records. The frame = the slower
+# vertex half + the bins + the slower core's bands; target: <= 0.55 x the one-core 8-row frame.
+TWO_CORE = [c for c in CONFIGS if not c.endswith("_refine")]
+TWO_CORE_PARTS = ("v0", "v1", "bins", "c0", "c1")
+TWO_CORE_TARGET = 0.55
 PAINT = 0x4000  # bytes of stack painted below the initial SP
 PATTERN = 0xA5C3_5A3C
 TIMEOUT_S = 300  # seconds per call before the emulator gives up
@@ -630,6 +637,84 @@ def measure_section(section: str, host: dict, profile: set[str]) -> tuple[dict, 
     return res, {"emu": emu, "slow": slow, "entries": prof_data, "profiled": sorted(profiled)}
 
 
+def measure_2core(emu: "Frame", host: dict, one: dict) -> dict:
+    """The `_2core` frames on the M0 image `emu` (after the section's run: `init` done)."""
+    res = {}
+    for cfg in TWO_CORE:
+        t0 = time.time()
+        parts, stacks, reach = {}, {}, {}
+        for part in TWO_CORE_PARTS:
+            sym = f"frame_{cfg}_2core_{part}"
+            r, status, stack = emu.run(sym)
+            if status:
+                raise SystemExit(f"FAIL m0 {cfg}_2core {part}: status {status:#x}")
+            parts[part], stacks[part] = r.insns, stack
+            reach.update(emu.reach(sym))
+            ran = set(r.by_func) - set(emu.reach(sym))
+            if ran:
+                raise SystemExit(f"FAIL m0 {cfg}_2core {part}: executed but not statically reachable:"
+                                 f" {sorted(emu.short(f) for f in ran)}")
+        checksum = f"{r.ret:#010x}"
+        want = host[cfg + "_band8"]["two_core"]
+        if checksum != want or want != host[cfg + "_band8"]["checksum"]:
+            raise SystemExit(f"FAIL m0 {cfg}_2core: checksum {checksum}, host {want}, banded frame"
+                             f" {host[cfg + '_band8']['checksum']}: the two cores' frame differs")
+        insns = max(parts["v0"], parts["v1"]) + parts["bins"] + max(parts["c0"], parts["c1"])
+        one_core = one[cfg + "_band8"]["instructions"]
+        lit = host[cfg + "_band8"]["lit_px"]
+        ram = {
+            "color": 2 * emu.object("STRIP_COLOR")[1],
+            "depth": 2 * emu.object("STRIP_DEPTH")[1],
+            "cache": emu.object(f"CACHE_{cfg}")[1],
+            "bins": emu.object(f"BINS_BAND_{cfg}")[1],
+            "carry": emu.object(f"CARRY_BAND_{cfg}")[1] + emu.object(f"CARRY2_{cfg}")[1],
+        }
+        ram_min = (ram["color"] + ram["depth"] + ram["cache"] + 2 * host[cfg + "_band8"]["bins_needed"]
+                   + 2 * 6 * host[cfg + "_band8"]["carry_needed"])
+        stack = {"core0": max(stacks[p] for p in ("v0", "bins", "c0")),
+                 "core1": max(stacks[p] for p in ("v1", "c1"))}
+        code, code_lib = emu.size_of(reach)
+        res[cfg + "_2core"] = {
+            "instructions": insns,
+            "instr_per_lit_px": round(insns / lit, 2),
+            "lit_px": lit,
+            "one_core_band8_instructions": one_core,
+            "ratio": round(insns / one_core, 4),
+            "parts": parts,
+            "stack_bytes": max(stack.values()),
+            "stack": stack,
+            "ram_bytes": sum(ram.values()),
+            "ram": ram,
+            "ram_min_bytes": ram_min,
+            "code_bytes": code,
+            "code_bytes_lib": code_lib,
+            "code_bytes_frame_lib": code_lib,
+            "soft_float_frame": sorted({emu.short(f) for f in reach if is_soft_float(emu.names[f])}),
+            "wide_reachable": sorted({emu.short(f) for f in reach if is_forbidden(emu.names[f])}),
+            "checksum": checksum,
+        }
+        log(f"  m0    {cfg + '_2core':<22} {insns:>10} instr ({insns / one_core:.3f} x one core) "
+            f"{time.time() - t0:5.1f} s")
+    return res
+
+
+def two_core_check(res: dict) -> tuple[int, int, list[str]]:
+    """Issue 23's target, and no 64-bit multiply/divide helper reachable from the two cores' frames."""
+    ok = bad = 0
+    lines = []
+    for ent, d in res.items():
+        good = d["ratio"] <= TWO_CORE_TARGET
+        lines.append(f"{'ok  ' if good else 'FAIL'} m0 {ent}: {d['instructions']} instructions = "
+                     f"{d['ratio']:.4f} x the one-core 8-row frame {d['one_core_band8_instructions']}"
+                     f" (target <= {TWO_CORE_TARGET})")
+        ok, bad = ok + good, bad + (not good)
+        good = not d["wide_reachable"]
+        lines.append(f"{'ok  ' if good else 'FAIL'} m0 {ent}: no 64-bit multiply/divide reachable"
+                     f"{'' if good else ': ' + ', '.join(d['wide_reachable'])}")
+        ok, bad = ok + good, bad + (not good)
+    return ok, bad, lines
+
+
 # -- breakdown -------------------------------------------------------------------------
 # Where a frame's instructions go. Every executed instruction is attributed to the
 # innermost *named* function on its call stack: first the instruction's inline stack
@@ -675,10 +760,11 @@ STAGES = [
               r"|(^|<)fixshade::shade::.*::(span\w*|shade_run|run|fill\w*|pixel|walk\w*)$"),
     ("flush", r"fixshade::framebuffer::checksum::Checksum<C>::fill_contiguous\w*$"
               r"|Checksum<C> as embedded_graphics_core::draw_target::DrawTarget>::(fill_contiguous|draw_iter"
-              r"|fill_solid|clear)$|fixshade::framebuffer::FullFrame<C>::flush$"),
+              r"|fill_solid|clear)$|fixshade::framebuffer::FullFrame<C>::flush$"
+              r"|as fixshade::framebuffer::BandSink<C>>::(start|finish)$"),
     ("loop", r"fixshade::render::bins::|fixshade::render::draw::MeshDraw<K,P>::"
              r"|as fixshade::framebuffer::DrawBand<.*>>::draw_band$"
-             r"|fixshade::framebuffer::(Bands<C>::render|FullFrame<C>::render|Buffers<C>::draw|check_layouts)$"),
+             r"|fixshade::framebuffer::(Bands<C>::render(_bands)?|FullFrame<C>::render|Buffers<C>::draw|check_items)$"),
     ("scene", r"^fixshade::standard::|^fixshade_frame::|^frame_\w+$|^init$|fixshade::shade::Shader<.*>::new$"
               r"|(^|<)fixshade::shade::.*::state$|fixshade::lighting::.*::(new|build|prepare|validate)$"),
 ]
@@ -1163,7 +1249,7 @@ def table(res: dict) -> None:
     any_sec = next(s for s in res if s != "host")
     ent0 = next(iter(res[any_sec].values()))
     print(f"mesh (SPHERE, flash): {ent0['mesh_bytes']} B; camera converted once (f32, init; the frames build their transform in integers): "
-          + ", ".join(f"{s} {next(iter(p.values()))['transform_instr']} instr" for s, p in res.items() if s != "host"))
+          + ", ".join(f"{s} {next(iter(p.values()))['transform_instr']} instr" for s, p in res.items() if s not in ("host", "m0_2core")))
     print("columns: stack = peak bytes below the initial SP; ram = frame buffers as allocated (bins at"
           " bins_len, 64 resume records); ram min = bins and records at the frame's exact need; code = flash"
           " reachable from the entry; lib = without compiler-builtins/libm; frame = lib, per-frame path only"
@@ -1329,6 +1415,8 @@ def main(argv=None) -> int:
         if a.check and section in ("m0", "rv32imc"):
             prof.add(CROSS_CHECK)  # the native counter against the Python hook (measure_section compares)
         res[section], runs[section] = measure_section(section, host, prof)
+        if section == "m0":
+            res["m0_2core"] = measure_2core(runs["m0"]["emu"], host, res["m0"])
     res["host"] = {ent: {"checksum": host[ent]["checksum"]} for ent in ALL_ENTRIES}
     table(res)
     bd_doc: dict = {}
@@ -1356,6 +1444,11 @@ def main(argv=None) -> int:
         print("\nRV32IMC: no soft float and no 64-bit division helper on the Q14 frame path"
               " (static call graph from the entry, and executed):")
         print("\n".join(ls))
+    if "m0_2core" in res:
+        ok, bad, ls = two_core_check(res["m0_2core"])
+        passed, failed = passed + ok, failed + bad
+        print("\ntwo M0 cores, 8-row bands (issue 23):")
+        print("\n".join(ls))
     if a.check:
         ok, bad, ls = bounds_check(res, json.loads(BOUNDS.read_text()))
         print("\n".join(ls))
@@ -1373,7 +1466,7 @@ def main(argv=None) -> int:
     if a.write_bounds:
         write_bounds(res)
     if set(a.sections.split(",")) == set(SECTIONS):
-        doc = {s: res[s] for s in ("m0", "m4f", "host", "m0_z", "rv32imc")}
+        doc = {s: res[s] for s in ("m0", "m0_2core", "m4f", "host", "m0_z", "rv32imc")}
         old = json.loads(OUT.read_text()).get("breakdown", {}) if OUT.exists() else {}
         merged, dropped = merge_breakdown(old, bd_doc, res)
         if dropped:

@@ -77,6 +77,7 @@ struct Progress<'c> {
 
 impl Progress<'_> {
     /// The current half (read) and the other (written).
+    #[inline(always)]
     fn halves(&mut self) -> (&[Carry], &mut [Carry]) {
         let cap = self.carry.len() / 2;
         let (a, b) = self.carry.split_at_mut(cap);
@@ -605,7 +606,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
 
     /// The rows of triangle `t` in the frame, or `None` when it is culled,
     /// replaced, degenerate or outside the frame.
-    #[inline(always)]
+    #[inline(never)]
     fn classify(&self, t: usize) -> Option<(u32, u32)> {
         let nt = self.mesh.triangle_count();
         if t < nt {
@@ -718,22 +719,39 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// triangles starting in the band merged, in mesh order, with those
     /// continuing into it.
     fn draw_with(&self, p: &mut Progress<'_>, band: &mut BandView<'_, K::Color>) {
-        let rows = band.rows();
-        let b = self.layout.band_of(rows.start.max(0) as u32);
+        let row = band.rows().start;
+        let b = self.layout.band_of(row.max(0) as u32);
         // a band above the one expected: a new frame
         if b < p.next {
             p.carried = 0;
             p.next = 0;
         }
-        // bands this renderer did not draw: gather what continues into `b`
-        if b > p.next {
-            self.catch_up(p, b, rows.start);
+        // bands this renderer does not draw: the records become those of
+        // every triangle starting above `b` and reaching its first row, in
+        // mesh order, each to be set up again (at most the triangles
+        // crossing one boundary, which the records hold)
+        for s in p.next..b {
+            self.merge(p, s, Err(row));
         }
+        self.merge(p, b, Ok(band));
+        p.next = b + 1;
+    }
+
+    /// One band's triangles: those of the records merged by triangle index
+    /// (within a band, mesh order) with those starting in band `b`. Each is
+    /// drawn into `to` (`Ok`), its record kept when it continues; or, for a
+    /// band not drawn (`Err(row)`), kept (to be set up again) when it
+    /// reaches frame row `row`.
+    fn merge(
+        &self,
+        p: &mut Progress<'_>,
+        b: u32,
+        mut to: Result<&mut BandView<'_, K::Color>, i32>,
+    ) {
         let new = self.bins.band(b);
         let (old, out) = p.halves();
         let mut written = 0;
         let (mut i, mut j) = (0, 0);
-        // merge by triangle index: within the band, mesh order
         loop {
             let (c, t, take_old) = match (old.get(i), new.get(j)) {
                 (Some(&o), Some(&n)) => (o, n, o.tri < n),
@@ -748,7 +766,10 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
                 j += 1;
                 (t, None)
             };
-            let next = self.triangle(tri, resume, band);
+            let next = match &mut to {
+                Ok(band) => self.triangle(tri, resume, band),
+                Err(row) => (self.last_row(usize::from(tri)) >= *row).then_some(Carry::cold(tri)),
+            };
             if let Some(c) = next {
                 if let Some(slot) = out.get_mut(written) {
                     *slot = c;
@@ -757,57 +778,15 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             }
         }
         p.flip(written);
-        p.next = b + 1;
-    }
-
-    /// Brings `p` from band `p.next` to band `b` (first row `row`) without
-    /// drawing the bands between: the records become those of every
-    /// triangle starting above `b` and reaching `row`, in mesh order, each
-    /// to be set up again. At most the triangles crossing one boundary,
-    /// which the records hold.
-    #[inline(never)]
-    #[cold]
-    fn catch_up(&self, p: &mut Progress<'_>, b: u32, row: i32) {
-        for s in p.next..b {
-            let new = self.bins.band(s);
-            let (old, out) = p.halves();
-            let mut written = 0;
-            let (mut i, mut j) = (0, 0);
-            loop {
-                let tri = match (old.get(i), new.get(j)) {
-                    (Some(o), Some(&n)) if o.tri < n => {
-                        i += 1;
-                        o.tri
-                    }
-                    (_, Some(&n)) => {
-                        j += 1;
-                        n
-                    }
-                    (Some(o), None) => {
-                        i += 1;
-                        o.tri
-                    }
-                    (None, None) => break,
-                };
-                if self.last_row(usize::from(tri)) >= row {
-                    if let Some(slot) = out.get_mut(written) {
-                        *slot = Carry::cold(tri);
-                        written += 1;
-                    }
-                }
-            }
-            p.flip(written);
-        }
-        p.next = b;
     }
 
     /// The last frame row of triangle `t` (−1 when it is not drawn): from
     /// the cached screen positions, as [`MeshDraw::classify`] computes it.
     fn last_row(&self, t: usize) -> i32 {
-        let inside = self.indices(t).and_then(|idx| {
-            let y = |i: usize| self.vertex(i).filter(|v| v.inside()).map(|v| v.y);
-            Some(y(idx[0])?.max(y(idx[1])?).max(y(idx[2])?))
-        });
+        let y = |i: usize| self.vertex(i).filter(|v| v.inside()).map(|v| v.y);
+        let inside = self
+            .indices(t)
+            .and_then(|idx| Some(y(idx[0])?.max(y(idx[1])?).max(y(idx[2])?)));
         match inside {
             Some(ymax) => (i32::from(ymax) - (1 << (SUBPIXEL_BITS - 1))) >> SUBPIXEL_BITS,
             None => self.classify(t).map_or(-1, |(_, r1)| r1 as i32),
@@ -817,7 +796,10 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
 
 impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
     fn check(&self, layout: Layout) -> Result<(), RenderError> {
-        if layout != self.layout {
+        let l = self.layout;
+        if (layout.width(), layout.height(), layout.band_rows())
+            != (l.width(), l.height(), l.band_rows())
+        {
             return Err(RenderError::LayoutMismatch);
         }
         self.check_carry(self.progress.carry.len()).map(|_| ())

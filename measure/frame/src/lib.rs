@@ -89,8 +89,8 @@ impl Fail {
     }
 }
 
-impl From<RenderError> for Fail {
-    fn from(e: RenderError) -> Fail {
+impl<E> From<RenderError<E>> for Fail {
+    fn from(e: RenderError<E>) -> Fail {
         match e {
             RenderError::BufferTooSmall { needed, .. } => Fail::Buffer(needed),
             _ => Fail::Render,
@@ -169,7 +169,7 @@ where
     let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
     bands
         .render(display, Rgb565::BLACK, items)
-        .map_err(|_| Fail::Render)
+        .map_err(Fail::from)
 }
 
 /// [`draw_full`] with silhouette refinement (`MeshDraw::with_refinement`,
@@ -242,8 +242,77 @@ where
     let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
     bands
         .render(display, Rgb565::BLACK, items)
-        .map_err(|_| Fail::Render)
+        .map_err(Fail::from)
 }
+
+/// Bands core 0 draws in the `_2core` frames (from the top); core 1 the rest.
+pub const SPLIT: u32 = (BANDS / 2) as u32;
+
+/// One core's half of the vertex stage in the `_2core` frames (`core` 0:
+/// the first `NV / 2` vertices, 1: the others), into its half of `cache`.
+#[inline(never)]
+pub fn light_half<K: Kernel>(
+    kernel: &K,
+    t: &MeshTransform<Orthographic>,
+    cache: &mut [CachedVertex<K::Vertex>],
+    core: usize,
+) {
+    let half = (NV / 2).min(cache.len());
+    let (a, b) = cache.split_at_mut(half);
+    let (first, part) = if core == 0 { (0, a) } else { (half, b) };
+    MeshDraw::<K>::light_vertices(&SPHERE_MESH, t, kernel, first, part);
+}
+
+/// The bins over the vertex cache both cores lit (core 0, `_2core`): the
+/// prepared mesh both cores share, without resume records of its own.
+#[inline(never)]
+pub fn prepare_shared<'a, K: Kernel>(
+    kernel: K,
+    t: &MeshTransform<Orthographic>,
+    cache: &'a mut [CachedVertex<K::Vertex>],
+    bins: &'a mut [u16],
+) -> Result<MeshDraw<'a, K>, Fail> {
+    let memory = MeshMemory {
+        vertices: cache,
+        bins,
+        carry: &mut [],
+    };
+    Ok(MeshDraw::with_lit_vertices(
+        BANDED,
+        SPHERE_MESH,
+        t,
+        kernel,
+        DrawOptions::default(),
+        memory,
+    )?)
+}
+
+/// One core's bands of the shared mesh (`_2core`): its own records and
+/// strips, bands `bands` cleared, drawn and sent to `display`.
+#[inline(never)]
+pub fn draw_core<K, D>(
+    draw: &MeshDraw<'_, K>,
+    carry: &mut [Carry],
+    color: &mut [Rgb565],
+    depth: &mut [u16],
+    display: &mut D,
+    bands: core::ops::Range<u32>,
+) -> Result<(), Fail>
+where
+    K: Kernel<Color = Rgb565> + Clone,
+    D: DrawTarget<Color = Rgb565>,
+{
+    let mut mine = draw.share(carry)?;
+    let mut b = Bands::new(BANDED, color, Some(depth))?;
+    b.render_bands(display, Rgb565::BLACK, &mut [&mut mine], bands)
+        .map_err(Fail::from)
+}
+
+/// The layout of the banded frames (checked at compile time).
+const BANDED: Layout = match Layout::banded(W as u32, W as u32, BAND_ROWS as u32) {
+    Ok(l) => l,
+    Err(_) => panic!("not a layout"),
+};
 
 /// The lighting of `blinn_phong_inc`: one directional light in an array, as
 /// `IncrementalPhongShading` requires.
@@ -286,6 +355,10 @@ macro_rules! configs {
                 /// The lighting (built once, like the transform, outside the frame).
                 pub fn lighting() -> Result<Light, Fail> {
                     $lighting.map_err(|_| Fail::Lighting)
+                }
+                /// The shader over `lighting`.
+                pub fn kern(lighting: &Light) -> Shader<'_, $m, Light, Linear, Rgb565> {
+                    Shader::new($mode, lighting, Linear)
                 }
                 /// The shader, then [`draw_full`].
                 pub fn full<D: DrawTarget<Color = Rgb565>>(
@@ -334,6 +407,45 @@ macro_rules! configs {
                     } else {
                         $name::full(t, &l, b, display)
                     });
+                }
+            )*
+            None
+        }
+
+        /// Runs configuration `name` as the `_2core` frame does, one part
+        /// after the other (the host reference: the frame must be the
+        /// banded frame's).
+        pub fn run_2core<D: DrawTarget<Color = Rgb565>>(
+            name: &str,
+            t: &MeshTransform<Orthographic>,
+            display: &mut D,
+        ) -> Option<Result<(), Fail>> {
+            $(
+                $(#[$attr])*
+                if name == stringify!($name) {
+                    let mut c = [CachedVertex::<$v>::default(); NV];
+                    let mut bins = [0u16; BINS_BAND];
+                    let mut carry = [[Carry::ZERO; CARRY_BAND]; 2];
+                    let mut color = [[Rgb565::BLACK; W * BAND_ROWS]; 2];
+                    let mut depth = [[0u16; W * BAND_ROWS]; 2];
+                    let l = match $name::lighting() {
+                        Ok(l) => l,
+                        Err(e) => return Some(Err(e)),
+                    };
+                    let k = $name::kern(&l);
+                    light_half(&k, t, &mut c, 0);
+                    light_half(&k, t, &mut c, 1);
+                    let draw = match prepare_shared(k, t, &mut c, &mut bins) {
+                        Ok(d) => d,
+                        Err(e) => return Some(Err(e)),
+                    };
+                    let [c0, c1] = &mut carry;
+                    let [s0, s1] = &mut color;
+                    let [d0, d1] = &mut depth;
+                    return Some(
+                        draw_core(&draw, c0, s0, d0, display, 0..SPLIT)
+                            .and_then(|()| draw_core(&draw, c1, s1, d1, display, SPLIT..BANDS as u32)),
+                    );
                 }
             )*
             None

@@ -33,9 +33,10 @@ mod firmware {
     use embedded_graphics_core::pixelcolor::Rgb565;
     use fixshade::camera::{FixedCamera, MeshTransform, Orthographic};
     use fixshade::framebuffer::Checksum;
+    use fixshade::render::MeshDraw;
     use fixshade::render::{CachedVertex, Carry};
     use fixshade_frame::{
-        Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, W,
+        Buffers, Fail, BANDS, BAND_ROWS, BINS_BAND, BINS_FULL, CARRY_BAND, NV, SPLIT, W,
     };
     #[cfg(target_arch = "riscv32")]
     use riscv_rt::entry;
@@ -52,6 +53,15 @@ mod firmware {
     static mut STRIP_COLOR: [Rgb565; W * BAND_ROWS] = unsafe { zeroed() };
     #[no_mangle]
     static mut STRIP_DEPTH: [u16; W * BAND_ROWS] = [0; W * BAND_ROWS];
+    // the second core's strips in the `_2core` frames
+    #[no_mangle]
+    static mut STRIP2_COLOR: [Rgb565; W * BAND_ROWS] = unsafe { zeroed() };
+    #[no_mangle]
+    static mut STRIP2_DEPTH: [u16; W * BAND_ROWS] = [0; W * BAND_ROWS];
+    /// The `_2core` frame's transform (built by core 0's vertex half) and
+    /// display (written by both cores' bands, in order).
+    static mut TRANSFORM2: MaybeUninit<MeshTransform<Orthographic>> = MaybeUninit::uninit();
+    static mut DISPLAY2: MaybeUninit<Checksum<Rgb565>> = MaybeUninit::uninit();
 
     /// Converts the camera (once, in `f32`, before any frame). 0: done.
     #[no_mangle]
@@ -143,6 +153,86 @@ mod firmware {
                         finish(r, &d)
                     }
 
+                    #[export_name = concat!("CARRY2_", stringify!($name))]
+                    static mut CARRY2: [Carry; CARRY_BAND] = unsafe { zeroed() };
+                    static mut SHARED: MaybeUninit<MeshDraw<'static, fixshade_frame::$name::Kern>> =
+                        MaybeUninit::uninit();
+
+                    /// The `_2core` frame, core 0's half of the vertex stage (it
+                    /// builds the frame's transform first). Status only.
+                    #[export_name = concat!("frame_", stringify!($name), "_2core_v0")]
+                    pub unsafe extern "C" fn v0() -> u64 {
+                        let Some(t) = transform() else {
+                            return u64::from(Fail::Transform.code()) << 32;
+                        };
+                        let t = (*addr_of_mut!(TRANSFORM2)).write(t);
+                        let k = fixshade_frame::$name::kern(lighting());
+                        fixshade_frame::light_half(&k, t, &mut *addr_of_mut!(CACHE), 0);
+                        0
+                    }
+
+                    /// Core 1's half of the vertex stage.
+                    #[export_name = concat!("frame_", stringify!($name), "_2core_v1")]
+                    pub unsafe extern "C" fn v1() -> u64 {
+                        let t = (*addr_of!(TRANSFORM2)).assume_init_ref();
+                        let k = fixshade_frame::$name::kern(lighting());
+                        fixshade_frame::light_half(&k, t, &mut *addr_of_mut!(CACHE), 1);
+                        0
+                    }
+
+                    /// Core 0: the bins over the lit cache, the shared mesh.
+                    #[export_name = concat!("frame_", stringify!($name), "_2core_bins")]
+                    pub unsafe extern "C" fn bins() -> u64 {
+                        let t = (*addr_of!(TRANSFORM2)).assume_init_ref();
+                        let k = fixshade_frame::$name::kern(lighting());
+                        match fixshade_frame::prepare_shared(
+                            k,
+                            t,
+                            &mut *addr_of_mut!(CACHE),
+                            &mut *addr_of_mut!(BINS8),
+                        ) {
+                            Ok(d) => {
+                                (*addr_of_mut!(SHARED)).write(d);
+                                0
+                            }
+                            Err(e) => u64::from(e.code()) << 32,
+                        }
+                    }
+
+                    /// Core 0's bands (the upper half), into a new display.
+                    #[export_name = concat!("frame_", stringify!($name), "_2core_c0")]
+                    pub unsafe extern "C" fn c0() -> u64 {
+                        let d = (*addr_of_mut!(DISPLAY2)).write(checksum());
+                        let r = fixshade_frame::draw_core(
+                            (*addr_of!(SHARED)).assume_init_ref(),
+                            &mut *addr_of_mut!(CARRY8),
+                            &mut *addr_of_mut!(STRIP_COLOR),
+                            &mut *addr_of_mut!(STRIP_DEPTH),
+                            d,
+                            0..SPLIT,
+                        );
+                        match r {
+                            Ok(()) => 0,
+                            Err(e) => u64::from(e.code()) << 32,
+                        }
+                    }
+
+                    /// Core 1's bands (the lower half), with its own records and
+                    /// strips, into the same display: the frame's checksum.
+                    #[export_name = concat!("frame_", stringify!($name), "_2core_c1")]
+                    pub unsafe extern "C" fn c1() -> u64 {
+                        let d = (*addr_of_mut!(DISPLAY2)).assume_init_mut();
+                        let r = fixshade_frame::draw_core(
+                            (*addr_of!(SHARED)).assume_init_ref(),
+                            &mut *addr_of_mut!(CARRY2),
+                            &mut *addr_of_mut!(STRIP2_COLOR),
+                            &mut *addr_of_mut!(STRIP2_DEPTH),
+                            d,
+                            SPLIT..BANDS as u32,
+                        );
+                        finish(r, d)
+                    }
+
                     /// One whole frame in 8-row bands.
                     #[export_name = concat!("frame_", stringify!($name), "_band8")]
                     pub unsafe extern "C" fn band8() -> u64 {
@@ -180,9 +270,11 @@ mod firmware {
             // SAFETY: read-only tables of code addresses.
             unsafe impl<T> Sync for Keep<T> {}
             #[used]
-            pub static KEEP: Keep<[*const (); 1 + 2 * [$(stringify!($name)),*].len()]> = Keep([
+            pub static KEEP: Keep<[*const (); 1 + 7 * [$(stringify!($name)),*].len()]> = Keep([
                 init as *const (),
-                $($name::full as *const (), $name::band8 as *const (),)*
+                $($name::full as *const (), $name::band8 as *const (),
+                  $name::v0 as *const (), $name::v1 as *const (), $name::bins as *const (),
+                  $name::c0 as *const (), $name::c1 as *const (),)*
             ]);
         };
     }
@@ -319,6 +411,19 @@ fn main() {
             let bands = if band8 { BANDS } else { 1 };
             let bins_needed = need(2 * (bands + 1), carry_len);
             let carry_needed = need(bins_len, 0);
+            // the `_2core` frame (vertex halves, bins, two cores' bands) is this one
+            let two = if band8 && !name.ends_with("_refine") {
+                let mut s2 = Checksum::<Rgb565>::new(Size::new(W as u32, W as u32));
+                run_2core(name, &t, &mut s2).unwrap().expect("2core frame");
+                assert_eq!(
+                    (s2.value(), s2.pixels()),
+                    (sum.value(), sum.pixels()),
+                    "{name}: the two-core frame differs from the banded frame"
+                );
+                format!(", \"two_core\": \"{:#010x}\"", s2.value())
+            } else {
+                String::new()
+            };
             let key = if band8 {
                 format!("{name}_band8")
             } else {
@@ -326,7 +431,7 @@ fn main() {
             };
             out.push(format!(
                 "  \"{key}\": {{\"checksum\": \"{:#010x}\", \"lit_px\": {}, \"pixels\": {}, \
-                 \"bins_needed\": {bins_needed}, \"carry_needed\": {carry_needed}}}",
+                 \"bins_needed\": {bins_needed}, \"carry_needed\": {carry_needed}{two}}}",
                 sum.value(),
                 rec.1,
                 sum.pixels()
