@@ -17,7 +17,7 @@ use std::io::BufWriter;
 
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
-use fixshade::mesh::{torus_knot_counts, TorusKnot};
+use fixshade::mesh::TorusKnot;
 use fixshade::prelude::*;
 use image::codecs::gif::{GifEncoder, Repeat};
 use image::{Delay, Frame, RgbaImage};
@@ -28,7 +28,7 @@ const FRAMES: usize = 48;
 const DELAY_MS: u32 = 50;
 const ROWS: u32 = 8;
 
-const N: (usize, usize) = torus_knot_counts(96, 8);
+const N: (usize, usize) = TorusKnot::counts(96, 8);
 /// The trefoil in flash: 768 vertices, 1536 triangles, 18 KiB.
 static KNOT: MeshData<{ N.0 }, { N.1 }> = MeshData::torus_knot(&TorusKnot::TREFOIL, 96, 8, 14);
 

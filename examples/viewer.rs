@@ -20,14 +20,14 @@ use embedded_graphics_simulator::{
     OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
 use fixshade::camera::{MeshTransform, Orthographic};
-use fixshade::mesh::{torus_knot_counts, TorusKnot};
+use fixshade::mesh::TorusKnot;
 use fixshade::prelude::*;
 use fixshade::render::{CachedVertex, DrawBand, MeshMemory};
 use fixshade::shade::Kernel;
 use fixshade::standard;
 
 const W: u32 = standard::SIZE;
-const N: (usize, usize) = torus_knot_counts(96, 8);
+const N: (usize, usize) = TorusKnot::counts(96, 8);
 static KNOT: MeshData<{ N.0 }, { N.1 }> = MeshData::torus_knot(&TorusKnot::TREFOIL, 96, 8, 14);
 
 /// One whole frame of `mesh` under `kernel` into `display`.

@@ -51,4 +51,4 @@ pub use normals::{face_normals, vertex_normals, Weighting};
 pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts};
 pub use tangents::vertex_tangents;
 pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
-pub use torus_knot::{torus_knot_counts, TorusKnot};
+pub use torus_knot::TorusKnot;

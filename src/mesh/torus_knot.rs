@@ -29,6 +29,23 @@ pub struct TorusKnot {
 }
 
 impl TorusKnot {
+    /// `(vertices, triangles)` of [`MeshData::torus_knot`] with `tubular`
+    /// segments along the curve and `radial` around the tube:
+    /// `(tubular·radial, 2·tubular·radial)` (saturating). Sizes below
+    /// `tubular = 3`, `radial = 3` give `(0, 0)`.
+    ///
+    /// ```
+    /// use fixshade::mesh::TorusKnot;
+    /// assert_eq!(TorusKnot::counts(64, 8), (512, 1024));
+    /// ```
+    pub const fn counts(tubular: usize, radial: usize) -> (usize, usize) {
+        if tubular < 3 || radial < 3 {
+            return (0, 0);
+        }
+        let v = tubular.saturating_mul(radial);
+        (v, v.saturating_mul(2))
+    }
+
     /// The trefoil knot `(2, 3)` with radii 0.6, 0.3 and tube 0.13: it fits
     /// the unit sphere (largest coordinate below 1.03) and positions with 14
     /// fraction bits.
@@ -63,22 +80,6 @@ impl TorusKnot {
     }
 }
 
-/// `(vertices, triangles)` of [`MeshData::torus_knot`] with `tubular`
-/// segments along the curve and `radial` around the tube:
-/// `(tubular·radial, 2·tubular·radial)` (saturating). Sizes below
-/// `tubular = 3`, `radial = 3` give `(0, 0)`.
-///
-/// ```
-/// use fixshade::mesh::torus_knot_counts;
-/// assert_eq!(torus_knot_counts(64, 8), (512, 1024));
-/// ```
-pub const fn torus_knot_counts(tubular: usize, radial: usize) -> (usize, usize) {
-    if tubular < 3 || radial < 3 {
-        return (0, 0);
-    }
-    let v = tubular.saturating_mul(radial);
-    (v, v.saturating_mul(2))
-}
 
 impl<const V: usize, const T: usize> MeshData<V, T> {
     /// The torus knot `shape` as a closed tube with `tubular` segments along
@@ -93,23 +94,23 @@ impl<const V: usize, const T: usize> MeshData<V, T> {
     /// ring joins the first: the mesh is closed (every edge in two triangles),
     /// every triangle counter-clockwise seen from outside.
     ///
-    /// `V` and `T` must equal [`torus_knot_counts`] (at most 65 536
+    /// `V` and `T` must equal [`TorusKnot::counts`] (at most 65 536
     /// vertices), `p` and `q` at least 1, the radii positive with
     /// `tube < minor < major`, and [`TorusKnot::extent`] below
     /// `2^(15 − frac)`: otherwise a compile-time error in a `static`.
     ///
     /// ```
-    /// use fixshade::mesh::{torus_knot_counts, MeshData, TorusKnot};
-    /// const N: (usize, usize) = torus_knot_counts(96, 8);
+    /// use fixshade::mesh::{MeshData, TorusKnot};
+    /// const N: (usize, usize) = TorusKnot::counts(96, 8);
     /// static KNOT: MeshData<{ N.0 }, { N.1 }> = MeshData::torus_knot(&TorusKnot::TREFOIL, 96, 8, 14);
     /// let mesh = KNOT.mesh();
     /// assert_eq!((mesh.vertex_count(), mesh.triangle_count()), (768, 1536));
     /// ```
     pub const fn torus_knot(shape: &TorusKnot, tubular: usize, radial: usize, frac: u8) -> Self {
-        let counts = torus_knot_counts(tubular, radial);
+        let counts = TorusKnot::counts(tubular, radial);
         assert!(
             counts.0 == V && counts.1 == T && V > 0,
-            "V, T must equal torus_knot_counts"
+            "V, T must equal TorusKnot::counts"
         );
         assert!(V <= 1 << 16, "at most 65 536 vertices (u16 indices)");
         assert!(shape.p >= 1 && shape.q >= 1, "p and q must be at least 1");
@@ -210,7 +211,7 @@ mod tests {
     use std::collections::HashMap;
     use std::vec::Vec;
 
-    const N: (usize, usize) = torus_knot_counts(96, 8);
+    const N: (usize, usize) = TorusKnot::counts(96, 8);
     static KNOT: MeshData<{ N.0 }, { N.1 }> = MeshData::torus_knot(&TorusKnot::TREFOIL, 96, 8, 14);
 
     #[test]
@@ -318,10 +319,10 @@ mod tests {
 
     #[test]
     fn counts() {
-        assert_eq!(torus_knot_counts(2, 8), (0, 0));
-        assert_eq!(torus_knot_counts(8, 2), (0, 0));
-        assert_eq!(torus_knot_counts(3, 3), (9, 18));
-        assert_eq!(torus_knot_counts(usize::MAX, 3), (usize::MAX, usize::MAX));
+        assert_eq!(TorusKnot::counts(2, 8), (0, 0));
+        assert_eq!(TorusKnot::counts(8, 2), (0, 0));
+        assert_eq!(TorusKnot::counts(3, 3), (9, 18));
+        assert_eq!(TorusKnot::counts(usize::MAX, 3), (usize::MAX, usize::MAX));
     }
 
     fn sub(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
