@@ -18,6 +18,14 @@ display and returns the checksum; Unicorn (measure/cortex.py) runs it once.
 The mesh transform is built once before the frames (entry `init`, `f32`) and
 is not part of a frame's count (`transform_instr` reports its cost).
 
+Two cores (issue 23, section `m0_2core`, the M0 image): entries `frame_<config>_2core_{v0,v1,
+bins,c0,c1}` run the parts of one frame as two RP2040 cores would: each core half of the vertex
+stage (`MeshDraw::light_vertices`), core 0 the bins (`with_lit_vertices`), then each core half
+of the 8-row bands (`MeshDraw::share`, `Bands::render_bands`: core 0 the upper 15, core 1 the
+lower 15) with its own strip, depth strip and records, into one checksum display. The frame =
+the slower vertex half + the bins + the slower core's bands; `--check` requires it within
+0.55 x the one-core 8-row frame (`<config>_band8`) and the one-core frame's checksum.
+
 Per core section (`m0`, `m4f`, `m0_z` = M0 at opt-level "z", band8 only) and
 configuration: instructions of the call; per lit pixel (non-black pixels of
 the host's frame); peak stack (lowest written address of a painted stack,
@@ -1385,6 +1393,39 @@ def rewrite_marked(path: Path, body: str, mark: tuple[str, str] = MARK) -> bool:
     return True
 
 
+TWO_CORE_MARK = ("<!-- two-core-table:start (python3 measure/frame.py rewrites this block) -->",
+                 "<!-- two-core-table:end -->")
+
+
+def two_core_markdown(doc: dict) -> str:
+    """The `_2core` frames of frame.json (issue 23) as a table."""
+    two = doc.get("m0_2core", {})
+    n = lambda x: f"{x:,}".replace(",", " ")  # noqa: E731
+    head = ["configuration", "one core, 8-row", "vertex half core 0 / core 1", "bins (core 0)",
+            "bands core 0 / core 1", "two cores", "÷ one core", "per lit px", "stack B core 0 / core 1"]
+    out = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for ent, d in two.items():
+        p = d["parts"]
+        out.append("| " + " | ".join([
+            f"`{ent.removesuffix('_2core')}`", n(d["one_core_band8_instructions"]),
+            f"{n(p['v0'])} / {n(p['v1'])}", n(p["bins"]), f"{n(p['c0'])} / {n(p['c1'])}",
+            f"**{n(d['instructions'])}**", f"**{d['ratio']:.3f}**", f"{d['instr_per_lit_px']:.1f}",
+            f"{d['stack']['core0']} / {d['stack']['core1']}"]) + " |")
+    if two:
+        d = next(iter(two.values()))
+        r = d["ram"]
+        out += ["", "Instructions on the emulated M0 (O3), standard scene, 8-row bands; the frame = the slower"
+                " vertex half + the bins + the slower core's bands (target ≤ "
+                f"{TWO_CORE_TARGET} × one core: `python3 measure/frame.py --check`). Every two-core frame's"
+                " checksum equals the one-core frame's. RAM of the two-core frame:"
+                f" {n(d['ram_bytes'])} B as allocated ({n(r['color'])} B colour strips and {n(r['depth'])} B"
+                f" depth strips for the two cores, {n(r['cache'])} B vertex cache, {n(r['bins'])} B bins,"
+                f" {n(r['carry'])} B resume records), {n(d['ram_min_bytes'])} B at the exact need, plus the two"
+                " stacks. Not counted: the handoff between the cores (a few FIFO messages per frame on the"
+                " RP2040)."]
+    return "\n".join(out)
+
+
 def write_stage_tables(doc: dict) -> None:
     """The per-stage table of frame.json's "breakdown" into the README and docs/tradeoff.md."""
     for path in (README, TRADEOFF):
@@ -1479,6 +1520,8 @@ def main(argv=None) -> int:
         for path in (README, TRADEOFF):
             if rewrite_marked(path, frame_markdown(doc)):
                 log(f"wrote the frame table in {path.relative_to(HERE.parent)}")
+        if rewrite_marked(README, two_core_markdown(doc), TWO_CORE_MARK):
+            log("wrote the two-core table in README.md")
         write_stage_tables(doc)
     elif bd_doc and OUT.exists():
         # a subset of the sections: only frame.json's "breakdown", for the entries whose

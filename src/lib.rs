@@ -21,7 +21,7 @@
 //! | clip, set-up, interpolation | [`raster`] | the one clip-space clipper (near plane and set-up window), 32-bit set-up, exact edge walking with a top-left rule, screen-linear or perspective-correct values ([`raster::interp`]) |
 //! | shading | [`shade`] | the modes ([`FlatShading`](shade::FlatShading), [`GouraudShading`](shade::GouraudShading), [`PhongShading`](shade::PhongShading), `.textured(…)`, `.normal_mapped(…)`) and the one trait every span kernel implements, [`Kernel`](shade::Kernel) |
 //! | drawing | [`render`] | [`MeshDraw`](render::MeshDraw): the vertex stage (transform and light each vertex once per frame), bins by band, then per band clip, set-up, depth test and kernel; [`draw_triangle`](render::draw_triangle): the same stages for one triangle a program brings in clip or screen space |
-//! | framebuffer | [`framebuffer`] | the band strip flushed to any `DrawTarget` ([`Bands`](framebuffer::Bands)), a whole frame in memory ([`FullFrame`](framebuffer::FullFrame)), a checksum target |
+//! | framebuffer | [`framebuffer`] | the band strip flushed to any `DrawTarget` or sent by DMA while the next band is drawn ([`Bands`](framebuffer::Bands), [`BandSink`](framebuffer::BandSink)), bands shared out between cores ([`Bands::render_bands`](framebuffer::Bands::render_bands), [`MeshDraw::share`](render::MeshDraw::share)), a whole frame in memory ([`FullFrame`](framebuffer::FullFrame)), a checksum target |
 //!
 //! A mesh and a single triangle take the same clipper, set-up and kernel:
 //! `draw_triangle` gives the mesh renderer's pixels bit for bit. Under a

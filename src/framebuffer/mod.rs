@@ -6,8 +6,11 @@
 //! A frame is drawn band by band: [`Bands::render`] (or [`FullFrame::render`],
 //! one band) clears the band's strip and depth strip, hands a [`BandView`] to
 //! every item ([`DrawBand`], implemented by the meshes of
-//! [`crate::render`]) and sends the band to the display with one
-//! `fill_contiguous` (what display drivers accelerate).
+//! [`crate::render`]) and hands the band to a [`BandSink`]: any display
+//! (`DrawTarget`, one `fill_contiguous`, what display drivers accelerate), or
+//! a DMA transfer that sends it while the next band is drawn into a second
+//! strip. Several renderers (one per core) can draw the bands of one frame
+//! between them ([`Bands::render_bands`]).
 
 mod checksum;
 

@@ -117,7 +117,8 @@ pub struct MeshMemory<'a, V> {
     /// See [`bins_len`](super::bins_len).
     pub bins: &'a mut [u16],
     /// Twice the most triangles crossing one band boundary (none for a full
-    /// frame).
+    /// frame; none for a mesh drawn only through
+    /// [`MeshDraw::share`]s, each with its own records).
     pub carry: &'a mut [Carry],
 }
 
@@ -239,7 +240,9 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// # Errors
     ///
     /// [`RenderError::BufferTooSmall`] for a vertex cache shorter than the
-    /// mesh's vertices, too few bins or resume records;
+    /// mesh's vertices, too few bins, or resume records given but too few
+    /// (none given: checked when the mesh is drawn, before anything is
+    /// drawn, unless it is drawn only through [`MeshDraw::share`]s);
     /// [`RenderError::MissingAttribute`] when the shader reads texture
     /// coordinates or tangents the mesh lacks; [`RenderError::WorldLights`]
     /// when its lighting's lights are in world coordinates, not seen through
