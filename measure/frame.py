@@ -751,7 +751,7 @@ STAGES = [
     ("vertex", r"fixshade::render::vertex::(stage|window)$|(^|<)fixshade::shade::.*::vertex$"),
     # (not `Refined::replaced`: the binning's test whether a triangle was replaced)
     ("refine", r"fixshade::render::refine::(?!Refined<.*>::replaced$)|MeshDraw<K,P>::with_refinement$"),
-    ("clip", r"MeshDraw<K,P>::clipped$|render::tri::(draw_clipped|pieces|clipped_bounds|outline|convex)$"
+    ("clip", r"(MeshDraw|Prepared)<K,P>::clipped$|render::tri::(draw_clipped|pieces|clipped_bounds|outline|convex)$"
              r"|fixshade::raster::clip::"),
     ("setup", r"render::tri::(classify|draw|front|draw_triangle)$"
               r"|fixshade::raster::setup::Setup::|fixshade::raster::setup::Plane::(skip_rows|absolute)$"
@@ -770,7 +770,7 @@ STAGES = [
               r"|Checksum<C> as embedded_graphics_core::draw_target::DrawTarget>::(fill_contiguous|draw_iter"
               r"|fill_solid|clear)$|fixshade::framebuffer::FullFrame<C>::flush$"
               r"|as fixshade::framebuffer::BandSink<C>>::(start|finish)$"),
-    ("loop", r"fixshade::render::bins::|fixshade::render::draw::MeshDraw<K,P>::"
+    ("loop", r"fixshade::render::bins::|fixshade::render::draw::(MeshDraw|Prepared)<K,P>::"
              r"|as fixshade::framebuffer::DrawBand<.*>>::draw_band$"
              r"|fixshade::framebuffer::(Bands<C>::render(_bands)?|FullFrame<C>::render|Buffers<C>::draw|check_items)$"),
     ("scene", r"^fixshade::standard::|^fixshade_frame::|^frame_\w+$|^init$|fixshade::shade::Shader<.*>::new$"

@@ -80,7 +80,6 @@ impl TorusKnot {
     }
 }
 
-
 impl<const V: usize, const T: usize> MeshData<V, T> {
     /// The torus knot `shape` as a closed tube with `tubular` segments along
     /// the curve and `radial` around it, positions with `frac` fraction bits.

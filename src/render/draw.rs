@@ -209,14 +209,20 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> Default
 ///   near plane (the property tests render random sheets through it and count
 ///   every pixel). No far-plane clipping: depth saturates at 65535 beyond it.
 pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
+    prep: Prepared<'a, K, P>,
+    /// This renderer's resume records and where it is in the frame.
+    progress: Progress<'a>,
+}
+
+/// What every band renderer of a [`MeshDraw`] reads: the mesh, its frame's
+/// transform, shader, vertex cache and bins.
+struct Prepared<'a, K: Kernel, P: Projection> {
     mesh: Mesh<'a>,
     transform: MeshTransform<P>,
     kernel: K,
     layout: Layout,
     cache: &'a [CachedVertex<K::Vertex>],
     bins: Bins<'a>,
-    /// This renderer's resume records and where it is in the frame.
-    progress: Progress<'a>,
     /// Silhouette refinement's vertices and triangles (empty without).
     refined: Refined<'a, K::Vertex>,
     cull: Cull,
@@ -225,9 +231,9 @@ pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
 impl<K: Kernel, P: Projection> core::fmt::Debug for MeshDraw<'_, K, P> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("MeshDraw")
-            .field("vertices", &self.mesh.vertex_count())
-            .field("triangles", &self.mesh.triangle_count())
-            .field("crossing", &self.bins.crossing)
+            .field("vertices", &self.prep.mesh.vertex_count())
+            .field("triangles", &self.prep.mesh.triangle_count())
+            .field("crossing", &self.prep.bins.crossing)
             .finish_non_exhaustive()
     }
 }
@@ -449,43 +455,33 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             vertex::stage(&mesh, transform, &kernel, 0, cache);
         }
         let refined = refine(&mesh, transform, &kernel)?;
-        let mut draw = MeshDraw {
+        let mut prep = Prepared {
             mesh,
             transform: *transform,
             kernel,
             layout,
             cache,
             bins: Bins::default(),
-            progress: Progress::default(),
             refined,
             cull: opts.cull,
         };
         let total = mesh
             .triangle_count()
-            .saturating_add(draw.refined.triangles.len());
-        let classify = |t: usize| draw.classify(t);
+            .saturating_add(prep.refined.triangles.len());
+        let classify = |t: usize| prep.classify(t);
         let sorted = bins::sort(&layout, total, classify, bins)?;
-        draw.bins = sorted;
+        prep.bins = sorted;
         // none: drawn only through shares (checked again before drawing)
         if !carry.is_empty() {
-            draw.check_carry(carry.len())?;
+            prep.check_carry(carry.len())?;
         }
-        draw.progress.carry = carry;
-        Ok(draw)
-    }
-
-    /// [`RenderError::BufferTooSmall`] for fewer than the resume records this
-    /// frame needs.
-    fn check_carry(&self, got: usize) -> Result<(), RenderError> {
-        let needed = self.carry_needed();
-        if got < needed {
-            return Err(RenderError::BufferTooSmall {
-                which: "carry",
-                needed,
-                got,
-            });
-        }
-        Ok(())
+        Ok(MeshDraw {
+            prep,
+            progress: Progress {
+                carry,
+                ..Progress::default()
+            },
+        })
     }
 
     /// This prepared mesh for another band renderer, with its own resume
@@ -541,34 +537,56 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     where
         K: Clone,
     {
+        self.prep.check_carry(carry.len())?;
+        let p = &self.prep;
         Ok(MeshDraw {
-            mesh: self.mesh,
-            transform: self.transform,
-            kernel: self.kernel.clone(),
-            layout: self.layout,
-            cache: self.cache,
-            bins: self.bins,
+            prep: Prepared {
+                mesh: p.mesh,
+                transform: p.transform,
+                kernel: p.kernel.clone(),
+                layout: p.layout,
+                cache: p.cache,
+                bins: p.bins,
+                refined: p.refined,
+                cull: p.cull,
+            },
             progress: Progress {
-                carry: {
-                    self.check_carry(carry.len())?;
-                    carry
-                },
+                carry,
                 ..Progress::default()
             },
-            refined: self.refined,
-            cull: self.cull,
         })
     }
 
     /// What this frame's silhouette refinement produced (zeros without).
     pub fn refine_stats(&self) -> RefineStats {
-        self.refined.stats
+        self.prep.refined.stats
     }
 
     /// Resume records this frame needs (twice the largest number of
     /// triangles crossing one band boundary).
     pub fn carry_needed(&self) -> usize {
+        self.prep.carry_needed()
+    }
+}
+
+impl<K: Kernel, P: Projection> Prepared<'_, K, P> {
+    /// Resume records a band renderer needs.
+    fn carry_needed(&self) -> usize {
         2 * self.bins.crossing
+    }
+
+    /// [`RenderError::BufferTooSmall`] for fewer than the resume records this
+    /// frame needs.
+    fn check_carry(&self, got: usize) -> Result<(), RenderError> {
+        let needed = self.carry_needed();
+        if got < needed {
+            return Err(RenderError::BufferTooSmall {
+                which: "carry",
+                needed,
+                got,
+            });
+        }
+        Ok(())
     }
 
     /// Vertex `i` of the mesh and the refinement's new vertices after it.
@@ -722,36 +740,43 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// triangles starting in the band merged, in mesh order, with those
     /// continuing into it.
     fn draw_with(&self, p: &mut Progress<'_>, band: &mut BandView<'_, K::Color>) {
-        let row = band.rows().start;
-        let b = self.layout.band_of(row.max(0) as u32);
+        let b = self.layout.band_of(band.rows().start.max(0) as u32);
         // a band above the one expected: a new frame
         if b < p.next {
             p.carried = 0;
             p.next = 0;
         }
-        // bands this renderer does not draw: the records become those of
-        // every triangle starting above `b` and reaching its first row, in
-        // mesh order, each to be set up again (at most the triangles
-        // crossing one boundary, which the records hold)
-        for s in p.next..b {
-            self.merge(p, s, Err(row));
+        if b > p.next {
+            self.catch_up(p, b);
         }
-        self.merge(p, b, Ok(band));
         p.next = b + 1;
+        // (four arguments: a tail call, the drawing path's stack does not
+        // hold this frame)
+        self.merge(p, b, Some(band));
+    }
+
+    /// Bands this renderer does not draw, from `p.next` to `b`: the records
+    /// become those of every triangle starting above `b` and reaching its
+    /// first row, in mesh order, each to be set up again (at most the
+    /// triangles crossing one boundary, which the records hold).
+    #[inline(never)]
+    #[cold]
+    fn catch_up(&self, p: &mut Progress<'_>, b: u32) {
+        let from = p.next;
+        p.next = b;
+        for s in from..b {
+            self.merge(p, s, None);
+        }
     }
 
     /// One band's triangles: those of the records merged by triangle index
     /// (within a band, mesh order) with those starting in band `b`. Each is
-    /// drawn into `to` (`Ok`), its record kept when it continues; or, for a
-    /// band not drawn (`Err(row)`), kept (to be set up again) when it
-    /// reaches frame row `row`.
-    fn merge(
-        &self,
-        p: &mut Progress<'_>,
-        b: u32,
-        mut to: Result<&mut BandView<'_, K::Color>, i32>,
-    ) {
+    /// drawn into `band` (`Some`), its record kept when it continues; or, for
+    /// a band not drawn (`None`), kept (to be set up again) when it reaches
+    /// the first row of band `p.next`.
+    fn merge(&self, p: &mut Progress<'_>, b: u32, mut band: Option<&mut BandView<'_, K::Color>>) {
         let new = self.bins.band(b);
+        let row = self.layout.rows(p.next).start;
         let (old, out) = p.halves();
         let mut written = 0;
         let (mut i, mut j) = (0, 0);
@@ -769,9 +794,9 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
                 j += 1;
                 (t, None)
             };
-            let next = match &mut to {
-                Ok(band) => self.triangle(tri, resume, band),
-                Err(row) => (self.last_row(usize::from(tri)) >= *row).then_some(Carry::cold(tri)),
+            let next = match band.as_deref_mut() {
+                Some(band) => self.triangle(tri, resume, band),
+                None => (self.last_row(usize::from(tri)) >= row).then_some(Carry::cold(tri)),
             };
             if let Some(c) = next {
                 if let Some(slot) = out.get_mut(written) {
@@ -784,7 +809,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     }
 
     /// The last frame row of triangle `t` (−1 when it is not drawn): from
-    /// the cached screen positions, as [`MeshDraw::classify`] computes it.
+    /// the cached screen positions, as [`Prepared::classify`] computes it.
     fn last_row(&self, t: usize) -> i32 {
         let y = |i: usize| self.vertex(i).filter(|v| v.inside()).map(|v| v.y);
         let inside = self
@@ -799,19 +824,16 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
 
 impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
     fn check(&self, layout: Layout) -> Result<(), RenderError> {
-        let l = self.layout;
+        let l = self.prep.layout;
         if (layout.width(), layout.height(), layout.band_rows())
             != (l.width(), l.height(), l.band_rows())
         {
             return Err(RenderError::LayoutMismatch);
         }
-        self.check_carry(self.progress.carry.len()).map(|_| ())
+        self.prep.check_carry(self.progress.carry.len())
     }
 
     fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
-        // the progress is taken out of `self` while triangles are drawn
-        let mut p = core::mem::take(&mut self.progress);
-        self.draw_with(&mut p, band);
-        self.progress = p;
+        self.prep.draw_with(&mut self.progress, band);
     }
 }
