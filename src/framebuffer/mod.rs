@@ -395,7 +395,7 @@ impl<'a, C: PixelColor> Bands<'a, C> {
     /// # Errors
     ///
     /// As [`Bands::render_bands`].
-    #[inline]
+    #[inline(always)]
     pub fn render<S: BandSink<'a, C>>(
         &mut self,
         sink: &mut S,
