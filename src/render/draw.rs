@@ -736,25 +736,6 @@ impl<K: Kernel, P: Projection> Prepared<'_, K, P> {
         more.then_some(Carry::cold(tri))
     }
 
-    /// Draws `band` as the band renderer whose progress `p` is: the
-    /// triangles starting in the band merged, in mesh order, with those
-    /// continuing into it.
-    fn draw_with(&self, p: &mut Progress<'_>, band: &mut BandView<'_, K::Color>) {
-        let b = self.layout.band_of(band.rows().start.max(0) as u32);
-        // a band above the one expected: a new frame
-        if b < p.next {
-            p.carried = 0;
-            p.next = 0;
-        }
-        if b > p.next {
-            self.catch_up(p, b);
-        }
-        p.next = b + 1;
-        // (four arguments: a tail call, the drawing path's stack does not
-        // hold this frame)
-        self.merge(p, b, Some(band));
-    }
-
     /// Bands this renderer does not draw, from `p.next` to `b`: the records
     /// become those of every triangle starting above `b` and reaching its
     /// first row, in mesh order, each to be set up again (at most the
@@ -765,16 +746,34 @@ impl<K: Kernel, P: Projection> Prepared<'_, K, P> {
         let from = p.next;
         p.next = b;
         for s in from..b {
-            self.merge(p, s, None);
+            self.merge(p, Err(s));
         }
     }
 
     /// One band's triangles: those of the records merged by triangle index
-    /// (within a band, mesh order) with those starting in band `b`. Each is
-    /// drawn into `band` (`Some`), its record kept when it continues; or, for
-    /// a band not drawn (`None`), kept (to be set up again) when it reaches
-    /// the first row of band `p.next`.
-    fn merge(&self, p: &mut Progress<'_>, b: u32, mut band: Option<&mut BandView<'_, K::Color>>) {
+    /// (within a band, mesh order) with those starting in the band. Each is
+    /// drawn into `Ok(band)`, its record kept when it continues (a band at
+    /// or above the last one drawn starts a new frame; after a gap,
+    /// [`Prepared::catch_up`] first); or, for band `Err(b)`, not drawn, kept
+    /// (to be set up again) when it reaches the first row of band `p.next`.
+    /// (Three arguments, the band's drawing a tail call from
+    /// `draw_band`: its stack holds no frame between the two.)
+    fn merge(&self, p: &mut Progress<'_>, mut to: Result<&mut BandView<'_, K::Color>, u32>) {
+        let b = match &to {
+            Ok(band) => {
+                let b = self.layout.band_of(band.rows().start.max(0) as u32);
+                if b < p.next {
+                    p.carried = 0;
+                    p.next = 0;
+                }
+                if b > p.next {
+                    self.catch_up(p, b);
+                }
+                p.next = b + 1;
+                b
+            }
+            Err(b) => *b,
+        };
         let new = self.bins.band(b);
         let row = self.layout.rows(p.next).start;
         let (old, out) = p.halves();
@@ -794,9 +793,9 @@ impl<K: Kernel, P: Projection> Prepared<'_, K, P> {
                 j += 1;
                 (t, None)
             };
-            let next = match band.as_deref_mut() {
-                Some(band) => self.triangle(tri, resume, band),
-                None => (self.last_row(usize::from(tri)) >= row).then_some(Carry::cold(tri)),
+            let next = match &mut to {
+                Ok(band) => self.triangle(tri, resume, band),
+                Err(_) => (self.last_row(usize::from(tri)) >= row).then_some(Carry::cold(tri)),
             };
             if let Some(c) = next {
                 if let Some(slot) = out.get_mut(written) {
@@ -834,6 +833,6 @@ impl<K: Kernel, P: Projection> DrawBand<K::Color> for MeshDraw<'_, K, P> {
     }
 
     fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
-        self.prep.draw_with(&mut self.progress, band);
+        self.prep.merge(&mut self.progress, Ok(band));
     }
 }
