@@ -411,11 +411,6 @@ pub enum RenderError<E = core::convert::Infallible> {
     /// The shader reads a per-vertex attribute the mesh does not have
     /// (`"texture coordinates"`, `"tangents"`).
     MissingAttribute(&'static str),
-    /// The shader's lighting has its lights in world coordinates, not seen
-    /// through the camera: [`Lighting::viewed`](crate::lighting::Lighting::viewed)
-    /// with the camera's view, or [`Lighting::eye_space`](crate::lighting::Lighting::eye_space)
-    /// for lights given in eye coordinates.
-    WorldLights,
     /// The display returned an error while a band was sent.
     Display(E),
 }
@@ -432,7 +427,6 @@ impl<E> RenderError<E> {
             RenderError::TooManyVertices { needed } => RenderError::TooManyVertices { needed },
             RenderError::LayoutMismatch => RenderError::LayoutMismatch,
             RenderError::MissingAttribute(a) => RenderError::MissingAttribute(a),
-            RenderError::WorldLights => RenderError::WorldLights,
             RenderError::Display(e) => match e {},
         }
     }
@@ -450,10 +444,6 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
             }
             Self::LayoutMismatch => f.write_str("the mesh was prepared for another frame layout"),
             Self::MissingAttribute(a) => write!(f, "the shader needs {a}, the mesh has none"),
-            Self::WorldLights => f.write_str(
-                "the lights are in world coordinates: see them through the camera \
-                 (Lighting::viewed) or declare eye coordinates (Lighting::eye_space)",
-            ),
             Self::Display(e) => write!(f, "display error: {e:?}"),
         }
     }

@@ -129,6 +129,7 @@ pub mod raster;
 pub mod reference;
 pub mod render;
 pub mod shade;
+mod span;
 pub mod standard;
 pub mod texture;
 
@@ -145,8 +146,8 @@ pub mod prelude {
         AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight,
     };
     pub use crate::lighting::{
-        BlinnPhong, Full, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer, NoFog, Phong,
-        Terms,
+        BlinnPhong, Full, Illuminate, InfiniteViewer, Lambert, Lighting, LinearFog, LocalViewer,
+        NoFog, Phong, Terms, Viewed,
     };
     pub use crate::mesh::{uv_sphere_counts, Mesh, MeshData};
     pub use crate::num::Vec3;

@@ -49,7 +49,7 @@ use crate::lighting::{
 use crate::lighting::{
     BackFaces, ColorMaterial, InfiniteViewer, Lighting, LocalViewer, Model, NoFog, Viewer,
 };
-use crate::lighting::{Material, MaterialDesc};
+use crate::lighting::{Material, MaterialDesc, Viewed};
 use crate::num::Mat4;
 use crate::num::Scalar;
 
@@ -554,7 +554,7 @@ impl<'a> GlScene<'a> {
     /// assert!(scene.lighting::<Q14, [AnyLight<Q14>; 2], BlinnPhong, InfiniteViewer<Q14>>().is_err());
     /// # Ok::<(), ParamError>(())
     /// ```
-    pub fn lighting<S, L, M, V>(&self) -> Result<Lighting<S, L, M, V, NoFog>, ParamError>
+    pub fn lighting<S, L, M, V>(&self) -> Result<Viewed<Lighting<S, L, M, V, NoFog>>, ParamError>
     where
         S: Scalar,
         L: GlLightSet<S>,
@@ -573,7 +573,7 @@ impl<'a> GlScene<'a> {
     #[allow(clippy::type_complexity)]
     pub fn back_lighting<S, L, M, V>(
         &self,
-    ) -> Result<BackFaces<Lighting<S, L, M, V, NoFog>>, ParamError>
+    ) -> Result<BackFaces<Viewed<Lighting<S, L, M, V, NoFog>>>, ParamError>
     where
         S: Scalar,
         L: GlLightSet<S>,
@@ -595,7 +595,7 @@ impl<'a> GlScene<'a> {
         &self,
         material: &GlMaterial,
         face: GlFace,
-    ) -> Result<Lighting<S, L, M, V, NoFog>, ParamError>
+    ) -> Result<Viewed<Lighting<S, L, M, V, NoFog>>, ParamError>
     where
         S: Scalar,
         L: GlLightSet<S>,
@@ -616,8 +616,8 @@ impl<'a> GlScene<'a> {
             NoFog,
             self.color_material_on(face),
         )
-        .eye_space()
         .checked()
+        .map(Lighting::eye_space)
     }
 }
 

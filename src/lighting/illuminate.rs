@@ -2,36 +2,30 @@
 //! every [`Lighting`] configuration and by the [`BackFaces`] and
 //! [`SeparateSpecular`] wrappers around one.
 
-use super::{FogModel, LightSet, Lighting, LitColor, Model, Specular, Viewer};
+use super::{DirectionalLight, FogModel, InfiniteViewer, LightSet, Lighting, LitColor, Model, NoFog};
+use super::{Specular, Viewed, Viewer};
 use crate::color::Rgb;
-use crate::num::{Exponent, Flag, Off, Point3, Scalar, Vec3};
+use crate::num::{Exponent, Point3, Scalar, Vec3};
 
-/// What the shading stage lights with: anything that gives the colour of a surface
-/// point. Implemented by every [`Lighting`] configuration (and by [`BackFaces`] and
-/// [`SeparateSpecular`] around one); the shading modes take one type parameter for
-/// it instead of the five of [`Lighting`].
+/// What the shading stage lights with: anything that gives the colour of a
+/// surface point in eye coordinates (the eye at the origin looking down −z,
+/// where the renderer hands points and normals). Implemented by every
+/// [`Lighting`] configuration seen from the eye ([`Viewed`]: made by
+/// [`Lighting::viewed`] or [`Lighting::eye_space`]) and by [`BackFaces`] and
+/// [`SeparateSpecular`] around one; the shading modes take one type
+/// parameter for it instead of the five of [`Lighting`]. A lighting of your
+/// own implements `shade` (and `shade_parts` if it has a specular part to
+/// keep apart), its points and normals in eye coordinates.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` does not light a shader: it is not a lighting in eye coordinates",
+    label = "not a lighting seen from the eye",
+    note = "a `Lighting` has its lights in world coordinates: see them through the camera, `lighting.viewed(camera.view())?`, or say they are given in eye coordinates, `lighting.eye_space()`"
+)]
 pub trait Illuminate {
     /// The number tier.
     type Scalar: Scalar;
     /// Whether [`Illuminate::shade`] reads the position (see [`Lighting::NEEDS_POSITION`]).
     const NEEDS_POSITION: bool;
-    /// [`On`](crate::num::On) for a lighting that the per-pixel fast path
-    /// serves: `Q14`, one directional light, a viewer at infinity, no fog
-    /// (the model is checked by [`Illuminate::directional`]).
-    #[doc(hidden)]
-    type Fast: Flag;
-    /// What the per-pixel fast path needs, for a lighting whose `Fast` is on
-    /// and whose model is Lambert or Blinn-Phong (no brilliance, Fresnel
-    /// factor or transmission); `None` otherwise.
-    #[doc(hidden)]
-    fn directional(&self) -> Option<DirectionalTerms<Self::Scalar>> {
-        None
-    }
-    /// Whether the lights are in eye coordinates, where the renderer hands
-    /// points and normals (see [`Lighting::new`]); the default is `true`.
-    fn lights_in_eye_space(&self) -> bool {
-        true
-    }
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
     fn shade(&self, p: &Point3<Self::Scalar>, n: Vec3<Self::Scalar>) -> Rgb<Self::Scalar>;
     /// The colour in OpenGL's primary and secondary parts, with a vertex colour for
@@ -53,61 +47,64 @@ pub trait Illuminate {
 }
 
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Illuminate
-    for Lighting<S, L, M, V, F>
+    for Viewed<Lighting<S, L, M, V, F>>
 {
     type Scalar = S;
-    const NEEDS_POSITION: bool = Self::NEEDS_POSITION;
-    fn lights_in_eye_space(&self) -> bool {
-        self.is_eye_space()
-    }
-    type Fast =
-        <<<S::Fixed14 as Flag>::And<L::OneDirectional> as Flag>::And<V::AtInfinity> as Flag>::And<
-            F::Clear,
-        >;
-    fn directional(&self) -> Option<DirectionalTerms<S>> {
-        let plain = matches!(M::SPECULAR, Specular::None | Specular::BlinnPhong)
-            && !M::BRILLIANCE
-            && !M::FRESNEL
-            && !M::TRANSMISSION;
-        if !(Self::Fast::ON && plain) {
-            return None;
-        }
-        let (dir, pre) = self.lights().directional()?;
-        Some(DirectionalTerms {
-            dir,
-            half: pre.half.unwrap_or(dir),
-            diffuse: pre.diffuse,
-            specular: if M::SPECULAR == Specular::BlinnPhong {
-                pre.specular
-            } else {
-                Rgb::BLACK
-            },
-            base: self.base(),
-            shininess: self.material().shininess,
-        })
-    }
+    const NEEDS_POSITION: bool = Lighting::<S, L, M, V, F>::NEEDS_POSITION;
     #[inline(always)]
     fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
-        Lighting::shade(self, p, n)
+        self.lighting().shade(p, n)
     }
     #[inline(always)]
     fn shade_parts(&self, p: &Point3<S>, n: Vec3<S>, color: Option<Rgb<S>>) -> LitColor<S> {
-        Lighting::shade_parts(self, p, n, color)
+        self.lighting().shade_parts(p, n, color)
     }
 }
 
-/// What the per-pixel fast path of the `Q14` tiers needs from a lighting of
-/// one directional light (see [`Illuminate::directional`]).
-#[doc(hidden)]
+/// The lightings of the per-pixel kernels for directional lights
+/// ([`IncrementalPhongShading`](crate::shade::IncrementalPhongShading),
+/// [`QuadraticPhongShading`](crate::shade::QuadraticPhongShading)): `K`
+/// directional lights, a viewer at infinity, no fog.
+pub(crate) type Directional<S, const K: usize, M> =
+    Viewed<Lighting<S, [DirectionalLight<S>; K], M, InfiniteViewer<S>, NoFog>>;
+
+impl<S: Scalar, const K: usize, M: Model> Directional<S, K, M> {
+    /// Each light's terms of the lighting equation, prepared for the material
+    /// and the viewer: what the kernels for directional lights evaluate per
+    /// pixel from `N·L` and `N·H` (or `R·V`).
+    pub(crate) fn directional_terms(&self) -> [DirectionalTerms<S>; K] {
+        let l = self.lighting();
+        core::array::from_fn(|j| {
+            let light = &l.lights()[j];
+            let pre = light.prepared();
+            let dir = light.direction();
+            DirectionalTerms {
+                dir,
+                half: pre.half,
+                diffuse: pre.diffuse,
+                specular: if M::SPECULAR == Specular::None {
+                    Rgb::BLACK
+                } else {
+                    pre.specular
+                },
+                base: l.base(),
+                shininess: l.material().shininess,
+            }
+        })
+    }
+}
+
+/// One directional light's prepared terms of the lighting equation, for a
+/// viewer at infinity (see [`Directional::directional_terms`]).
 #[derive(Clone, Copy, Debug)]
-pub struct DirectionalTerms<S> {
+pub(crate) struct DirectionalTerms<S> {
     /// Towards the light.
     pub dir: Vec3<S>,
-    /// The halfway vector (the light's direction without a specular term).
-    pub half: Vec3<S>,
+    /// The halfway vector (`None` without a specular term).
+    pub half: Option<Vec3<S>>,
     /// Light diffuse times material diffuse.
     pub diffuse: Rgb<S>,
-    /// Light specular times material specular (black for Lambert).
+    /// Light specular times material specular (black without a specular term).
     pub specular: Rgb<S>,
     /// Emission and ambient.
     pub base: Rgb<S>,
@@ -126,7 +123,7 @@ pub struct DirectionalTerms<S> {
 /// use fixshade::lighting::BackFaces;
 /// let light = DirectionalLight::<f32>::white([0.0, 0.0, 1.0]).unwrap();
 /// let back = Material::new(&MaterialDesc { ambient: [0.0; 3], ..MaterialDesc::default() }).unwrap();
-/// let lit = BackFaces(Lighting::<f32, _, Lambert>::new(light, back));
+/// let lit = BackFaces(Lighting::<f32, _, Lambert>::new(light, back).eye_space());
 /// // a back face whose (front) normal points away from the viewer is lit from the front
 /// use fixshade::lighting::Illuminate;
 /// let c = lit.shade(&Lighting::<f32, DirectionalLight<f32>>::origin(), Vec3::from_f32([0.0, 0.0, -1.0]));
@@ -147,10 +144,6 @@ macro_rules! wrapper_illuminate {
         impl<I: Illuminate> Illuminate for $wrapper<I> {
             type Scalar = I::Scalar;
             const NEEDS_POSITION: bool = I::NEEDS_POSITION;
-            type Fast = Off;
-            fn lights_in_eye_space(&self) -> bool {
-                self.0.lights_in_eye_space()
-            }
             #[inline(always)]
             fn shade(&self, $p: &Point3<I::Scalar>, $n: Vec3<I::Scalar>) -> Rgb<I::Scalar> {
                 let $l = &self.0;

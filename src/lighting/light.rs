@@ -9,7 +9,7 @@ use crate::color::Rgb;
 use crate::error::{direction, finite, non_negative, non_negative3, ParamError};
 use crate::lighting::{AnyLight, Material};
 use crate::num::{point_from_f32, point_sub, Mat4, Point3, Vec3};
-use crate::num::{Exponent, Flag, GeoScalar, Off, On, Scalar};
+use crate::num::{Exponent, GeoScalar, Scalar};
 use core::marker::PhantomData;
 
 /// The colours a light emits into each term (OpenGL's `GL_AMBIENT`, `GL_DIFFUSE`,
@@ -195,12 +195,6 @@ pub trait LightSource<S: Scalar> {
     fn constant_ambient(&self) -> Option<Rgb<S>>;
     /// The light arriving at surface point `p`.
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S>;
-    /// The direction and prepared colours of a directional light (`None` for
-    /// the others).
-    #[doc(hidden)]
-    fn directional(&self) -> Option<(Vec3<S>, &Prepared<S>)> {
-        None
-    }
     /// The colour terms [`LightSource::prepare`] converts for `material`, in `f32`
     /// (for the range check of [`Lighting::checked`](crate::lighting::Lighting::checked));
     /// `None` (the default) leaves the light out of the check.
@@ -268,16 +262,6 @@ impl<S: Scalar, F: FnMut(Incident<'_, S>)> IncidentVisitor<S> for F {
 pub trait LightSet<S: Scalar> {
     /// Whether any light needs the surface position.
     const NEEDS_POSITION: bool;
-    /// [`On`](crate::num::On) for one directional light (the set that the
-    /// per-pixel fast path of the `Q14` tiers serves).
-    #[doc(hidden)]
-    type OneDirectional: Flag;
-    /// The direction and prepared colours of the one directional light of a
-    /// set whose `OneDirectional` is on.
-    #[doc(hidden)]
-    fn directional(&self) -> Option<(Vec3<S>, &Prepared<S>)> {
-        None
-    }
     /// Multiplies each light's colours with `material` and precomputes what is
     /// constant for a viewer direction `view` (`None` for a local viewer).
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>);
@@ -296,14 +280,9 @@ pub trait LightSet<S: Scalar> {
 }
 
 macro_rules! light_set_for_source {
-    ($($ty:ident: $one:ty),*) => {$(
+    ($($ty:ident),*) => {$(
         impl<S: Scalar> LightSet<S> for $ty<S> {
             const NEEDS_POSITION: bool = <Self as LightSource<S>>::NEEDS_POSITION;
-            type OneDirectional = $one;
-            #[inline]
-            fn directional(&self) -> Option<(Vec3<S>, &Prepared<S>)> {
-                <Self as LightSource<S>>::directional(self)
-            }
             #[inline]
             fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
                 LightSource::prepare(self, material, view)
@@ -327,14 +306,13 @@ macro_rules! light_set_for_source {
         }
     )*};
 }
-light_set_for_source!(DirectionalLight: On, PointLight: Off, SpotLight: Off, AnyLight: Off);
+light_set_for_source!(DirectionalLight, PointLight, SpotLight, AnyLight);
 
 /// `LightSet` for a container of light sets that iterates by reference.
 macro_rules! light_set_for_container {
     ($($ty:ty),*) => {$(
         impl<S: Scalar, L: LightSet<S>, const K: usize> LightSet<S> for $ty {
             const NEEDS_POSITION: bool = L::NEEDS_POSITION;
-            type OneDirectional = Off;
             fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
                 self.iter_mut().for_each(|l| l.prepare(material, view));
             }
@@ -362,7 +340,6 @@ macro_rules! light_set_tuple {
     ($($name:ident $idx:tt),*) => {
         impl<S: Scalar, $($name: LightSet<S>),*> LightSet<S> for ($($name,)*) {
             const NEEDS_POSITION: bool = false $(|| $name::NEEDS_POSITION)*;
-            type OneDirectional = Off;
             fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
                 $(self.$idx.prepare(material, view);)*
             }
@@ -433,10 +410,6 @@ impl<S: Scalar> DirectionalLight<S> {
 
 impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
     const NEEDS_POSITION: bool = false;
-    #[inline]
-    fn directional(&self) -> Option<(Vec3<S>, &Prepared<S>)> {
-        Some((self.dir, &self.pre))
-    }
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
         let t = ColorTerms::new(&self.colors, material, 1.0, false);
         self.pre = Prepared::new(&t, Some(self.dir), view);

@@ -46,7 +46,8 @@ mod model;
 mod viewer;
 
 pub use any::{AnyLight, LightDesc, LightKind};
-pub use illuminate::{BackFaces, DirectionalTerms, Illuminate, SeparateSpecular};
+pub use illuminate::{BackFaces, Illuminate, SeparateSpecular};
+pub(crate) use illuminate::{Directional, DirectionalTerms};
 pub use light::{Attenuation, DirectionalLight, LightColors, LightSet, PointLight, SpotLight};
 // The machinery of `LightSet` (each light's incident terms, its colours
 // prepared for a material, the visitor that sums them): public in their
@@ -181,11 +182,34 @@ where
     ambient_base: Rgb<S>,
     viewer: V,
     fog: F,
-    /// The lights are in eye coordinates ([`Lighting::viewed`],
-    /// [`Lighting::eye_space`]); `false`: world coordinates, not yet seen
-    /// through a camera (the renderer refuses them).
-    eye: bool,
     model: PhantomData<M>,
+}
+
+/// A lighting whose lights are in eye coordinates (the eye at the origin,
+/// looking down −z), where the renderer hands points and normals: the only
+/// form of a [`Lighting`] a shader takes. Made by [`Lighting::viewed`]
+/// (lights placed in the world, seen through the camera) or
+/// [`Lighting::eye_space`] (lights given in eye coordinates); the lights'
+/// space is part of the type, so that no kernel can draw world lights.
+///
+/// ```
+/// use fixshade::prelude::*;
+/// let light = DirectionalLight::<Q14>::white([0.0, 1.0, 0.0])?;
+/// let world = Lighting::<Q14, _, Lambert>::new(light, Material::new(&MaterialDesc::default())?);
+/// let camera = fixshade::standard::camera()?;
+/// let lit = world.viewed(camera.view())?; // once per frame for a moving camera
+/// let shader = Shader::<_, _, _, Rgb565>::new(GouraudShading, &lit, Linear);
+/// # let _ = shader;
+/// # Ok::<(), fixshade::error::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Viewed<L>(L);
+
+impl<L> Viewed<L> {
+    /// The lighting, its lights in eye coordinates.
+    pub fn lighting(&self) -> &L {
+        &self.0
+    }
 }
 
 /// OpenGL's default `GL_LIGHT_MODEL_AMBIENT` (without alpha).
@@ -198,18 +222,22 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
     /// with the material's ambient colour; [`Lighting::with_global_ambient_f32`]
     /// changes it (`[0.0; 3]`: none).
     ///
-    /// The lights are in **world coordinates**: before the renderer draws with
-    /// this lighting, see them through the camera with [`Lighting::viewed`]
-    /// (once per frame for a moving camera); [`MeshDraw::new`] and
-    /// [`draw_triangle`] refuse a lighting that was not
-    /// ([`RenderError::WorldLights`]), rather than light the scene from the
-    /// wrong side. Lights given in eye coordinates (OpenGL's `GL_POSITION`
-    /// after the camera's matrix, a lamp that moves with the camera) say so
-    /// with [`Lighting::eye_space`]; [`GlScene::lighting`] does.
+    /// The lights are in **world coordinates**: a shader takes the lighting
+    /// seen through the camera, [`Lighting::viewed`] (once per frame for a
+    /// moving camera), a [`Viewed`] lighting; drawing with world lights does
+    /// not compile, rather than light the scene from the wrong side. Lights
+    /// given in eye coordinates (OpenGL's `GL_POSITION` after the camera's
+    /// matrix, a lamp that moves with the camera) say so with
+    /// [`Lighting::eye_space`]; [`GlScene::lighting`] does.
     ///
-    /// [`MeshDraw::new`]: crate::render::MeshDraw::new
-    /// [`draw_triangle`]: crate::render::draw_triangle
-    /// [`RenderError::WorldLights`]: crate::error::RenderError::WorldLights
+    /// ```compile_fail
+    /// use fixshade::prelude::*;
+    /// let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+    /// let world = Lighting::<Q14, _, Lambert>::new(light, Material::new(&MaterialDesc::default()).unwrap());
+    /// // error: the lights of `Lighting<…>` are in world coordinates
+    /// let shader = Shader::<_, _, _, Rgb565>::new(FlatShading, &world, Linear);
+    /// ```
+    ///
     /// [`GlScene::lighting`]: crate::lighting::gl::GlScene::lighting
     pub fn new(lights: L, material: Material<S>) -> Self {
         Self::build(
@@ -270,7 +298,6 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             ambient_base,
             viewer,
             fog,
-            eye: false,
             model: PhantomData,
         }
     }
@@ -283,16 +310,14 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         viewer: V2,
         fog: F2,
     ) -> Lighting<S, L, M2, V2, F2> {
-        let mut l = Lighting::build(
+        Lighting::build(
             self.lights,
             self.material,
             self.global_ambient,
             viewer,
             fog,
             self.color_material,
-        );
-        l.eye = self.eye;
-        l
+        )
     }
 
     /// The lighting of `self`'s parts, prepared again (after a part changed).
@@ -305,15 +330,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// (the eye at the origin looking down −z): OpenGL's `GL_POSITION` set
     /// after the camera's matrix, or a lamp that moves with the camera. See
     /// [`Lighting::new`].
-    pub fn eye_space(mut self) -> Self {
-        self.eye = true;
-        self
-    }
-
-    /// Whether the lights are in eye coordinates ([`Lighting::viewed`] or
-    /// [`Lighting::eye_space`]); the renderer draws only with such a lighting.
-    pub fn is_eye_space(&self) -> bool {
-        self.eye
+    pub fn eye_space(self) -> Viewed<Self> {
+        Viewed(self)
     }
 
     /// The same configuration with a global ambient light `Ia` (OpenGL's
@@ -355,8 +373,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// // the world's +x (towards the camera) is the eye's +z
     /// let o = Lighting::<Q14, DirectionalLight<Q14>>::origin();
     /// let lit = |l: &Lighting<Q14, _, Lambert>, n: [f32; 3]| l.shade(&o, Vec3::from_f32(n)).to_rgb888();
-    /// assert_eq!(lit(&eye, [0.0, 0.0, 1.0]), lit(&world, [1.0, 0.0, 0.0]));
-    /// assert_eq!(lit(&eye, [0.0, 1.0, 0.0]), lit(&world, [0.0, 1.0, 0.0]));
+    /// assert_eq!(lit(eye.lighting(), [0.0, 0.0, 1.0]), lit(&world, [1.0, 0.0, 0.0]));
+    /// assert_eq!(lit(eye.lighting(), [0.0, 1.0, 0.0]), lit(&world, [0.0, 1.0, 0.0]));
     /// # Ok::<(), fixshade::error::ParamError>(())
     /// ```
     ///
@@ -365,14 +383,13 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// [`ParamError::ZeroDirection`] when `view` maps a light's direction to
     /// zero (a singular matrix), [`ParamError::NotFinite`] for a non-finite
     /// position.
-    pub fn viewed(&self, view: &crate::num::Mat4) -> Result<Self, ParamError>
+    pub fn viewed(&self, view: &crate::num::Mat4) -> Result<Viewed<Self>, ParamError>
     where
         L: Clone,
     {
         let mut l = self.clone();
         l.lights.transform(view)?;
-        l.eye = true;
-        Ok(l.rebuilt())
+        Ok(Viewed(l.rebuilt()))
     }
 
     /// The same configuration with another viewer.

@@ -2,13 +2,10 @@
 
 use crate::color::Rgb;
 use crate::error::{finite, ParamError};
-use crate::num::{point_from_f32, point_sub, Flag, Off, On, Point3, Scalar, Vec3};
+use crate::num::{point_from_f32, point_sub, Point3, Scalar, Vec3};
 
 /// Where the eye is.
 pub trait Viewer<S: Scalar>: Copy + core::fmt::Debug {
-    /// [`On`] for a viewer at infinity.
-    #[doc(hidden)]
-    type AtInfinity: Flag;
     /// Whether the view vector depends on the surface position.
     const NEEDS_POSITION: bool;
     /// The constant view direction, for a viewer at infinity.
@@ -47,7 +44,6 @@ impl<S: Scalar> Default for InfiniteViewer<S> {
 }
 
 impl<S: Scalar> Viewer<S> for InfiniteViewer<S> {
-    type AtInfinity = On;
     const NEEDS_POSITION: bool = false;
     #[inline(always)]
     fn constant_dir(&self) -> Option<Vec3<S>> {
@@ -84,7 +80,6 @@ impl<S: Scalar> LocalViewer<S> {
 }
 
 impl<S: Scalar> Viewer<S> for LocalViewer<S> {
-    type AtInfinity = Off;
     const NEEDS_POSITION: bool = true;
     #[inline(always)]
     fn constant_dir(&self) -> Option<Vec3<S>> {
@@ -98,9 +93,6 @@ impl<S: Scalar> Viewer<S> for LocalViewer<S> {
 
 /// Depth cueing: how the light-dependent part fades with viewing distance.
 pub trait FogModel<S: Scalar>: Copy + core::fmt::Debug {
-    /// [`On`] without fog.
-    #[doc(hidden)]
-    type Clear: Flag;
     /// Whether the fog needs the viewing distance.
     const NEEDS_DISTANCE: bool;
     /// `f·direct + (1 − f)·fog_colour` at viewing distance `d`.
@@ -119,7 +111,6 @@ pub trait FogModel<S: Scalar>: Copy + core::fmt::Debug {
 pub struct NoFog;
 
 impl<S: Scalar> FogModel<S> for NoFog {
-    type Clear = On;
     const NEEDS_DISTANCE: bool = false;
     #[inline(always)]
     fn apply(&self, direct: Rgb<S>, _d: S::Geo) -> Rgb<S> {
@@ -170,7 +161,6 @@ impl<S: Scalar> LinearFog<S> {
 }
 
 impl<S: Scalar> FogModel<S> for LinearFog<S> {
-    type Clear = Off;
     const NEEDS_DISTANCE: bool = true;
     #[inline(always)]
     fn apply(&self, direct: Rgb<S>, d: S::Geo) -> Rgb<S> {

@@ -134,12 +134,12 @@ fn vec3<T>(v: [f32; 3], wrap: impl Fn(f32) -> T) -> Vec3<T> {
 macro_rules! float_tier {
     ([$($gen:tt)*] $ty:ty, $name:expr, $wrap:expr, $get:expr, $rsqrt:expr, $refine:expr) => {
         impl<$($gen)*> Scalar for $ty {
-            type Fixed14 = super::Off;
             type Geo = f32;
             type Ramp = RampF32;
             const ZERO: Self = $wrap(0.0);
             const ONE: Self = $wrap(1.0);
             const MAX: Self = $wrap(F32_LIMIT);
+            const FLOAT: bool = true;
             const NAME: &'static str = $name;
 
             #[inline(always)]

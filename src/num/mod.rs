@@ -56,37 +56,6 @@ pub use vector::{point_from_f32, Point3, Vec3};
 
 use core::fmt::Debug;
 
-/// A yes or no that a type carries, for choices made at compile time from a
-/// scene's types (which per-pixel kernel a lighting gets). Implemented by
-/// [`On`] and [`Off`] only.
-#[doc(hidden)]
-pub trait Flag: Copy + Default + Debug + 'static {
-    /// `true` for [`On`].
-    const ON: bool;
-    /// [`On`] when both are.
-    type And<B: Flag>: Flag;
-}
-
-/// The [`Flag`] that is set.
-#[doc(hidden)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct On;
-
-/// The [`Flag`] that is clear.
-#[doc(hidden)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Off;
-
-impl Flag for On {
-    const ON: bool = true;
-    type And<B: Flag> = B;
-}
-
-impl Flag for Off {
-    const ON: bool = false;
-    type And<B: Flag> = Off;
-}
-
 /// Fraction bits of interpolated values: a value `v` is `v · 2^ATTR_FRAC`
 /// (what the rasterizer hands the shading kernels, and the encoders read).
 pub const ATTR_FRAC: u32 = 14;
@@ -125,10 +94,6 @@ pub type Geo16 = fixed::types::I16F16;
 pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync + 'static {
     /// The scalar for positions and distances (more range, less precision).
     type Geo: GeoScalar;
-    /// [`On`] for the `Q14` tiers (whose per-pixel kernels have an
-    /// incremental fast path).
-    #[doc(hidden)]
-    type Fixed14: Flag;
     /// The linear fog ramp `clamp((end − d)/(end − start), 0, 1)` in the form this
     /// tier evaluates (see [`Scalar::ramp`]).
     type Ramp: Copy + Debug + PartialEq + Send + Sync + 'static;
@@ -141,6 +106,10 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     const MAX: Self;
     /// A short human-readable name of the tier, for reports.
     const NAME: &'static str;
+    /// Whether the tier is a floating-point type (`f32`, [`F32Fast`]): the
+    /// quadratic per-pixel kernel evaluates its anchors in `f32` for these, in
+    /// 32-bit integers for the fixed tiers.
+    const FLOAT: bool;
 
     /// Converts from `f32`, rounding to nearest; NaN becomes zero, values beyond
     /// the range saturate.

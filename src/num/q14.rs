@@ -150,12 +150,12 @@ pub struct RampQ14 {
 }
 
 impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
-    type Fixed14 = super::On;
     type Geo = Geo16;
     type Ramp = RampQ14;
     const ZERO: Self = Self(0);
     const ONE: Self = Self(1 << FRAC);
     const MAX: Self = Self(RAW_MAX);
+    const FLOAT: bool = false;
     const NAME: &'static str = match NEWTON {
         0 => "Q14 (seed only)",
         1 => "Q14 (1 Newton)",

@@ -76,12 +76,12 @@ pub struct RampQ30 {
 }
 
 impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
-    type Fixed14 = super::Off;
     type Geo = Geo16;
     type Ramp = RampQ30;
     const ZERO: Self = Self(0);
     const ONE: Self = Self(1 << FRAC);
     const MAX: Self = Self(i32::MAX);
+    const FLOAT: bool = false;
     const NAME: &'static str = match NEWTON {
         0 => "Q30 (seed only)",
         1 => "Q30 (1 Newton)",

@@ -216,6 +216,7 @@ pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
 
 /// What every band renderer of a [`MeshDraw`] reads: the mesh, its frame's
 /// transform, shader, vertex cache and bins.
+#[derive(Clone)]
 struct Prepared<'a, K: Kernel, P: Projection> {
     mesh: Mesh<'a>,
     transform: MeshTransform<P>,
@@ -250,10 +251,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// (none given: checked when the mesh is drawn, before anything is
     /// drawn, unless it is drawn only through [`MeshDraw::share`]s);
     /// [`RenderError::MissingAttribute`] when the shader reads texture
-    /// coordinates or tangents the mesh lacks; [`RenderError::WorldLights`]
-    /// when its lighting's lights are in world coordinates, not seen through
-    /// the camera ([`Lighting::new`](crate::lighting::Lighting::new)). Nothing
-    /// is drawn then.
+    /// coordinates or tangents the mesh lacks. Nothing is drawn then.
     pub fn new(
         layout: Layout,
         mesh: Mesh<'a>,
@@ -437,7 +435,6 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             bins,
             carry,
         } = memory;
-        kernel.check()?;
         if K::NEEDS_TEXCOORD && mesh.texcoords().is_empty() {
             return Err(RenderError::MissingAttribute("texture coordinates"));
         }
@@ -518,7 +515,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     ///     {
     ///         let draw = &draw;
     ///         s.spawn(move || -> Result<(), fixshade::error::Error> {
-    ///             let mut mine = draw.share(carry)?;
+    ///             let mut mine = draw.share(carry);
     ///             let mut bands = Bands::new(layout, strip, Some(depth))?;
     ///             let mut display = fixshade::framebuffer::Checksum::new((240, 240).into());
     ///             bands.render_bands(&mut display, Rgb565::BLACK, &mut [&mut mine], half)?;
@@ -529,32 +526,21 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// # Ok::<(), fixshade::error::Error>(())
     /// ```
     ///
-    /// # Errors
-    ///
-    /// [`RenderError::BufferTooSmall`] for fewer records than
-    /// [`MeshDraw::carry_needed`].
-    pub fn share<'b>(&'b self, carry: &'b mut [Carry]) -> Result<MeshDraw<'b, K, P>, RenderError>
+    /// Too few records are refused when the share is drawn
+    /// ([`DrawBand::check`]: [`RenderError::BufferTooSmall`] before anything
+    /// is drawn).
+    #[inline(always)]
+    pub fn share<'b>(&'b self, carry: &'b mut [Carry]) -> MeshDraw<'b, K, P>
     where
         K: Clone,
     {
-        self.prep.check_carry(carry.len())?;
-        let p = &self.prep;
-        Ok(MeshDraw {
-            prep: Prepared {
-                mesh: p.mesh,
-                transform: p.transform,
-                kernel: p.kernel.clone(),
-                layout: p.layout,
-                cache: p.cache,
-                bins: p.bins,
-                refined: p.refined,
-                cull: p.cull,
-            },
+        MeshDraw {
+            prep: self.prep.clone(),
             progress: Progress {
                 carry,
                 ..Progress::default()
             },
-        })
+        }
     }
 
     /// What this frame's silhouette refinement produced (zeros without).

@@ -1,11 +1,12 @@
 //! Flat shading: one colour per triangle, lit at its centroid.
 
-use super::{eye_point, unit_normal, Encoder, FlatShading, Kernel, ModeState, Shader};
+use super::{eye_point, unit_normal, Encoder, Fill, FlatShading, Kernel, Mode, Shader};
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
 use crate::raster::ATTR_FRAC;
 
-impl<I: Illuminate, C> ModeState<I, C> for FlatShading {
+impl<I, C> Mode<I, C> for FlatShading {
+    const NAME: &'static str = "flat";
     type State = ();
     fn state(self, _: &I) {}
 }
@@ -33,7 +34,7 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
     type Vertex = [i16; 3];
     type Triangle = FlatTriangle<C>;
     const NEEDS_POSITION: bool = I::NEEDS_POSITION;
-    const FUSED_DEPTH: bool = true;
+    const FILLS: bool = true;
 
     #[inline]
     fn vertex(&self, v: &super::VertexIn) -> [i16; 3] {
@@ -72,21 +73,13 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
         (t, [[]; 3])
     }
 
+    /// One colour, unless the encoder depends on the position (dithering).
     #[inline(always)]
-    fn span_depth(
-        &self,
-        t: &FlatTriangle<C>,
-        _: (&[i32; 0], &[i32; 0]),
-        (x, y): (i32, i32),
-        z: (i32, i32),
-        color: &mut [C],
-        depth: &mut [u16],
-    ) {
+    fn fill(&self, t: &FlatTriangle<C>, _: &[i32; 0], _: &[i32; 0]) -> Fill<C> {
         if E::POSITIONAL {
-            let (enc, a) = (self.encoder, t.a);
-            super::fused_depth(z, color, depth, x, |x| enc.pixel(a, *x, y), |x| *x += 1);
+            Fill::Shaded
         } else {
-            fill_depth(t.color, z, color, depth);
+            Fill::Solid(t.color)
         }
     }
 
@@ -106,51 +99,6 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor + core::fmt::Debug> Kernel
             }
         } else {
             color.fill(t.color);
-        }
-    }
-}
-
-/// One colour with the depth test fused in
-/// ([`fused_depth`](super::fused_depth)): a pass that tests, writes the depth
-/// and the colour of a passing pixel.
-#[inline(never)]
-fn fill_depth<C: Copy>(c: C, z: (i32, i32), color: &mut [C], depth: &mut [u16]) {
-    super::fused_depth(z, color, depth, (), |_| c, |_| {});
-}
-
-#[cfg(test)]
-mod tests {
-    use super::fill_depth;
-    use crate::raster::ATTR_FRAC;
-
-    /// The fused loop writes the colour and the depth exactly where the
-    /// depth test passes: strictly nearer pixels, ties and farther ones in
-    /// stretches, rising and falling depths.
-    #[test]
-    fn fused_fill_writes_where_the_test_passes() {
-        for (case, dz) in [-70_000, -1, 0, 1, 3 << ATTR_FRAC, 123_457]
-            .into_iter()
-            .enumerate()
-        {
-            let z0: i32 = 30_000 << ATTR_FRAC;
-            let at = |k: usize| {
-                ((z0 as u32).wrapping_add((dz as u32).wrapping_mul(k as u32)) >> ATTR_FRAC) as i32
-            };
-            let mut depth: std::vec::Vec<u16> = (0..100)
-                .map(|k| (at(k) + ((k / 7 + case) % 3) as i32 - 1) as u16)
-                .collect();
-            let before = depth.clone();
-            let mut color = [0u8; 100];
-            fill_depth(9u8, (z0, dz), &mut color, &mut depth);
-            for k in 0..100 {
-                let pass = at(k) < i32::from(before[k]);
-                assert_eq!(color[k] == 9, pass, "case {case} pixel {k}");
-                assert_eq!(
-                    i32::from(depth[k]),
-                    if pass { at(k) } else { i32::from(before[k]) }
-                );
-            }
-            assert!(color.contains(&9) && color.contains(&0));
         }
     }
 }

@@ -1,11 +1,11 @@
 //! Incremental Phong shading: the Cortex-M0 fast path for directional lights and a
 //! viewer at infinity in the Q14 tier.
 
-use super::perpixel::{self, HasSources, PixelTriangle, Plain};
-use super::{IncrementalPhongShading, Kernel, Linear, ModeState, Shader};
+use super::perpixel::{self, Features, PixelTriangle, Sources};
+use super::{IncrementalPhongShading, Kernel, Linear, Mode, Shader};
 use crate::color::{OutputColor, Rgb};
-use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Specular};
-use crate::lighting::{DirectionalLight, DirectionalTerms, Illuminate};
+use crate::lighting::{BlinnPhong, Directional, Lambert, Model, Specular};
+use crate::lighting::{DirectionalTerms, Illuminate};
 use crate::num::rsqrt::rsqrt_q28_q14;
 use crate::num::wide::{mul_i32, mul_i64_u32, mul_u32};
 use crate::num::{Exponent, Scalar, Vec3, Q14};
@@ -16,16 +16,10 @@ pub trait IncrementalModel: Model {}
 impl IncrementalModel for Lambert {}
 impl IncrementalModel for BlinnPhong {}
 
-/// The lighting configurations [`IncrementalPhongShading`] accepts:
-/// `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>` (a viewer at infinity,
-/// no fog).
-pub(crate) type DirectionalLighting<const NW: u8, const K: usize, M> =
-    Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M, InfiniteViewer<Q14<NW>>, NoFog>;
-
 /// The precomputed constants of [`IncrementalPhongShading`] for `K` directional
 /// lights, a viewer at infinity and the [`Lambert`] or [`BlinnPhong`] model in the
 /// `Q14` tier. Per-pixel Phong shading computed incrementally along each span
-/// (the same images as [`GeneralPhongShading`](super::GeneralPhongShading) up to
+/// (the same images as [`PhongShading`](super::PhongShading) up to
 /// the error stated below, at a fraction of the cost on a Cortex-M0):
 ///
 /// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
@@ -46,7 +40,7 @@ pub(crate) type DirectionalLighting<const NW: u8, const K: usize, M> =
 /// (normals more than ~120° apart across a triangle), or whose `|N|²` changes
 /// by more than 1/8 from one pixel to the next (tiny triangles with very
 /// different vertex normals), falls back to the per-pixel lighting of
-/// [`GeneralPhongShading`](super::GeneralPhongShading) for that span: the result
+/// [`PhongShading`](super::PhongShading) for that span: the result
 /// stays within the bound, only the speed differs.
 ///
 /// Error against the `f64` reference: see the golden tests and `docs/tradeoff.md`.
@@ -57,8 +51,6 @@ pub struct IncrementalState<const K: usize> {
     /// (negative for a negative global ambient: pixels clamp at 0).
     base: [i32; 3],
     pow: PowTable,
-    /// Whether any light has a specular colour (Blinn-Phong).
-    pub(super) spec: bool,
 }
 
 /// One light's constants in the units of the span loop.
@@ -74,7 +66,8 @@ struct LightTerms {
     ks: [i32; 3],
 }
 
-/// The specular power table of this kernel and of the fast normal-map kernel: Q14.
+/// The specular power table of this kernel and of the incremental
+/// normal-map kernel: Q14.
 pub(super) type PowTable = crate::num::pow::PowTable<14>;
 
 /// A colour's channels (`C::linear_channels`) in channel units · 2^8 (from
@@ -94,12 +87,13 @@ fn q14v<S: Scalar>(v: Vec3<S>) -> [i32; 3] {
 }
 
 impl<const K: usize> IncrementalState<K> {
-    /// The constants for the lights `terms` (see [`Illuminate::directional`]).
-    pub(super) fn new<C: OutputColor, S: Scalar>(terms: [DirectionalTerms<S>; K]) -> Self {
+    /// The constants for the lights `terms` (the lighting's
+    /// prepared terms).
+    fn new<C: OutputColor, S: Scalar>(terms: [DirectionalTerms<S>; K]) -> Self {
         let first = terms.first();
         let lights = terms.map(|t| LightTerms {
             l: q14v(t.dir),
-            h: q14v(t.half),
+            h: q14v(t.half.unwrap_or(t.dir)),
             kd: channel_units::<C, S>(t.diffuse),
             ks: channel_units::<C, S>(t.specular),
         });
@@ -107,7 +101,6 @@ impl<const K: usize> IncrementalState<K> {
             lights,
             base: first.map_or([128; 3], |t| channel_units::<C, S>(t.base).map(|v| v + 128)),
             pow: PowTable::new(first.map_or(Exponent::ZERO, |t| t.shininess)),
-            spec: lights.iter().any(|l| l.ks != [0; 3]),
         }
     }
 
@@ -134,37 +127,26 @@ impl<const K: usize> IncrementalState<K> {
 }
 
 impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
-    ModeState<DirectionalLighting<NW, K, M>, C> for IncrementalPhongShading
+    Mode<Directional<Q14<NW>, K, M>, C> for IncrementalPhongShading
 {
+    const NAME: &'static str = "phong_inc";
     type State = IncrementalState<K>;
 
-    fn state(self, lighting: &DirectionalLighting<NW, K, M>) -> IncrementalState<K> {
-        IncrementalState::new::<C, Q14<NW>>(core::array::from_fn(|j| {
-            let light = &lighting.lights()[j];
-            let pre = light.prepared();
-            let d = light.direction();
-            DirectionalTerms {
-                dir: d,
-                half: pre.half.unwrap_or(d),
-                diffuse: pre.diffuse,
-                specular: pre.specular,
-                base: lighting.base(),
-                shininess: lighting.material().shininess,
-            }
-        }))
+    fn state(self, lighting: &Directional<Q14<NW>, K, M>) -> IncrementalState<K> {
+        IncrementalState::new::<C, Q14<NW>>(lighting.directional_terms())
     }
 }
 
 /// An incremental Phong shader for `K` directional lights.
 type Inc<'l, const NW: u8, const K: usize, M, E, C> =
-    Shader<'l, IncrementalPhongShading, DirectionalLighting<NW, K, M>, E, C>;
+    Shader<'l, IncrementalPhongShading, Directional<Q14<NW>, K, M>, E, C>;
 
 /// Shades one span with the incremental constants `st`, the general path of
 /// `lighting` where the span leaves the fast path's range; `a`/`d` are `[Nx,
 /// Ny, Nz, N·L₁, N·H₁, …]` (Q14 with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
 /// bits); `SPEC`: the Blinn-Phong term.
 #[allow(clippy::too_many_arguments)]
-pub(super) fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPEC: bool>(
+fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPEC: bool>(
     st_c: &IncrementalState<K>,
     lighting: &I,
     x: i32,
@@ -264,10 +246,11 @@ fn general<I: Illuminate, C: OutputColor>(
 ) {
     let g =
         |v: &[i32]| [0, 1, 2, 6, 6, 6].map(|i| v.get(i).copied().unwrap_or(0) * i32::from(i < 3));
-    perpixel::span::<Plain, _, _, C, false>(
+    perpixel::span(
+        (Features::PLAIN, false),
         lighting,
         &Linear,
-        &().get(),
+        &Sources::NONE,
         &PixelTriangle::default(),
         &g(a),
         &g(d),

@@ -2,23 +2,23 @@
 //! vertex data and the interpolated values — the span kernels of the
 //! pipeline, behind one trait, [`Kernel`].
 //!
-//! One [`Shader`] type, generic over the mode. A mode names *what* is shaded;
-//! the lighting decides *how* (the fastest kernel that serves it):
+//! One [`Shader`] type, generic over the mode. The mode the user writes
+//! names the kernel that runs, each in its own file:
 //!
-//! | mode | lit | interpolated per pixel | catches a highlight inside a triangle |
-//! |---|---|---|---|
-//! | [`FlatShading`] | once per triangle, at the centroid | nothing | no (one colour, Mach bands) |
-//! | [`GouraudShading`] | at the three vertices | encoded colour channels | no (misses or smears it) |
-//! | [`PhongShading`] | at every pixel: incrementally for a `Q14` lighting of one directional light (the kernel of [`IncrementalPhongShading`]), else with the full model ([`GeneralPhongShading`]) | normal (and position when the lighting needs it) | yes |
-//! | `GouraudShading.`[`textured`](GouraudShading::textured)`(…)` ([`Textured`]) | at the three vertices, primary and secondary colour apart | both colours and the texture coordinates | no (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
-//! | `PhongShading.`[`normal_mapped`](PhongShading::normal_mapped)`(…)` ([`NormalMapped`]) | at every pixel, with the normal of a [`NormalMap`](crate::texture::NormalMap) in the tangent frame (fast: Q14, one directional light) | normal and tangent (general) or `L`, `H` in tangent space (fast), texture coordinates | yes, and surface detail |
+//! | mode | kernel (file) | lit | interpolated per pixel | catches a highlight inside a triangle |
+//! |---|---|---|---|---|
+//! | [`FlatShading`] | `flat.rs` | once per triangle, at the centroid | nothing | no (one colour, Mach bands) |
+//! | [`GouraudShading`] | `gouraud.rs` | at the three vertices | encoded colour channels | no (misses or smears it) |
+//! | [`PhongShading`] | `phong.rs` | at every pixel with the full model: every tier, light kind and model | normal (and position when the lighting needs it) | yes |
+//! | [`IncrementalPhongShading`] | `incremental.rs` | at every pixel, incrementally: `Q14`, up to four directional lights, Lambert or Blinn-Phong (the Cortex-M0 fast path) | normal, `N·L`, `N·H` | yes |
+//! | [`QuadraticPhongShading`] | `quadratic.rs` | exactly at anchors 4–32 pixels apart, quadratically in between, the specular power per pixel: directional lights, Lambert, Blinn-Phong or Phong `R·V`, `Q14`, `f32`, `F32Fast` | normal, `N·L`, `N·H` | yes |
+//! | `GouraudShading.`[`textured`](GouraudShading::textured)`(…)`, `PhongShading.textured(…)` ([`Textured`]) | `textured.rs` | per vertex or per pixel, primary and secondary colour apart | colours or normal, texture coordinates | as the mode (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
+//! | `PhongShading.`[`normal_mapped`](PhongShading::normal_mapped)`(…)`, `IncrementalPhongShading.normal_mapped(…)` ([`NormalMapped`]) | `normal_mapped.rs` | at every pixel with the normal of a [`NormalMap`](crate::texture::NormalMap) in the tangent frame: the full model, or incrementally (`Q14`, one directional light) | normal and tangent, or `L`, `H` in tangent space; texture coordinates | yes, and surface detail |
 //!
-//! Kernels named explicitly: [`GeneralPhongShading`] (every tier, light and
-//! model), [`IncrementalPhongShading`] (Q14, up to four directional lights,
-//! Lambert or Blinn-Phong), [`QuadraticPhongShading`] (anchors 4–32 pixels
-//! apart, the colour quadratically in between, the specular power per pixel;
-//! Q14, `f32`, `F32Fast`; directional lights; Lambert, Blinn-Phong or Phong
-//! `R·V`).
+//! A mode that cannot shade a lighting does not compile with it (the
+//! incremental and quadratic kernels take directional lights only), and
+//! nothing chooses a kernel behind the user's back: the per-pixel modes share
+//! one core (`perpixel.rs`), each kernel is a plain `impl Kernel`.
 //!
 //! The reflection models ([`Lambert`](crate::lighting::Lambert),
 //! [`Phong`](crate::lighting::Phong), [`BlinnPhong`](crate::lighting::BlinnPhong))
@@ -35,21 +35,19 @@
 mod flat;
 mod gouraud;
 mod incremental;
-mod normalmap;
+mod normal_mapped;
 mod perpixel;
 mod phong;
 mod quadratic;
-mod segment;
 mod textured;
 
 pub use crate::color::{Dithered, Encoder, Linear};
 pub use incremental::IncrementalModel;
-pub use normalmap::NormalMapped;
+pub use normal_mapped::NormalMapped;
 pub use quadratic::QuadraticModel;
 pub use textured::Textured;
 
 use crate::color::OutputColor;
-use crate::error::RenderError;
 use crate::lighting::Illuminate;
 use crate::num::Scalar;
 use crate::num::{Point3, Vec3};
@@ -70,25 +68,18 @@ pub struct FlatShading;
 pub struct GouraudShading;
 
 /// Phong shading, per-pixel lighting: the vertex normals are interpolated
-/// across the triangle and every pixel is lit. Catches the highlight in the
-/// middle of a large triangle.
-///
-/// The lighting decides how: a `Q14` lighting of one directional light, a
-/// viewer at infinity and no fog, with the Lambert or Blinn-Phong model, gets
-/// the incremental kernel of [`IncrementalPhongShading`] (the Cortex-M0 fast
-/// path, within the general path's error bound); every other lighting gets
-/// [`GeneralPhongShading`]'s. Name either of those to choose explicitly.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PhongShading;
-
-/// Phong shading with the general kernel: the vertex normals are
-/// interpolated, renormalised per pixel with the tier's
+/// across the triangle, renormalised per pixel with the tier's
 /// [`Scalar::normalize_interpolated`], and every pixel is lit with the full
 /// lighting model, for every tier, light kind and model. When the lighting
 /// needs the surface position (point or spot lights, a local viewer, fog) the
-/// eye-space position is interpolated too.
+/// eye-space position is interpolated too. Catches the highlight in the
+/// middle of a large triangle.
+///
+/// For a `Q14` lighting of directional lights,
+/// [`IncrementalPhongShading`] gives the same pictures within the same error
+/// bound at a fraction of the cost on a Cortex-M0.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct GeneralPhongShading;
+pub struct PhongShading;
 
 /// Per-pixel Phong shading computed incrementally along each span: the Q14 fast
 /// path for directional lights and a viewer at infinity: the lighting is a
@@ -112,75 +103,44 @@ pub struct IncrementalPhongShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadraticPhongShading;
 
-/// The name of a shading mode in a shader's `Debug` output: sealed, not
-/// re-exported (issue 18).
-mod mode {
-    /// A shading mode: `FlatShading`, `GouraudShading`, `PhongShading`,
-    /// `GeneralPhongShading`, `IncrementalPhongShading`,
-    /// `QuadraticPhongShading`, or one of them `Textured` or `NormalMapped`.
-    pub trait Mode: Copy + core::fmt::Debug {
-        /// A short name for reports.
-        const NAME: &'static str;
-    }
-}
-pub(crate) use mode::Mode;
-
-/// [`Mode`] for each plain shading mode, with its name.
-macro_rules! mode_names {
-    ($($mode:ty => $name:literal),* $(,)?) => {$(
-        impl Mode for $mode {
-            const NAME: &'static str = $name;
-        }
-    )*};
-}
-mode_names!(
-    FlatShading => "flat",
-    GouraudShading => "gouraud",
-    PhongShading => "phong",
-    GeneralPhongShading => "phong_general",
-    IncrementalPhongShading => "phong_inc",
-    QuadraticPhongShading => "phong_quad",
-);
-
-/// A shader: a shading mode `M` with a lighting `I`, writing colours `C`
-/// through an encoder `E`.
-pub struct Shader<'l, M: ModeState<I, C>, I: Illuminate, E, C> {
-    pub(crate) lighting: &'l I,
-    pub(crate) encoder: E,
-    pub(crate) state: <M as ModeState<I, C>>::State,
-    color: PhantomData<(M, C)>,
-}
-
-impl<M: ModeState<I, C>, I: Illuminate, E, C> Shader<'_, M, I, E, C> {
-    /// [`Kernel::check`] of every shading mode: the lights are in eye
-    /// coordinates.
-    pub(crate) fn check_lights(&self) -> Result<(), RenderError> {
-        if self.lighting.lights_in_eye_space() {
-            Ok(())
-        } else {
-            Err(RenderError::WorldLights)
-        }
-    }
-}
-
-/// Per-mode constants a shader precomputes (the incremental mode's tables).
-pub trait ModeState<I: Illuminate, C> {
-    /// What is precomputed.
+/// A shading mode: what [`Shader::new`] takes — one of the modes above, or
+/// one of them [`textured`](GouraudShading::textured) or
+/// [`normal_mapped`](PhongShading::normal_mapped) — for a lighting `I` and
+/// output colour `C`, with what its shader precomputes.
+#[diagnostic::on_unimplemented(
+    message = "`{Self}` cannot shade with the lighting `{I}`",
+    label = "this shading mode",
+    note = "a lighting built by `Lighting::new` has its lights in world coordinates: draw with `lighting.viewed(camera.view())?` (or `.eye_space()` for lights given in eye coordinates)",
+    note = "`IncrementalPhongShading` takes `Lighting<Q14<_>, [DirectionalLight<Q14<_>>; K], Lambert or BlinnPhong>` (K = 1 to 4, a viewer at infinity, no fog); `QuadraticPhongShading` the same in `Q14`, `f32` or `F32Fast`, and `Phong`; `PhongShading`, `GouraudShading` and `FlatShading` take every lighting"
+)]
+pub trait Mode<I, C>: Copy {
+    /// A short name for reports.
+    const NAME: &'static str;
+    /// What the shader precomputes (the incremental kernel's tables, a
+    /// texture or normal map the mode carries).
     type State: Copy + core::fmt::Debug;
-    /// Precomputes it for `lighting` (the mode is a value: a texture or a
-    /// normal map it carries goes into the state).
+    /// Precomputes it for `lighting`.
     fn state(self, lighting: &I) -> Self::State;
 }
 
-impl<M: ModeState<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
+/// A shader: a shading mode `M` with a lighting `I`, writing colours `C`
+/// through an encoder `E`.
+pub struct Shader<'l, M: Mode<I, C>, I: Illuminate, E, C> {
+    pub(crate) lighting: &'l I,
+    pub(crate) encoder: E,
+    pub(crate) state: M::State,
+    color: PhantomData<(M, C)>,
+}
+
+impl<M: Mode<I, C>, I: Illuminate, E: Copy, C> Clone for Shader<'_, M, I, E, C> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<M: ModeState<I, C>, I: Illuminate, E: Copy, C> Copy for Shader<'_, M, I, E, C> {}
+impl<M: Mode<I, C>, I: Illuminate, E: Copy, C> Copy for Shader<'_, M, I, E, C> {}
 
-impl<M: Mode + ModeState<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt::Debug
+impl<M: Mode<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt::Debug
     for Shader<'_, M, I, E, C>
 {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -191,7 +151,7 @@ impl<M: Mode + ModeState<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt
     }
 }
 
-impl<'l, M: ModeState<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'l, M, I, E, C> {
+impl<'l, M: Mode<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'l, M, I, E, C> {
     /// A shader of mode `mode` lighting with `lighting`, writing pixels through
     /// `encoder`.
     pub fn new(mode: M, lighting: &'l I, encoder: E) -> Self {
@@ -258,7 +218,7 @@ impl VertexIn {
 /// pixels under a perspective projection).
 pub trait Kernel {
     /// The pixel colour written.
-    type Color: Copy;
+    type Color: OutputColor;
     /// What the vertex cache holds per vertex.
     type Vertex: Copy + Default + core::fmt::Debug;
     /// The values interpolated across a triangle: `[i32; N]`, each within
@@ -280,22 +240,12 @@ pub trait Kernel {
     /// Whether [`Kernel::vertex`] reads [`VertexIn::tangent`] (else the
     /// pipeline passes zeros and skips transforming the mesh's tangents).
     const NEEDS_TANGENT: bool = false;
-    /// Whether [`Kernel::span_depth`] fuses the depth test into the
-    /// kernel's own loop: the pipeline then hands it every screen-linear run
-    /// whole (values that need clamping clamped over the whole run); else it
-    /// splits runs at the depth test itself and calls [`Kernel::span`] per
-    /// passing run.
-    /// The default is `false`.
-    const FUSED_DEPTH: bool = false;
-
-    /// Whether the kernel can draw, checked once by
-    /// [`MeshDraw::new`](crate::render::MeshDraw::new) and
-    /// [`draw_triangle`](crate::render::draw_triangle) before anything is
-    /// drawn. A [`Shader`] refuses a lighting whose lights are in world
-    /// coordinates ([`RenderError::WorldLights`]); the default is `Ok`.
-    fn check(&self) -> Result<(), RenderError> {
-        Ok(())
-    }
+    /// Whether the span stage asks [`Kernel::fill`] how to write a whole
+    /// screen-linear run (its values clamped over the whole run where they
+    /// need it); else it splits runs at the depth test itself and calls
+    /// [`Kernel::span`] for each passing run, with that run's values. The
+    /// default is `false`.
+    const FILLS: bool = false;
 
     /// The payload of vertex `v`.
     fn vertex(&self, v: &VertexIn) -> Self::Vertex;
@@ -348,131 +298,48 @@ pub trait Kernel {
         out: &mut [Self::Color],
     );
 
-    /// Depth-tests and shades pixels `x..x + out.len()` of row `y` in one
-    /// call (`depth` is as long as `out`): pixel `k` has the depth
-    /// `(z.0 + k·z.1) >> ATTR_FRAC` (wrapping `u32` steps) and passes when
-    /// that is less than `depth[k]`, which then takes it; a passing pixel
-    /// gets the colour [`Kernel::span`] gives it with the values
-    /// `start + k·step`. The default splits the run at the depth test and
-    /// calls [`Kernel::span`] for each passing run; the Gouraud and flat
-    /// kernels fuse the test into their loops (one pass over the pixels
-    /// instead of two) and say so with [`Kernel::FUSED_DEPTH`].
+    /// How the span stage writes the run of `n` pixels whose values start at
+    /// `start` and step by `step` (asked when [`Kernel::FILLS`]): one colour,
+    /// a rounded 5-6-5 ramp, or [`Fill::Shaded`] (the default: the stage
+    /// depth-tests the run and calls [`Kernel::span`] for each passing part).
+    /// The first two the stage writes in its own loops, the depth test fused
+    /// in: one pass over the pixels instead of two.
     #[inline(always)]
-    fn span_depth(
-        &self,
-        t: &Self::Triangle,
-        (start, step): (&Self::Varyings, &Self::Varyings),
-        (x, y): (i32, i32),
-        z: (i32, i32),
-        out: &mut [Self::Color],
-        depth: &mut [u16],
-    ) {
-        use crate::raster::interp::get;
-        depth_runs(z.0, z.1, depth, |k0, k1| {
-            if let Some(c) = out.get_mut(k0..k1) {
-                let a = Self::Varyings::from_fn(|i| {
-                    get(start, i).wrapping_add(get(step, i).wrapping_mul(k0 as i32))
-                });
-                self.span(t, &a, step, x + k0 as i32, y, c);
-            }
-        });
+    fn fill(&self, t: &Self::Triangle, start: &Self::Varyings, step: &Self::Varyings) -> Fill<Self::Color> {
+        let _ = (t, start, step);
+        Fill::Shaded
     }
 }
 
-/// The fused loop of [`Kernel::span_depth`]: pixel `k` has depth
-/// `(z.0 + k·z.1) >> ATTR_FRAC` and, when that is less than `depth[k]`,
-/// takes it and gets the colour `pixel(&s)`; `step(&mut s)` moves the
-/// kernel's state `s` a pixel on, passing or not. One pass, few live values
-/// (the 5-6-5 Gouraud loop keeps its state in two registers).
+/// How the span stage writes a run of a kernel's pixels ([`Kernel::fill`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fill<C> {
+    /// Every pixel this colour.
+    Solid(C),
+    /// Rounded 5-6-5 Gouraud pixels from packed channel accumulators: red in
+    /// the high and blue in the low half of `rb`, 11 fraction bits each,
+    /// green in `g` (`g >> 23` is the channel); each steps by its `d…` per
+    /// pixel (wrapping). Pixel: `(rb >> 27) << 11 | (rb << 16) >> 27 | (g >> 23) << 5`.
+    Ramp565 {
+        /// Red and blue.
+        rb: u32,
+        /// Their step.
+        drb: u32,
+        /// Green.
+        g: u32,
+        /// Its step.
+        dg: u32,
+    },
+    /// The kernel's own colours: [`Kernel::span`] on each run of pixels that
+    /// pass the depth test.
+    Shaded,
+}
+
+/// The 5-6-5 pixel of packed red-blue `rb` and green `g` ([`Fill::Ramp565`]).
 #[inline(always)]
-pub(crate) fn fused_depth<C, S>(
-    z: (i32, i32),
-    color: &mut [C],
-    depth: &mut [u16],
-    mut s: S,
-    pixel: impl Fn(&S) -> C,
-    step: impl Fn(&mut S),
-) {
-    let (mut z, dz) = (z.0 as u32, z.1 as u32);
-    let n = color.len().min(depth.len());
-    let (Some(color), Some(depth)) = (color.get_mut(..n), depth.get_mut(..n)) else {
-        return;
-    };
-    for k in 0..n {
-        // below 2^16: the run's depths are in range (clamped where they needed it)
-        let zi = z >> crate::raster::ATTR_FRAC;
-        if zi < u32::from(depth[k]) {
-            depth[k] = zi as u16;
-            color[k] = pixel(&s);
-        }
-        // the values after the last pixel are not used: wrapping is harmless
-        z = z.wrapping_add(dz);
-        step(&mut s);
-        crate::num::no_unroll();
-    }
-}
-
-/// The depth test of the leading pixels of a run: pixel `k` has depth
-/// `(z + k·dz) >> 14` and passes when that is less than `depth[k]`, which then
-/// takes it. Stops at the first pixel that fails; returns how many passed.
-/// A loop of its own (few live values: no register spills on a Cortex-M0).
-#[inline(never)]
-pub(crate) fn depth_prefix(z: u32, dz: u32, depth: &mut [u16]) -> usize {
-    let mut z = z;
-    for (k, d) in depth.iter_mut().enumerate() {
-        let zi = (z >> crate::raster::ATTR_FRAC) as u16;
-        if zi >= *d {
-            return k;
-        }
-        *d = zi;
-        // the value after the last pixel is not used: wrapping is harmless
-        z = z.wrapping_add(dz);
-        crate::num::no_unroll();
-    }
-    depth.len()
-}
-
-/// How many leading pixels of a run fail the depth test (changing nothing).
-#[inline(never)]
-fn depth_fails(z: u32, dz: u32, depth: &[u16]) -> usize {
-    let mut z = z;
-    for (k, d) in depth.iter().enumerate() {
-        if ((z >> crate::raster::ATTR_FRAC) as u16) < *d {
-            return k;
-        }
-        z = z.wrapping_add(dz);
-        crate::num::no_unroll();
-    }
-    depth.len()
-}
-
-/// The depth test of a run, split from the shading: `shade(k0, k1)` is called
-/// for every maximal run `k0..k1` of passing pixels, in order (see
-/// [`depth_prefix`]). In the common case (every pixel passes) that is one
-/// depth loop and one call.
-#[inline(always)]
-pub(crate) fn depth_runs(z: i32, dz: i32, depth: &mut [u16], mut shade: impl FnMut(usize, usize)) {
-    let n = depth.len();
-    let dz = dz as u32;
-    let mut z = z as u32;
-    let mut k = 0;
-    while k < n {
-        let Some(rest) = depth.get_mut(k..) else {
-            return;
-        };
-        let m = depth_prefix(z, dz, rest);
-        if m > 0 {
-            shade(k, k + m);
-        }
-        k += m;
-        z = z.wrapping_add(dz.wrapping_mul(m as u32));
-        let Some(rest) = depth.get(k..) else {
-            return;
-        };
-        let f = depth_fails(z, dz, rest);
-        k += f;
-        z = z.wrapping_add(dz.wrapping_mul(f as u32));
-    }
+pub(crate) fn pixel565(rb: u32, g: u32) -> u16 {
+    // r = rb >> 27, b = bits 27..32 of rb << 16, g = g >> 23
+    (((rb >> 27) << 11) | ((rb << 16) >> 27) | ((g >> 23) << 5)) as u16
 }
 
 /// The range of the values of the kernels that interpolate the unit normal

@@ -1,15 +1,18 @@
-//! The general per-pixel kernel: every pixel lit with the full lighting model,
-//! for every tier, light kind and model, any [`Encoder`]. One loop serves
-//! plain per-pixel Phong, normal mapping, a colour texture and both: the
-//! surface's features ([`Surface`]) decide which values are interpolated and
-//! what a pixel reads.
+//! The per-pixel core: every pixel lit with the full lighting model, for
+//! every tier, light kind and model, any [`Encoder`]. One loop serves
+//! [`PhongShading`](super::PhongShading), its normal-mapped and textured forms
+//! and both: the surface's [`Features`] (constants of each kernel) decide
+//! which values are interpolated and what a pixel reads. Each mode's
+//! `Kernel` is written in its own file ([`phong`](super::phong),
+//! [`normal_mapped`](super::normal_mapped), [`textured`](super::textured))
+//! by [`per_pixel_kernel!`] over the functions here.
 //!
 //! The values interpolated, in this order (only what the surface has):
 //! the normal (3, Q14), the texture coordinates (2, Q12), the tangent (3,
 //! Q14; normal maps), the eye-space position (3, see [`Positions`]; when the
 //! lighting reads it).
 
-use super::{eye_point, unit_q14, Encoder, Kernel, Mode, ModeState, Shader, VertexIn};
+use super::{eye_point, unit_q14, Encoder, VertexIn};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::{Illuminate, LitColor};
 use crate::num::{Point3, Scalar, Vec3};
@@ -74,18 +77,47 @@ pub struct PixelTriangle {
     hand: i32,
 }
 
-/// What a per-pixel surface has: a normal map (`MAP`), a colour texture
-/// (`TEX`). Implemented by [`Plain`], [`Mapped`], [`Tex`], [`MappedTex`].
-pub trait Surface {
-    /// A normal map: the tangent and handedness are carried.
-    const MAP: bool;
-    /// A colour texture (`texel × primary + secondary`).
-    const TEX: bool;
-    /// The vertex payload: normal, then (texture) coordinates, then (map)
-    /// tangent and handedness, Q14 / Q12.
-    type Vertex: Copy + Default + core::fmt::Debug + AsRef<[i16]> + AsMut<[i16]>;
-    /// The values interpolated (see the module docs).
-    type Varyings: Varyings;
+/// What a per-pixel surface has: a normal map (the tangent and handedness
+/// are carried), a colour texture (`texel × primary + secondary`). A
+/// constant of each kernel: the branches on it fold away.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Features {
+    pub map: bool,
+    pub tex: bool,
+}
+
+impl Features {
+    /// Lit per pixel with nothing else (payload 3, values 6).
+    pub const PLAIN: Features = Features {
+        map: false,
+        tex: false,
+    };
+    /// A colour texture (payload 5, values 8).
+    pub const TEX: Features = Features {
+        map: false,
+        tex: true,
+    };
+    /// A normal map (payload 9, values 11).
+    pub const MAPPED: Features = Features {
+        map: true,
+        tex: false,
+    };
+    /// A normal map and a colour texture (payload 9, values 11).
+    pub const MAPPED_TEX: Features = Features {
+        map: true,
+        tex: true,
+    };
+
+    /// Where the position starts.
+    const fn position(self) -> usize {
+        3 + if self.map || self.tex { 2 } else { 0 } + if self.map { 3 } else { 0 }
+    }
+
+    /// How many values are interpolated (`pos`: the lighting reads the
+    /// position).
+    pub const fn used(self, pos: bool) -> usize {
+        self.position() + if pos { 3 } else { 0 }
+    }
 }
 
 /// Where the texture coordinates start.
@@ -94,68 +126,27 @@ const UV: usize = 3;
 /// Where the tangent starts.
 const TANGENT: usize = 5;
 
-/// Where the position starts on surface `F`.
-const fn position<F: Surface>() -> usize {
-    3 + if F::MAP || F::TEX { 2 } else { 0 } + if F::MAP { 3 } else { 0 }
-}
-
-/// How many values are interpolated on surface `F` under lighting `I`.
-pub(crate) const fn used<F: Surface, I: Illuminate>() -> usize {
-    position::<F>() + if I::NEEDS_POSITION { 3 } else { 0 }
-}
-
-/// A surface lit per pixel with nothing else.
-#[derive(Clone, Copy, Debug)]
-pub enum Plain {}
-/// A normal-mapped surface.
-#[derive(Clone, Copy, Debug)]
-pub enum Mapped {}
-/// A colour-textured surface.
-#[derive(Clone, Copy, Debug)]
-pub enum Tex {}
-/// A normal-mapped, colour-textured surface.
-#[derive(Clone, Copy, Debug)]
-pub enum MappedTex {}
-
-/// [`Surface`] for each surface: its features (map, texture) and the sizes
-/// of its vertex payload and of its values.
-macro_rules! surfaces {
-    ($($s:ty => ($map:literal, $tex:literal, $vertex:literal, $values:literal)),* $(,)?) => {$(
-        impl Surface for $s {
-            const MAP: bool = $map;
-            const TEX: bool = $tex;
-            type Vertex = [i16; $vertex];
-            type Varyings = [i32; $values];
-        }
-    )*};
-}
-surfaces!(
-    Plain => (false, false, 3, 6),
-    Tex => (false, true, 5, 8),
-    Mapped => (true, false, 9, 11),
-    MappedTex => (true, true, 9, 11),
-);
-
 /// Clamps an `i32` to `i16`.
 #[inline]
 pub(crate) fn sat16(v: i32) -> i16 {
     v.clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16
 }
 
-/// The payload of vertex `v` on surface `F`.
+/// The payload of vertex `v` on surface `f`: the unit normal (Q14), then
+/// the texture coordinates (Q12), then the unit tangent and the handedness.
 #[inline]
-pub(crate) fn vertex<F: Surface>(v: &VertexIn) -> F::Vertex {
-    let mut out = F::Vertex::default();
+pub(crate) fn vertex<V: Default + AsMut<[i16]>>(f: Features, v: &VertexIn) -> V {
+    let mut out = V::default();
     let o = out.as_mut();
     let n = unit_q14(v.normal);
     o.iter_mut().zip(n).for_each(|(o, n)| *o = n);
-    if F::MAP || F::TEX {
+    if f.map || f.tex {
         if let Some(uv) = o.get_mut(UV..UV + 2) {
             uv[0] = sat16(v.uv[0]);
             uv[1] = sat16(v.uv[1]);
         }
     }
-    if F::MAP {
+    if f.map {
         let t = unit_q14([v.tangent[0], v.tangent[1], v.tangent[2]]);
         if let Some(tt) = o.get_mut(TANGENT..TANGENT + 4) {
             tt[..3].copy_from_slice(&t);
@@ -176,24 +167,26 @@ fn majority(h: [i32; 3]) -> i32 {
     }
 }
 
-/// The triangle of payloads `v` and eye positions `eye` on surface `F` (the
-/// positions when `POS`) and the values at its corners.
+/// The triangle of payloads `v` and eye positions `eye` on surface `f` (the
+/// positions when `pos`) and the values at its corners.
 #[inline(always)]
-pub(crate) fn triangle<F: Surface, const POS: bool>(
-    v: [&F::Vertex; 3],
+pub(crate) fn triangle<V: AsRef<[i16]>, A: Varyings>(
+    f: Features,
+    pos: bool,
+    v: [&V; 3],
     eye: &[[i32; 3]; 3],
-) -> (PixelTriangle, [F::Varyings; 3]) {
-    let (pos, p) = if POS {
+) -> (PixelTriangle, [A; 3]) {
+    let (pos, p) = if pos {
         Positions::new(eye)
     } else {
         (Positions::default(), [[0; 3]; 3])
     };
     // (each corner by a constant index or by value: an index taken from an
     // array inside the closure kept a bounds check, a panic path, in the frame)
-    let at = |vk: &F::Vertex, i: usize| vk.as_ref().get(i).copied().map_or(0, i32::from);
-    let pp = position::<F>();
-    let corner = |vk: &F::Vertex, pk: [i32; 3]| {
-        F::Varyings::from_fn(|i| {
+    let at = |vk: &V, i: usize| vk.as_ref().get(i).copied().map_or(0, i32::from);
+    let pp = f.position();
+    let corner = |vk: &V, pk: [i32; 3]| {
+        A::from_fn(|i| {
             if i < pp {
                 at(vk, i)
             } else {
@@ -204,7 +197,7 @@ pub(crate) fn triangle<F: Surface, const POS: bool>(
     let [v0, v1, v2] = v;
     let [p0, p1, p2] = p;
     let var = [corner(v0, p0), corner(v1, p1), corner(v2, p2)];
-    let hand = if F::MAP {
+    let hand = if f.map {
         majority([v0, v1, v2].map(|vk| at(vk, TANGENT + 3)))
     } else {
         1
@@ -215,9 +208,9 @@ pub(crate) fn triangle<F: Surface, const POS: bool>(
 /// The range of value `i`: the normal and the tangent within [−1, 1] in Q14
 /// (Q28 with [`ATTR_FRAC`] bits), the others anywhere.
 #[inline(always)]
-pub(crate) fn safe<F: Surface>(i: usize) -> (i32, i32) {
+pub(crate) fn safe(f: Features, i: usize) -> (i32, i32) {
     let one = 1 << (14 + ATTR_FRAC);
-    let unit = i < UV || (F::MAP && (TANGENT..TANGENT + 3).contains(&i));
+    let unit = i < UV || (f.map && (TANGENT..TANGENT + 3).contains(&i));
     if unit {
         (-one, one)
     } else {
@@ -304,54 +297,19 @@ pub struct Sources<'m, 't> {
     pub(crate) tex: Option<TextureBinding<'t>>,
 }
 
+impl Sources<'_, '_> {
+    /// Nothing sampled.
+    pub(crate) const NONE: Sources<'static, 'static> = Sources {
+        map: None,
+        tex: None,
+    };
+}
+
 /// Whether value `i` is a texture coordinate (interpolated exactly: see
-/// [`Kernel::exact`]).
+/// [`Kernel::exact`](super::Kernel::exact)).
 #[inline(always)]
-pub(crate) fn exact<F: Surface>(i: usize) -> bool {
-    (F::MAP || F::TEX) && (UV..UV + 2).contains(&i)
-}
-
-/// What a mode's shader holds of its [`Sources`] (`()`: nothing).
-#[doc(hidden)]
-pub trait HasSources: Copy + core::fmt::Debug {
-    /// The sources.
-    fn get(&self) -> Sources<'_, '_>;
-}
-
-impl HasSources for () {
-    #[inline(always)]
-    fn get(&self) -> Sources<'_, '_> {
-        Sources {
-            map: None,
-            tex: None,
-        }
-    }
-}
-
-impl HasSources for Sources<'_, '_> {
-    #[inline(always)]
-    fn get(&self) -> Sources<'_, '_> {
-        *self
-    }
-}
-
-/// A mode whose shader is the general per-pixel kernel (see the module docs):
-/// its surface and what it samples.
-#[doc(hidden)]
-pub trait GeneralSurface: Mode {
-    /// The surface's features.
-    type Features: Surface;
-    /// What the shader holds.
-    type Sources: HasSources;
-    /// The maps it samples.
-    fn sources(self) -> Self::Sources;
-}
-
-impl<M: GeneralSurface, I: Illuminate, C> ModeState<I, C> for M {
-    type State = M::Sources;
-    fn state(self, _: &I) -> M::Sources {
-        self.sources()
-    }
+pub(crate) fn exact(f: Features, i: usize) -> bool {
+    (f.map || f.tex) && (UV..UV + 2).contains(&i)
 }
 
 /// The normal `T·mx + B·my + N·mz` of map texel `m` (Q14) in the frame of
@@ -375,26 +333,27 @@ fn perturb<S: Scalar>(n: Vec3<S>, t: Vec3<S>, hand: i32, m: [i16; 3]) -> Vec3<S>
     t.scale(mx).add(b.scale(my)).add(n.scale(mz))
 }
 
-/// Shades a span on surface `F` (the positions when `POS`): values `a`
+/// Shades a span on surface `f` (the positions when `pos`): values `a`
 /// stepping by `d`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn span<F: Surface, I: Illuminate, E: Encoder<C>, C: OutputColor, const POS: bool>(
+pub(crate) fn span<A: Varyings, I: Illuminate, E: Encoder<C>, C: OutputColor>(
+    (f, pos): (Features, bool),
     lighting: &I,
     encoder: &E,
     src: &Sources<'_, '_>,
     t: &PixelTriangle,
-    a: &F::Varyings,
-    d: &F::Varyings,
+    a: &A,
+    d: &A,
     x: i32,
     y: i32,
     out: &mut [C],
 ) {
     let repeat = src.map.is_none_or(|m| m.wrap() == Wrap::Repeat);
     if repeat {
-        run::<F, I, E, C, POS, true>(lighting, encoder, src, t, *a, d, x, y, out)
+        run::<A, I, E, C, true>((f, pos), lighting, encoder, src, t, *a, d, x, y, out)
     } else {
-        run::<F, I, E, C, POS, false>(lighting, encoder, src, t, *a, d, x, y, out)
+        run::<A, I, E, C, false>((f, pos), lighting, encoder, src, t, *a, d, x, y, out)
     }
 }
 
@@ -402,32 +361,26 @@ pub(crate) fn span<F: Surface, I: Illuminate, E: Encoder<C>, C: OutputColor, con
 /// clamped).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn run<
-    F: Surface,
-    I: Illuminate,
-    E: Encoder<C>,
-    C: OutputColor,
-    const POS: bool,
-    const REPEAT: bool,
->(
+fn run<A: Varyings, I: Illuminate, E: Encoder<C>, C: OutputColor, const REPEAT: bool>(
+    (f, pos): (Features, bool),
     lighting: &I,
     encoder: &E,
     src: &Sources<'_, '_>,
     t: &PixelTriangle,
-    mut a: F::Varyings,
-    d: &F::Varyings,
+    mut a: A,
+    d: &A,
     x: i32,
     y: i32,
     out: &mut [C],
 ) {
     type S<I> = <I as Illuminate>::Scalar;
-    let n_used = position::<F>() + if POS { 3 } else { 0 };
-    let map = if F::MAP {
+    let n_used = f.used(pos);
+    let map = if f.map {
         src.map.map(|m| m.nearest(UV_FRAC))
     } else {
         None
     };
-    let tex = if F::TEX { src.tex } else { None };
+    let tex = if f.tex { src.tex } else { None };
     for (x, c) in (x..).zip(out.iter_mut()) {
         let v = a.values();
         let at = |i: usize| v.get(i).copied().unwrap_or(0);
@@ -445,8 +398,8 @@ fn run<
             n = perturb(n, q(TANGENT), t.hand, m.get::<REPEAT>(u, w));
         }
         let n = S::<I>::normalize_interpolated(n);
-        let pos: Point3<S<I>> = if POS {
-            let p = position::<F>();
+        let p: Point3<S<I>> = if pos {
+            let p = f.position();
             eye_point::<S<I>>(t.pos.at([at(p), at(p + 1), at(p + 2)]))
         } else {
             eye_point::<S<I>>([0; 3])
@@ -457,9 +410,9 @@ fn run<
                     u: u >> (UV_FRAC - TEX_FRAC),
                     v: w >> (UV_FRAC - TEX_FRAC),
                 };
-                b.modulate(encoder, lighting.shade_parts(&pos, n, None), tc, x, y)
+                b.modulate(encoder, lighting.shade_parts(&p, n, None), tc, x, y)
             }
-            None => encoder.encode(lighting.shade(&pos, n), x, y),
+            None => encoder.encode(lighting.shade(&p, n), x, y),
         };
         // the values after the last pixel are not used: wrapping is harmless
         for (a, d) in a.values_mut().iter_mut().zip(d.values()).take(n_used) {
@@ -469,85 +422,64 @@ fn run<
     }
 }
 
-impl<M, I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, M, I, E, C>
-where
-    M: GeneralSurface,
-{
-    type Color = C;
-    type Vertex = <M::Features as Surface>::Vertex;
-    type Varyings = <M::Features as Surface>::Varyings;
-    type Triangle = PixelTriangle;
-    const USED: usize = used::<M::Features, I>();
-    fn check(&self) -> Result<(), crate::error::RenderError> {
-        self.check_lights()
-    }
-    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
-    const NEEDS_TEXCOORD: bool = M::Features::MAP || M::Features::TEX;
-    const NEEDS_TANGENT: bool = M::Features::MAP;
+/// The `Kernel` of a per-pixel mode over this core: `Shader<'_, $mode, I, E,
+/// C>` with the surface's [`Features`], its payload and value counts, and the
+/// [`Sources`] of its shader's state (`|state| sources`).
+macro_rules! per_pixel_kernel {
+    ([$($g:lifetime),*] $mode:ty, $features:expr, [i16; $v:literal], [i32; $n:literal], |$st:ident| $sources:expr) => {
+        impl<$($g,)* I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
+            for Shader<'_, $mode, I, E, C>
+        {
+            type Color = C;
+            type Vertex = [i16; $v];
+            type Varyings = [i32; $n];
+            type Triangle = PixelTriangle;
+            const USED: usize = $features.used(I::NEEDS_POSITION);
+            const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+            const NEEDS_TEXCOORD: bool = $features.map || $features.tex;
+            const NEEDS_TANGENT: bool = $features.map;
 
-    #[inline]
-    fn vertex(&self, v: &VertexIn) -> Self::Vertex {
-        vertex::<M::Features>(v)
-    }
+            #[inline]
+            fn vertex(&self, v: &VertexIn) -> [i16; $v] {
+                perpixel::vertex($features, v)
+            }
 
-    #[inline(always)]
-    fn triangle(
-        &self,
-        v: [&Self::Vertex; 3],
-        eye: &[[i32; 3]; 3],
-    ) -> (PixelTriangle, [Self::Varyings; 3]) {
-        if I::NEEDS_POSITION {
-            triangle::<M::Features, true>(v, eye)
-        } else {
-            triangle::<M::Features, false>(v, eye)
+            #[inline(always)]
+            fn triangle(
+                &self,
+                v: [&[i16; $v]; 3],
+                eye: &[[i32; 3]; 3],
+            ) -> (PixelTriangle, [[i32; $n]; 3]) {
+                perpixel::triangle($features, I::NEEDS_POSITION, v, eye)
+            }
+
+            #[inline(always)]
+            fn safe(&self, i: usize) -> (i32, i32) {
+                perpixel::safe($features, i)
+            }
+
+            /// The texture coordinates.
+            #[inline(always)]
+            fn exact(&self, i: usize) -> bool {
+                perpixel::exact($features, i)
+            }
+
+            #[inline(always)]
+            fn span(
+                &self,
+                t: &PixelTriangle,
+                a: &[i32; $n],
+                d: &[i32; $n],
+                x: i32,
+                y: i32,
+                out: &mut [C],
+            ) {
+                let $st = &self.state;
+                let src: Sources<'_, '_> = $sources;
+                let mode = ($features, I::NEEDS_POSITION);
+                perpixel::span(mode, self.lighting, &self.encoder, &src, t, a, d, x, y, out)
+            }
         }
-    }
-
-    #[inline(always)]
-    fn safe(&self, i: usize) -> (i32, i32) {
-        safe::<M::Features>(i)
-    }
-
-    /// The texture coordinates.
-    #[inline(always)]
-    fn exact(&self, i: usize) -> bool {
-        exact::<M::Features>(i)
-    }
-
-    #[inline(always)]
-    fn span(
-        &self,
-        t: &PixelTriangle,
-        a: &Self::Varyings,
-        d: &Self::Varyings,
-        x: i32,
-        y: i32,
-        out: &mut [C],
-    ) {
-        if I::NEEDS_POSITION {
-            span::<M::Features, I, E, C, true>(
-                self.lighting,
-                &self.encoder,
-                &self.state.get(),
-                t,
-                a,
-                d,
-                x,
-                y,
-                out,
-            )
-        } else {
-            span::<M::Features, I, E, C, false>(
-                self.lighting,
-                &self.encoder,
-                &self.state.get(),
-                t,
-                a,
-                d,
-                x,
-                y,
-                out,
-            )
-        }
-    }
+    };
 }
+pub(crate) use per_pixel_kernel;

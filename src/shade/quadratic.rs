@@ -4,20 +4,16 @@
 #![allow(clippy::needless_range_loop)]
 
 mod probe;
+mod segment;
 
-use super::segment::{
-    self, DiffuseTable, EncodeSink, Fast565Sink, PowTable, Probe, Walk, DFRAC, U_ONE,
-};
-use super::{Encoder, Kernel, ModeState, QuadraticPhongShading, Shader};
+use super::{Encoder, Kernel, Mode, QuadraticPhongShading, Shader};
 use crate::color::{OutputColor, Rgb};
-use crate::lighting::DirectionalLight;
-use crate::lighting::{
-    BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog, Phong, Specular,
-};
+use crate::lighting::{BlinnPhong, Directional, Illuminate, Lambert, Model, Phong, Specular};
 use crate::num::Vec3;
-use crate::num::{Exponent, F32Fast, Scalar, Q14};
+use crate::num::{Exponent, Scalar, Q14};
 use crate::raster::ATTR_FRAC;
 use probe::{F32Probe, Q14Probe};
+use segment::{DiffuseTable, EncodeSink, Fast565Sink, PowTable, Probe, Walk, DFRAC, U_ONE};
 
 /// The reflection models [`QuadraticPhongShading`] evaluates: [`Lambert`],
 /// [`BlinnPhong`] and [`Phong`] (`R·V`). Brilliance, the Fresnel factor and
@@ -26,30 +22,6 @@ pub trait QuadraticModel: Model {}
 impl QuadraticModel for Lambert {}
 impl QuadraticModel for BlinnPhong {}
 impl QuadraticModel for Phong {}
-
-/// The number tiers [`QuadraticPhongShading`] works in: the `Q14` tiers
-/// (anchors in 32-bit integer arithmetic, the Cortex-M0 path) and `f32`,
-/// [`F32Fast`] (anchors in `f32`, the Cortex-M4F path). The per-pixel work is
-/// integer arithmetic in every tier. Crate-internal: implemented for exactly
-/// these tiers, not re-exported (issue 18).
-pub trait QuadraticTier: Scalar {
-    /// Whether the anchors are evaluated in `f32`.
-    const FLOAT: bool;
-}
-impl<const NW: u8> QuadraticTier for Q14<NW> {
-    const FLOAT: bool = false;
-}
-impl QuadraticTier for f32 {
-    const FLOAT: bool = true;
-}
-impl<const NW: u8> QuadraticTier for F32Fast<NW> {
-    const FLOAT: bool = true;
-}
-
-/// The lighting configurations [`QuadraticPhongShading`] accepts: `K`
-/// directional lights, a viewer at infinity, no fog, in tier `S`.
-pub(crate) type QuadraticLighting<S, const K: usize, M> =
-    Lighting<S, [DirectionalLight<S>; K], M, InfiniteViewer<S>, NoFog>;
 
 /// The error budget of the interpolated ambient + diffuse colour, in 8-bit
 /// steps of the output.
@@ -299,29 +271,26 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
     st
 }
 
-impl<S: QuadraticTier, const K: usize, M: QuadraticModel, C: OutputColor>
-    ModeState<QuadraticLighting<S, K, M>, C> for QuadraticPhongShading
+impl<S: Scalar, const K: usize, M: QuadraticModel, C: OutputColor> Mode<Directional<S, K, M>, C>
+    for QuadraticPhongShading
 {
+    const NAME: &'static str = "phong_quad";
     type State = QuadraticState<K>;
 
-    fn state(self, lighting: &QuadraticLighting<S, K, M>) -> QuadraticState<K> {
+    fn state(self, lighting: &Directional<S, K, M>) -> QuadraticState<K> {
         let v = [0.0, 0.0, 1.0];
-        let lights = lighting.lights();
+        let terms = lighting.directional_terms();
         let desc = Desc {
-            base: lighting.base().to_f32(),
-            kd: core::array::from_fn(|k| lights[k].prepared().diffuse.to_f32()),
-            ks: core::array::from_fn(|k| lights[k].prepared().specular.to_f32()),
-            l: core::array::from_fn(|k| lights[k].direction().to_f32()),
-            h: core::array::from_fn(|k| match M::SPECULAR {
+            base: lighting.lighting().base().to_f32(),
+            kd: terms.map(|t| t.diffuse.to_f32()),
+            ks: terms.map(|t| t.specular.to_f32()),
+            l: terms.map(|t| t.dir.to_f32()),
+            h: terms.map(|t| match M::SPECULAR {
                 Specular::Phong => v,
-                _ => lights[k]
-                    .prepared()
-                    .half
-                    .map(|h| h.to_f32())
-                    .unwrap_or([0.0; 3]),
+                _ => t.half.map(|h| h.to_f32()).unwrap_or([0.0; 3]),
             }),
             v,
-            n: lighting.material().shininess,
+            n: lighting.lighting().material().shininess,
             specular: M::SPECULAR,
         };
         state::<K, C>(&desc)
@@ -330,14 +299,12 @@ impl<S: QuadraticTier, const K: usize, M: QuadraticModel, C: OutputColor>
 
 // ---- the shader ------------------------------------------------------------------
 
-/// An incremental Phong shader for `K` directional lights in tier `S`.
-type Inc<'l, S, const K: usize, M, E, C> =
-    Shader<'l, QuadraticPhongShading, QuadraticLighting<S, K, M>, E, C>;
+/// A quadratic Phong shader for `K` directional lights in tier `S`.
+type Quad<'l, S, const K: usize, M, E, C> =
+    Shader<'l, QuadraticPhongShading, Directional<S, K, M>, E, C>;
 
-impl<S: QuadraticTier, const K: usize, M: QuadraticModel, E: Encoder<C>, C: OutputColor>
-    Inc<'_, S, K, M, E, C>
-where
-    QuadraticPhongShading: ModeState<QuadraticLighting<S, K, M>, C, State = QuadraticState<K>>,
+impl<S: Scalar, const K: usize, M: QuadraticModel, E: Encoder<C>, C: OutputColor>
+    Quad<'_, S, K, M, E, C>
 {
     /// The general path's colour of pixel `k` of a span (the normal interpolated
     /// and normalised in the tier, the full lighting).
@@ -345,7 +312,7 @@ where
     fn general(&self, x: i32, y: i32, start: &[i32], step: &[i32], k: usize) -> C {
         let a = |i: usize| S::from_attr(start[i].wrapping_add((k as i32).wrapping_mul(step[i])));
         let n = S::normalize_interpolated(Vec3::new(a(0), a(1), a(2)));
-        let p = QuadraticLighting::<S, K, M>::origin();
+        let p = crate::num::point_from_f32::<S>([0.0; 3]);
         self.encoder
             .encode(self.lighting.shade(&p, n), x + k as i32, y)
     }
@@ -457,8 +424,8 @@ where
 /// The `Kernel` for `K` lights, with `N = 3 + 2K` values.
 macro_rules! quadratic_lights {
     ($($k:literal => $n:literal),*) => {$(
-        impl<S: QuadraticTier, M: QuadraticModel, E: Encoder<C>, C: OutputColor> Kernel
-            for Inc<'_, S, $k, M, E, C>
+        impl<S: Scalar, M: QuadraticModel, E: Encoder<C>, C: OutputColor> Kernel
+            for Quad<'_, S, $k, M, E, C>
         {
             super::normal_kernel_items!($n);
             /// The normal, then `N·L` and `N·H` (or `N·V`) per light (Q14).

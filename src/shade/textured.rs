@@ -1,9 +1,9 @@
 //! Textured Gouraud shading (see [`Textured`]).
 
-use super::normalmap::NormalMapped;
-use super::perpixel::{GeneralSurface, MappedTex, Sources, Tex, TextureBinding};
-use super::{eye_point, unit_normal, Encoder, GouraudShading, Kernel, Mode, ModeState, Shader};
-use super::{GeneralPhongShading, PhongShading, VertexIn};
+use super::normal_mapped::NormalMapped;
+use super::perpixel::{self, per_pixel_kernel, Features, PixelTriangle, Sources, TextureBinding};
+use super::{eye_point, unit_normal, Encoder, GouraudShading, Kernel, Mode, Shader};
+use super::{PhongShading, VertexIn};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::Illuminate;
 use crate::raster::ATTR_FRAC;
@@ -56,10 +56,6 @@ pub struct Textured<'t, M> {
     filter: Filter,
 }
 
-impl<'t, M: Mode> Mode for Textured<'t, M> {
-    const NAME: &'static str = "textured";
-}
-
 /// `textured` on the modes a colour texture composes with.
 macro_rules! textured {
     ($($(#[$doc:meta])* $mode:ty;)*) => {$(
@@ -81,56 +77,56 @@ textured! {
     /// `filter` (see [`Textured`]).
     GouraudShading;
     /// Per-pixel lighting with the colour texture `texture`, sampled with
-    /// `filter` (see [`Textured`]): the general kernel.
-    PhongShading;
-    /// Per-pixel lighting with the colour texture `texture`, sampled with
     /// `filter` (see [`Textured`]).
-    GeneralPhongShading;
-    /// Normal-mapped per-pixel lighting with the colour texture `texture`,
-    /// sampled with `filter` (see [`Textured`]): the general kernel.
-    NormalMapped<'m, PhongShading>;
+    PhongShading;
     /// Normal-mapped per-pixel lighting with the colour texture `texture`,
     /// sampled with `filter` (see [`Textured`]).
-    NormalMapped<'m, GeneralPhongShading>;
+    NormalMapped<'m, PhongShading>;
 }
 
-/// A textured per-pixel mode's surface.
-macro_rules! textured_surface {
-    ($([$($g:lifetime),*] $mode:ty => $features:ty, $ml:lifetime, |$s:ident| $map:expr;)*) => {$(
-        impl<'t, $($g),*> GeneralSurface for Textured<'t, $mode> {
-            type Features = $features;
-            type Sources = Sources<$ml, 't>;
-            fn sources(self) -> Sources<$ml, 't> {
-                let $s = self.mode;
-                Sources {
-                    map: $map,
-                    tex: Some(TextureBinding {
-                        texture: self.texture,
-                        filter: self.filter,
-                    }),
-                }
-            }
-        }
-    )*};
-}
-
-textured_surface! {
-    [] PhongShading => Tex, 'static, |_m| None;
-    [] GeneralPhongShading => Tex, 'static, |_m| None;
-    ['m] NormalMapped<'m, PhongShading> => MappedTex, 'm, |m| Some(m.map);
-    ['m] NormalMapped<'m, GeneralPhongShading> => MappedTex, 'm, |m| Some(m.map);
-}
-
-impl<'t, I: Illuminate, C> ModeState<I, C> for Textured<'t, GouraudShading> {
-    type State = TextureBinding<'t>;
-    fn state(self, _: &I) -> TextureBinding<'t> {
-        let _ = self.mode;
+impl<'t, M> Textured<'t, M> {
+    /// The texture and filter.
+    fn binding(self) -> TextureBinding<'t> {
         TextureBinding {
             texture: self.texture,
             filter: self.filter,
         }
     }
 }
+
+impl<'t, I, C> Mode<I, C> for Textured<'t, GouraudShading> {
+    const NAME: &'static str = "textured";
+    type State = TextureBinding<'t>;
+    fn state(self, _: &I) -> TextureBinding<'t> {
+        self.binding()
+    }
+}
+
+impl<'t, I, C> Mode<I, C> for Textured<'t, PhongShading> {
+    const NAME: &'static str = "textured_phong";
+    type State = TextureBinding<'t>;
+    fn state(self, _: &I) -> TextureBinding<'t> {
+        self.binding()
+    }
+}
+
+per_pixel_kernel!(['t] Textured<'t, PhongShading>, Features::TEX, [i16; 5], [i32; 8], |b| Sources {
+    map: None,
+    tex: Some(*b),
+});
+
+impl<'t, 'm, I, C> Mode<I, C> for Textured<'t, NormalMapped<'m, PhongShading>> {
+    const NAME: &'static str = "textured_normal_mapped";
+    type State = Sources<'m, 't>;
+    fn state(self, _: &I) -> Sources<'m, 't> {
+        Sources {
+            map: Some(self.mode.map),
+            tex: Some(self.binding()),
+        }
+    }
+}
+
+per_pixel_kernel!(['t, 'm] Textured<'t, NormalMapped<'m, PhongShading>>, Features::MAPPED_TEX, [i16; 9], [i32; 11], |s| *s);
 
 /// What the vertex cache holds per vertex for a [`Textured`] Gouraud shader: the
 /// encoded primary colour (without the encoder's rounding offset), the encoded

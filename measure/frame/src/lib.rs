@@ -30,7 +30,7 @@ use fixshade::render::{
     bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, MeshDraw,
     MeshMemory, Refine, RefineBuffers, RenderError,
 };
-use fixshade::shade::{GeneralPhongShading, Kernel};
+use fixshade::shade::Kernel;
 use fixshade::standard;
 
 /// The sphere's mesh view, validated at compile time (`MeshData::mesh` called
@@ -302,7 +302,7 @@ where
     K: Kernel<Color = Rgb565> + Clone,
     D: DrawTarget<Color = Rgb565>,
 {
-    let mut mine = draw.share(carry)?;
+    let mut mine = draw.share(carry);
     let mut b = Bands::new(BANDED, color, Some(depth))?;
     b.render_bands(display, Rgb565::BLACK, &mut [&mut mine], bands)
         .map_err(Fail::from)
@@ -316,7 +316,7 @@ const BANDED: Layout = match Layout::banded(W as u32, W as u32, BAND_ROWS as u32
 
 /// The lighting of `blinn_phong_inc`: one directional light in an array, as
 /// `IncrementalPhongShading` requires.
-pub fn inc_lighting() -> Result<Lighting<Q14, [Dir; 1], BlinnPhong>, ParamError> {
+pub fn inc_lighting() -> Result<Viewed<Lighting<Q14, [Dir; 1], BlinnPhong>>, ParamError> {
     Ok(
         Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
             [standard::light()?],
@@ -458,29 +458,29 @@ type Dir = DirectionalLight<Q14>;
 type DirF = DirectionalLight<f32>;
 
 configs! {
-    lambert_gouraud: [u16; 3], Lighting<Q14, Dir, Lambert>, GouraudShading
+    lambert_gouraud: [u16; 3], Viewed<Lighting<Q14, Dir, Lambert>>, GouraudShading
         = standard::lambert::<Q14>(), GouraudShading => draw_full, draw_bands;
-    blinn_gouraud: [u16; 3], Lighting<Q14, Dir, BlinnPhong>, GouraudShading
+    blinn_gouraud: [u16; 3], Viewed<Lighting<Q14, Dir, BlinnPhong>>, GouraudShading
         = standard::blinn::<Q14>(), GouraudShading => draw_full, draw_bands;
-    blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>, GeneralPhongShading
-        = standard::blinn::<Q14>(), GeneralPhongShading => draw_full, draw_bands;
-    blinn_phong_inc: [i16; 3], Lighting<Q14, [Dir; 1], BlinnPhong>, IncrementalPhongShading
+    blinn_phong: [i16; 3], Viewed<Lighting<Q14, Dir, BlinnPhong>>, PhongShading
+        = standard::blinn::<Q14>(), PhongShading => draw_full, draw_bands;
+    blinn_phong_inc: [i16; 3], Viewed<Lighting<Q14, [Dir; 1], BlinnPhong>>, IncrementalPhongShading
         = inc_lighting(), IncrementalPhongShading => draw_full, draw_bands;
-    flat: [i16; 3], Lighting<Q14, Dir, Lambert>, FlatShading
+    flat: [i16; 3], Viewed<Lighting<Q14, Dir, Lambert>>, FlatShading
         = standard::lambert::<Q14>(), FlatShading => draw_full, draw_bands;
-    lambert_gouraud_refine: [u16; 3], Lighting<Q14, Dir, Lambert>, GouraudShading
+    lambert_gouraud_refine: [u16; 3], Viewed<Lighting<Q14, Dir, Lambert>>, GouraudShading
         = standard::lambert::<Q14>(), GouraudShading => draw_full_refine, draw_bands_refine;
     // the f32 tier: the RISC-V image and the host reference only (the Arm images stay as they were)
     #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
-    lambert_gouraud_f32: [u16; 3], Lighting<f32, DirF, Lambert>, GouraudShading
+    lambert_gouraud_f32: [u16; 3], Viewed<Lighting<f32, DirF, Lambert>>, GouraudShading
         = standard::lambert::<f32>(), GouraudShading => draw_full, draw_bands;
     #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
-    blinn_gouraud_f32: [u16; 3], Lighting<f32, DirF, BlinnPhong>, GouraudShading
+    blinn_gouraud_f32: [u16; 3], Viewed<Lighting<f32, DirF, BlinnPhong>>, GouraudShading
         = standard::blinn::<f32>(), GouraudShading => draw_full, draw_bands;
     #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
-    blinn_phong_f32: [i16; 3], Lighting<f32, DirF, BlinnPhong>, PhongShading
+    blinn_phong_f32: [i16; 3], Viewed<Lighting<f32, DirF, BlinnPhong>>, PhongShading
         = standard::blinn::<f32>(), PhongShading => draw_full, draw_bands;
     #[cfg(any(target_arch = "riscv32", not(target_os = "none")))]
-    flat_f32: [i16; 3], Lighting<f32, DirF, Lambert>, FlatShading
+    flat_f32: [i16; 3], Viewed<Lighting<f32, DirF, Lambert>>, FlatShading
         = standard::lambert::<f32>(), FlatShading => draw_full, draw_bands;
 }

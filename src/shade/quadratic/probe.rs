@@ -5,7 +5,7 @@
 // the probes index several per-light and per-channel arrays at once
 #![allow(clippy::needless_range_loop)]
 
-use super::super::segment::{self, Anchor, Probe, DFRAC};
+use super::segment::{self, Anchor, Probe, DFRAC};
 use super::{Coeffs, QuadraticModel, QuadraticState};
 use crate::lighting::Specular;
 use crate::num::rsqrt::{newton_f32, newton_q15, rsqrt_micromath, rsqrt_q15};

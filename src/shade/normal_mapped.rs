@@ -1,45 +1,43 @@
 //! Normal-mapped Phong shading: per-pixel lighting with the normal of a
 //! [`NormalMap`] in the tangent frame of the surface.
 
-use super::incremental::{channel_units, PowTable};
-use super::perpixel::UV_FRAC;
-use super::perpixel::{self, sat16, GeneralSurface, Mapped, PixelTriangle, Sources};
-use super::{unit_q14, Encoder, GeneralPhongShading, Kernel, Mode, ModeState};
-use super::{PhongShading, Shader, VertexIn};
+use super::incremental::{channel_units, IncrementalModel, PowTable};
+use super::perpixel::{self, per_pixel_kernel, sat16, Features, PixelTriangle, Sources, UV_FRAC};
+use super::{unit_q14, Encoder, IncrementalPhongShading, Kernel, Mode, PhongShading, Shader};
+use super::VertexIn;
 use crate::color::OutputColor;
-use crate::lighting::{DirectionalTerms, Illuminate};
+use crate::lighting::{Directional, DirectionalTerms, Illuminate};
 use crate::num::rsqrt::inv_len_q14;
-use crate::num::{Flag, Off, On, Scalar, Vec3};
-use crate::raster::interp::Varyings;
+use crate::num::{Scalar, Vec3, Q14};
 use crate::texture::{Nearest, NormalMap, Wrap};
 
 /// A per-pixel mode with surface detail from a normal map (made by
-/// [`PhongShading::normal_mapped`] or [`GeneralPhongShading::normal_mapped`]):
-/// per-pixel lighting with the normal of a [`NormalMap`] in the surface's
-/// tangent frame. The mesh needs texture coordinates and tangents
-/// ([`Kernel::NEEDS_TEXCOORD`], [`Kernel::NEEDS_TANGENT`]).
+/// [`PhongShading::normal_mapped`] or
+/// [`IncrementalPhongShading::normal_mapped`]): per-pixel lighting with the
+/// normal of a [`NormalMap`] in the surface's tangent frame. The mesh needs
+/// texture coordinates and tangents ([`Kernel::NEEDS_TEXCOORD`],
+/// [`Kernel::NEEDS_TANGENT`]).
 ///
-/// Two kernels; [`PhongShading`] lets the lighting choose, as for plain
-/// per-pixel lighting ([`GeneralPhongShading`] always takes the general one):
-/// - **general**: every tier, light kind and model, any [`Encoder`]. The
-///   normal and the tangent are interpolated (and the position when the
-///   lighting needs it); per pixel `N' = T·nx + B·ny + N·nz`
+/// Two kernels, named by the mode they extend:
+/// - `PhongShading.normal_mapped(map)`: every tier, light kind and model, any
+///   [`Encoder`]. The normal and the tangent are interpolated (and the
+///   position when the lighting needs it); per pixel `N' = T·nx + B·ny + N·nz`
 ///   (`B = w · N × T`) is renormalised with
 ///   [`Scalar::normalize_interpolated`] and lit with the full model. A map of
-///   the flat normal gives exactly the plain kernel's pixels.
-/// - **fast** (`Q14`, one directional light, a viewer at infinity, no fog,
-///   Lambert or Blinn-Phong): `L` and `H` are transformed into the tangent
-///   frame per vertex and interpolated; per pixel the texel (a Q14 unit
-///   normal, used as stored), `n·L` and `n·H` as three multiply-adds each,
-///   both divided by the length of the interpolated `L` and `H` (`1/|L|`,
-///   `1/|H|` by one Newton step each from the previous pixel's value, `|L|²`,
-///   `|H|²` by forward differences, exact at every span start),
-///   `(n·H)^shininess` from the power table of [`IncrementalPhongShading`](super::IncrementalPhongShading),
-///   the colour accumulated in output channel units (rounded like
-///   [`Linear`](super::Linear)). Spans whose interpolated `L` or `H` is
-///   shorter than ½, or changes length by more than 2^-4 per pixel, take an
-///   exact inverse square root per pixel (same result within the bound,
-///   slower).
+///   the flat normal gives exactly [`PhongShading`]'s pixels.
+/// - `IncrementalPhongShading.normal_mapped(map)` (`Q14`, one directional
+///   light in an array, a viewer at infinity, no fog, Lambert or
+///   Blinn-Phong): `L` and `H` are transformed into the tangent frame per
+///   vertex and interpolated; per pixel the texel (a Q14 unit normal, used as
+///   stored), `n·L` and `n·H` as three multiply-adds each, both divided by
+///   the length of the interpolated `L` and `H` (`1/|L|`, `1/|H|` by one
+///   Newton step each from the previous pixel's value, `|L|²`, `|H|²` by
+///   forward differences, exact at every span start), `(n·H)^shininess` from
+///   the power table of [`IncrementalPhongShading`], the colour accumulated
+///   in output channel units (rounded like [`Linear`](super::Linear)). Spans
+///   whose interpolated `L` or `H` is shorter than ½, or changes length by
+///   more than 2^-4 per pixel, take an exact inverse square root per pixel
+///   (same result within the bound, slower).
 ///
 /// Texture coordinates are interpolated like every other value (screen-linear
 /// or perspective-correct: [`crate::raster::interp`]); the map is sampled at
@@ -51,37 +49,34 @@ pub struct NormalMapped<'m, M> {
     pub(super) map: NormalMap<'m>,
 }
 
-impl<M: Mode> Mode for NormalMapped<'_, M> {
-    const NAME: &'static str = "normal_mapped";
-}
-
 impl PhongShading {
-    /// Per-pixel lighting with the normals of `map` (see [`NormalMapped`]);
-    /// the lighting picks the kernel.
+    /// Per-pixel lighting with the normals of `map` (see [`NormalMapped`]).
     pub fn normal_mapped(self, map: NormalMap<'_>) -> NormalMapped<'_, Self> {
         NormalMapped { mode: self, map }
     }
 }
 
-impl GeneralPhongShading {
-    /// Per-pixel lighting with the normals of `map`, the general kernel (see
+impl IncrementalPhongShading {
+    /// Incremental per-pixel lighting with the normals of `map` (see
     /// [`NormalMapped`]).
     pub fn normal_mapped(self, map: NormalMap<'_>) -> NormalMapped<'_, Self> {
         NormalMapped { mode: self, map }
     }
 }
 
-impl<'m> GeneralSurface for NormalMapped<'m, GeneralPhongShading> {
-    type Features = Mapped;
-    type Sources = Sources<'m, 'static>;
-    fn sources(self) -> Sources<'m, 'static> {
+impl<'m, I, C> Mode<I, C> for NormalMapped<'m, PhongShading> {
+    const NAME: &'static str = "normal_mapped";
+    type State = NormalMap<'m>;
+    fn state(self, _: &I) -> NormalMap<'m> {
         let _ = self.mode;
-        Sources {
-            map: Some(self.map),
-            tex: None,
-        }
+        self.map
     }
 }
+
+per_pixel_kernel!(['m] NormalMapped<'m, PhongShading>, Features::MAPPED, [i16; 9], [i32; 11], |m| Sources {
+    map: Some(*m),
+    tex: None,
+});
 
 // ---- the fast Q14 path ------------------------------------------------------------
 
@@ -190,7 +185,7 @@ impl<'m> FastNormal<'m> {
         FastNormal {
             map,
             l: q14(t.dir),
-            h: q14(t.half),
+            h: q14(t.half.unwrap_or(t.dir)),
             kd: channel_units::<C, S>(t.diffuse),
             ks,
             base: channel_units::<C, S>(t.base).map(|v| v + 128),
@@ -338,224 +333,56 @@ struct Span<'m> {
     dds: [i32; 2],
 }
 
-/// How a [`NormalMapped`] [`PhongShading`] shader lights the pixels of a
-/// lighting `I`: the general kernel ([`Off`]) or the fast one ([`On`]).
-#[doc(hidden)]
-#[diagnostic::on_unimplemented(
-    message = "`PhongShading::normal_mapped` cannot choose a kernel for the lighting `{I}`",
-    note = "every `Lighting` of this crate is served; a lighting of your own implements `Illuminate` with `type Fast = fixshade::num::Off`"
-)]
-pub trait NormalMapPath<'m, I: Illuminate, C: OutputColor>: Flag {
-    /// The values interpolated.
-    type Varyings: Varyings;
-    /// What the shader precomputes.
-    type State: Copy + core::fmt::Debug;
-    /// How many values are used.
-    const USED: usize;
-    /// Precomputes it.
-    fn state(lighting: &I, map: NormalMap<'m>) -> Self::State;
-    /// The payload of a vertex.
-    fn vertex(state: &Self::State, v: &VertexIn) -> [i16; 9];
-    /// The triangle.
-    fn triangle(v: [&[i16; 9]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [Self::Varyings; 3]);
-    /// Shades a span.
-    #[allow(clippy::too_many_arguments)]
-    fn span<E: Encoder<C>>(
-        state: &Self::State,
-        lighting: &I,
-        encoder: &E,
-        t: &PixelTriangle,
-        a: &Self::Varyings,
-        d: &Self::Varyings,
-        x: i32,
-        y: i32,
-        out: &mut [C],
-    );
-}
-
-impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for Off {
-    type Varyings = [i32; 11];
-    type State = Sources<'m, 'static>;
-    const USED: usize = perpixel::used::<Mapped, I>();
-    fn state(_: &I, map: NormalMap<'m>) -> Self::State {
-        Sources {
-            map: Some(map),
-            tex: None,
-        }
-    }
-    #[inline]
-    fn vertex(_: &Self::State, v: &VertexIn) -> [i16; 9] {
-        perpixel::vertex::<Mapped>(v)
-    }
-    fn triangle(v: [&[i16; 9]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [[i32; 11]; 3]) {
-        if I::NEEDS_POSITION {
-            perpixel::triangle::<Mapped, true>(v, eye)
-        } else {
-            perpixel::triangle::<Mapped, false>(v, eye)
-        }
-    }
-    fn span<E: Encoder<C>>(
-        src: &Self::State,
-        lighting: &I,
-        encoder: &E,
-        t: &PixelTriangle,
-        a: &[i32; 11],
-        d: &[i32; 11],
-        x: i32,
-        y: i32,
-        out: &mut [C],
-    ) {
-        if I::NEEDS_POSITION {
-            perpixel::span::<Mapped, I, E, C, true>(lighting, encoder, src, t, a, d, x, y, out)
-        } else {
-            perpixel::span::<Mapped, I, E, C, false>(lighting, encoder, src, t, a, d, x, y, out)
-        }
-    }
-}
-
-/// The fast kernel's constants, or the map alone for a lighting whose model
-/// the fast kernel does not evaluate (then the general pixel, from the
-/// interpolated normal, tangent and handedness carried in the payload).
-// one per shader, no allocation: the size of the fast constants is the point
-#[allow(clippy::large_enum_variant)]
-#[derive(Clone, Copy, Debug)]
-pub enum FastNormalState<'m> {
-    /// The fast kernel.
-    Fast(FastNormal<'m>),
-    /// The general kernel.
-    General(NormalMap<'m>),
-}
-
-impl<'m, I: Illuminate, C: OutputColor> NormalMapPath<'m, I, C> for On {
-    /// `L` (Q14), `u`, `v` (Q12), `H` (Q14) in the tangent frame for the fast
-    /// kernel; the general kernel's first 8 values otherwise.
-    type Varyings = [i32; 8];
-    type State = FastNormalState<'m>;
-    const USED: usize = 8;
-    fn state(lighting: &I, map: NormalMap<'m>) -> FastNormalState<'m> {
-        match lighting.directional() {
-            Some(t) => FastNormalState::Fast(FastNormal::new::<C, I::Scalar>(&t, map)),
-            None => FastNormalState::General(map),
-        }
-    }
-    #[inline]
-    fn vertex(state: &FastNormalState<'m>, v: &VertexIn) -> [i16; 9] {
-        match state {
-            FastNormalState::Fast(f) => f.payload(v),
-            FastNormalState::General(_) => perpixel::vertex::<Mapped>(v),
-        }
-    }
-    fn triangle(v: [&[i16; 9]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [[i32; 8]; 3]) {
-        // a directional lighting reads no position
-        let (t, var) = perpixel::triangle::<Mapped, false>(v, eye);
-        (t, var.map(|a| core::array::from_fn(|i| a[i])))
-    }
-    fn span<E: Encoder<C>>(
-        state: &FastNormalState<'m>,
-        lighting: &I,
-        encoder: &E,
-        t: &PixelTriangle,
-        a: &[i32; 8],
-        d: &[i32; 8],
-        x: i32,
-        y: i32,
-        out: &mut [C],
-    ) {
-        match state {
-            FastNormalState::Fast(f) => {
-                // Q28 → Q24
-                let lh = |v: &[i32; 8]| [0, 1, 2, 5, 6, 7].map(|i| v[i] >> 4);
-                f.shade_run(lh(a), lh(d), [a[3], a[4]], [d[3], d[4]], out)
-            }
-            FastNormalState::General(map) => {
-                let wide = |v: &[i32; 8]| core::array::from_fn(|i| v.get(i).copied().unwrap_or(0));
-                let src = Sources {
-                    map: Some(*map),
-                    tex: None,
-                };
-                perpixel::span::<Mapped, I, E, C, false>(
-                    lighting,
-                    encoder,
-                    &src,
-                    t,
-                    &wide(a),
-                    &wide(d),
-                    x,
-                    y,
-                    out,
-                )
-            }
-        }
-    }
-}
-
-impl<'m, I: Illuminate, C: OutputColor> ModeState<I, C> for NormalMapped<'m, PhongShading>
-where
-    I::Fast: NormalMapPath<'m, I, C>,
+impl<'m, const NW: u8, M: IncrementalModel, C: OutputColor> Mode<Directional<Q14<NW>, 1, M>, C>
+    for NormalMapped<'m, IncrementalPhongShading>
 {
-    type State = <I::Fast as NormalMapPath<'m, I, C>>::State;
-    fn state(self, lighting: &I) -> Self::State {
-        <I::Fast as NormalMapPath<'m, I, C>>::state(lighting, self.map)
+    const NAME: &'static str = "normal_mapped_inc";
+    type State = FastNormal<'m>;
+    fn state(self, lighting: &Directional<Q14<NW>, 1, M>) -> FastNormal<'m> {
+        let _ = self.mode;
+        let [t] = lighting.directional_terms();
+        FastNormal::new::<C, Q14<NW>>(&t, self.map)
     }
 }
 
-impl<'m, I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel
-    for Shader<'_, NormalMapped<'m, PhongShading>, I, E, C>
-where
-    I::Fast: NormalMapPath<'m, I, C>,
+impl<'m, const NW: u8, M: IncrementalModel, E: Encoder<C>, C: OutputColor> Kernel
+    for Shader<'_, NormalMapped<'m, IncrementalPhongShading>, Directional<Q14<NW>, 1, M>, E, C>
 {
     type Color = C;
+    /// `L` (Q14), `u`, `v` (Q12), `H` (Q14) in the tangent frame, in the
+    /// places of the general kernel's normal, coordinates and tangent.
     type Vertex = [i16; 9];
-    type Varyings = <I::Fast as NormalMapPath<'m, I, C>>::Varyings;
+    /// `L`, `u`, `v`, `H`.
+    type Varyings = [i32; 8];
     type Triangle = PixelTriangle;
-    const USED: usize = <I::Fast as NormalMapPath<'m, I, C>>::USED;
-    const NEEDS_POSITION: bool = I::NEEDS_POSITION;
+    const NEEDS_POSITION: bool = false;
     const NEEDS_TEXCOORD: bool = true;
     const NEEDS_TANGENT: bool = true;
 
     #[inline]
     fn vertex(&self, v: &VertexIn) -> [i16; 9] {
-        <I::Fast as NormalMapPath<'m, I, C>>::vertex(&self.state, v)
+        self.state.payload(v)
     }
 
-    fn triangle(
-        &self,
-        v: [&[i16; 9]; 3],
-        eye: &[[i32; 3]; 3],
-    ) -> (PixelTriangle, [Self::Varyings; 3]) {
-        <I::Fast as NormalMapPath<'m, I, C>>::triangle(v, eye)
+    fn triangle(&self, v: [&[i16; 9]; 3], eye: &[[i32; 3]; 3]) -> (PixelTriangle, [[i32; 8]; 3]) {
+        perpixel::triangle(Features::MAPPED, false, v, eye)
     }
 
     #[inline(always)]
     fn safe(&self, i: usize) -> (i32, i32) {
-        perpixel::safe::<Mapped>(i)
+        perpixel::safe(Features::MAPPED, i)
     }
 
-    /// The texture coordinates (in both kernels' layouts).
+    /// The texture coordinates.
     #[inline(always)]
     fn exact(&self, i: usize) -> bool {
-        perpixel::exact::<Mapped>(i)
+        perpixel::exact(Features::MAPPED, i)
     }
 
-    fn span(
-        &self,
-        t: &PixelTriangle,
-        a: &Self::Varyings,
-        d: &Self::Varyings,
-        x: i32,
-        y: i32,
-        out: &mut [C],
-    ) {
-        <I::Fast as NormalMapPath<'m, I, C>>::span(
-            &self.state,
-            self.lighting,
-            &self.encoder,
-            t,
-            a,
-            d,
-            x,
-            y,
-            out,
-        )
+    fn span(&self, _: &PixelTriangle, a: &[i32; 8], d: &[i32; 8], _: i32, _: i32, out: &mut [C]) {
+        // Q28 → Q24
+        let lh = |v: &[i32; 8]| [0, 1, 2, 5, 6, 7].map(|i| v[i] >> 4);
+        self.state
+            .shade_run(lh(a), lh(d), [a[3], a[4]], [d[3], d[4]], out)
     }
 }

@@ -1,4 +1,4 @@
-//! The span engine of [`QuadraticPhongShading`](super::QuadraticPhongShading):
+//! The span engine of [`QuadraticPhongShading`](crate::shade::QuadraticPhongShading):
 //! re-anchored quadratic interpolation of the lit colour along a span.
 //!
 //! A span of `n` pixels is cut into segments of `h = 2^j` pixels. At the two
