@@ -11,7 +11,7 @@
 //!
 //! ```
 //! use fixshade::error::{Error, RenderError};
-//! use fixshade::render::Layout;
+//! use fixshade::framebuffer::Layout;
 //! fn frame() -> Result<(), Error> {
 //!     let _layout = Layout::banded(0, 240, 8)?; // a RenderError, converted
 //!     Ok(())
@@ -220,7 +220,8 @@ pub(crate) fn direction(name: &'static str, v: [f32; 3]) -> Result<[f32; 3], Par
 /// error is returned, except where a function documents otherwise.
 ///
 /// ```
-/// use fixshade::mesh::{face_normals, MeshError};
+/// use fixshade::mesh::face_normals;
+/// use fixshade::error::MeshError;
 /// let pos = [[0.0f32; 3]; 3];
 /// let mut out = [[0.0f32; 3]; 1];
 /// let err = face_normals(&pos, &[[0, 1, 3]], &mut out).unwrap_err();
@@ -375,7 +376,7 @@ impl core::error::Error for TextureError {}
 ///
 /// ```
 /// use fixshade::error::RenderError;
-/// use fixshade::render::{Bands, Layout};
+/// use fixshade::framebuffer::{Bands, Layout};
 /// use embedded_graphics_core::pixelcolor::Rgb565;
 /// let layout = Layout::banded(240, 240, 8)?;
 /// let mut strip = [Rgb565::new(0, 0, 0); 240 * 4];

@@ -136,11 +136,13 @@ pub mod texture;
 /// The types most programs need, for `use fixshade::prelude::*`.
 pub mod prelude {
     pub use crate::camera::{
-        Angle, Camera, FixedCamera, Mat4, MeshTransform, Orthographic, Perspective, Pose, Viewport,
+        Angle, Camera, FixedCamera, MeshTransform, Orthographic, Perspective, Pose, Viewport,
     };
+    pub use crate::color::{Dithered, Linear};
     pub use crate::color::{GammaTable, OutputColor, Rgb, Transfer};
     pub use crate::error::{Error, ParamError};
     pub use crate::framebuffer::Checksum;
+    pub use crate::framebuffer::{Bands, FullFrame, Layout};
     pub use crate::lighting::{AmbientSource, Material, MaterialDesc};
     pub use crate::lighting::{
         AnyLight, Attenuation, DirectionalLight, LightColors, PointLight, SpotLight,
@@ -150,13 +152,14 @@ pub mod prelude {
         NoFog, Phong, Terms, Viewed,
     };
     pub use crate::mesh::{uv_sphere_counts, Mesh, MeshData};
+    pub use crate::num::Mat4;
     pub use crate::num::Vec3;
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
     pub use crate::raster::Cull;
-    pub use crate::render::{bins_len, Bands, FullFrame, Layout, MeshBuffers, MeshDraw};
+    pub use crate::render::{bins_len, MeshBuffers, MeshDraw};
     pub use crate::shade::{
-        Dithered, FlatShading, GouraudShading, IncrementalPhongShading, Kernel, Linear,
-        PhongShading, QuadraticPhongShading, Shader,
+        FlatShading, GouraudShading, IncrementalPhongShading, Kernel, PhongShading,
+        QuadraticPhongShading, Shader,
     };
     pub use embedded_graphics_core::geometry::Size;
     pub use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888, RgbColor};

@@ -10,14 +10,15 @@
 //! (0.08, 0.01, 0.01), diffuse (0.8, 0.1, 0.1), specular white, shininess 32;
 //! depth test on; back faces culled.
 
+use crate::camera::Viewport;
 use crate::camera::{Camera, FixedCamera, MeshTransform, Orthographic, Pose};
-use crate::camera::{Mat4, Viewport};
 use crate::color::Rgb;
 use crate::error::ParamError;
 use crate::lighting::{BlinnPhong, InfiniteViewer, Lambert, Lighting, Model, NoFog};
 use crate::lighting::{DirectionalLight, LightColors, Viewed};
 use crate::lighting::{Material, MaterialDesc};
 use crate::mesh::{uv_sphere_counts, MeshData};
+use crate::num::Mat4;
 use crate::num::Scalar;
 
 /// Frame width and height.
@@ -82,18 +83,21 @@ pub fn light<S: Scalar>() -> Result<DirectionalLight<S>, ParamError> {
 /// ([`Lighting::eye_space`]): the camera's view is a translation, which
 /// leaves a directional light's direction as it is, so the frame needs no
 /// per-frame `Lighting::viewed`.
-pub fn blinn<S: Scalar>() -> Result<Viewed<Lighting<S, DirectionalLight<S>, BlinnPhong>>, ParamError> {
+pub fn blinn<S: Scalar>() -> Result<Viewed<Lighting<S, DirectionalLight<S>, BlinnPhong>>, ParamError>
+{
     lighting()
 }
 
 /// The lighting without specular (ambient + Lambert diffuse; no global
 /// ambient light; the light in eye coordinates, as [`blinn`]'s).
-pub fn lambert<S: Scalar>() -> Result<Viewed<Lighting<S, DirectionalLight<S>, Lambert>>, ParamError> {
+pub fn lambert<S: Scalar>() -> Result<Viewed<Lighting<S, DirectionalLight<S>, Lambert>>, ParamError>
+{
     lighting()
 }
 
 /// The scene's light and material with model `M`, built once.
-fn lighting<S: Scalar, M: Model>() -> Result<Viewed<Lighting<S, DirectionalLight<S>, M>>, ParamError> {
+fn lighting<S: Scalar, M: Model>() -> Result<Viewed<Lighting<S, DirectionalLight<S>, M>>, ParamError>
+{
     Ok(Lighting::with_parts(
         light()?,
         Material::new(&material())?,

@@ -303,7 +303,8 @@ fn row_at(lin: &[i64; 3], t: i64, e: i32, mfrac: i32, frac: i32) -> Row {
 ///
 /// ```
 /// use fixshade::camera::{Angle, Camera, FixedCamera, Pose};
-/// use fixshade::camera::{Mat4, Viewport};
+/// use fixshade::num::Mat4;
+/// use fixshade::camera::Viewport;
 /// let s = 1.0 / 0.85;
 /// let cam = Camera::orthographic(-s, s, -s, s, 1.0, 10.0, Viewport::new(0, 0, 240, 240)?)?
 ///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
@@ -490,8 +491,9 @@ impl<P: Projection> FixedCamera<P> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::{Mat4, Viewport};
+    use crate::camera::Viewport;
     use crate::camera::{Orthographic, Perspective};
+    use crate::num::Mat4;
     use crate::test_rng::Rng;
 
     fn poses(r: &mut Rng) -> (Pose, Mat4) {

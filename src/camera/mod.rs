@@ -16,7 +16,7 @@ pub use fixed::{Angle, FixedCamera, Pose};
 
 mod viewport;
 
-pub use crate::num::Mat4;
+use crate::num::Mat4;
 pub use viewport::Viewport;
 
 use crate::error::ParamError;
@@ -56,7 +56,8 @@ impl Projection for Perspective {
 ///
 /// ```
 /// use fixshade::camera::Camera;
-/// use fixshade::camera::{Mat4, Viewport};
+/// use fixshade::num::Mat4;
+/// use fixshade::camera::Viewport;
 /// // the standard scene: ±1/0.85 orthographic, camera 5 units back
 /// let s = 1.0 / 0.85;
 /// let cam = Camera::orthographic(-s, s, -s, s, 1.0, 10.0, Viewport::new(0, 0, 240, 240)?)?

@@ -49,7 +49,8 @@ impl Layout {
     /// firmware's statics (a bad layout is then a compile-time error):
     ///
     /// ```
-    /// use fixshade::render::{bins_len, Layout};
+    /// use fixshade::render::bins_len;
+    /// use fixshade::framebuffer::Layout;
     /// const LAYOUT: Layout = match Layout::banded(240, 240, 8) {
     ///     Ok(layout) => layout,
     ///     Err(_) => panic!("not a layout"),

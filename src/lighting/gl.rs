@@ -14,7 +14,7 @@
 //! // glEnable(GL_LIGHT0) with every parameter at its default
 //! let lights = [GlLight::light0()];
 //! let scene = GlScene::new(&lights, GlMaterial::default(), GlLightModel::default());
-//! let lit: Lighting<Q14, [DirectionalLight<Q14>; 1]> = scene.lighting()?;
+//! let lit: Viewed<Lighting<Q14, [DirectionalLight<Q14>; 1]>> = scene.lighting()?;
 //! // 0.2·0.2 (global ambient) + 0.8 (diffuse, N = L) = 0.84
 //! let c = lit.shade(&Lighting::<Q14, [DirectionalLight<Q14>; 1]>::origin(), Vec3::from_f32([0.0, 0.0, 1.0]));
 //! assert_eq!(c.to_rgb888().r(), 214);
@@ -548,7 +548,7 @@ impl<'a> GlScene<'a> {
     /// let model = GlLightModel { local_viewer: true, ..GlLightModel::default() };
     /// let scene = GlScene::new(&lights, mat, model);
     /// // up to 8 lights of any kind, OpenGL's model, GL_LIGHT_MODEL_LOCAL_VIEWER
-    /// let lit: Lighting<Q14, heapless::Vec<AnyLight<Q14>, 8>, BlinnPhong, LocalViewer<Q14>> =
+    /// let lit: Viewed<Lighting<Q14, heapless::Vec<AnyLight<Q14>, 8>, BlinnPhong, LocalViewer<Q14>>> =
     ///     scene.lighting()?;
     /// // the wrong viewer type is an error, not another picture
     /// assert!(scene.lighting::<Q14, [AnyLight<Q14>; 2], BlinnPhong, InfiniteViewer<Q14>>().is_err());

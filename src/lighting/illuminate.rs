@@ -2,7 +2,9 @@
 //! every [`Lighting`] configuration and by the [`BackFaces`] and
 //! [`SeparateSpecular`] wrappers around one.
 
-use super::{DirectionalLight, FogModel, InfiniteViewer, LightSet, Lighting, LitColor, Model, NoFog};
+use super::{
+    DirectionalLight, FogModel, InfiniteViewer, LightSet, Lighting, LitColor, Model, NoFog,
+};
 use super::{Specular, Viewed, Viewer};
 use crate::color::Rgb;
 use crate::num::{Exponent, Point3, Scalar, Vec3};

@@ -230,7 +230,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
     /// matrix, a lamp that moves with the camera) say so with
     /// [`Lighting::eye_space`]; [`GlScene::lighting`] does.
     ///
-    /// ```compile_fail
+    /// ```compile_fail,E0277
     /// use fixshade::prelude::*;
     /// let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
     /// let world = Lighting::<Q14, _, Lambert>::new(light, Material::new(&MaterialDesc::default()).unwrap());

@@ -21,7 +21,7 @@
 //! to_compact(&p, &n, 13, &mut pc, &mut nc)?;
 //! let bumpy = Mesh::new(&pc, &nc, &SPHERE.triangles, 13)?.with_texcoords(&SPHERE.texcoords)?;
 //! assert_eq!(bumpy.triangle_count(), N.1);
-//! # Ok::<(), MeshError>(())
+//! # Ok::<(), fixshade::error::MeshError>(())
 //! ```
 
 use super::compact::{round_i16, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
@@ -181,7 +181,8 @@ pub fn displace(
 /// be partly written on error.
 ///
 /// ```
-/// use fixshade::mesh::{to_compact, MeshError};
+/// use fixshade::mesh::to_compact;
+/// use fixshade::error::MeshError;
 /// let (mut p, mut n) = ([[0i16; 3]; 1], [[0i16; 3]; 1]);
 /// to_compact(&[[0.5, -1.0, 0.0]], &[[0.0, 1.0, 0.0]], 14, &mut p, &mut n)?;
 /// assert_eq!((p[0], n[0]), ([8192, -16384, 0], [0, 16384, 0]));

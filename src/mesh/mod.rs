@@ -31,7 +31,7 @@
 //! let mut tris = [[0u16; 3]; N.1];
 //! icosphere(1, [0.0; 3], 1.0, &mut pos, &mut nrm, &mut tris)?;
 //! assert_eq!(tris.len(), 80);
-//! # Ok::<(), MeshError>(())
+//! # Ok::<(), fixshade::error::MeshError>(())
 //! ```
 
 mod compact;
@@ -43,7 +43,7 @@ mod tangents;
 mod textured;
 mod torus_knot;
 
-pub use crate::error::MeshError;
+use crate::error::MeshError;
 pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
 pub use displace::{displace, to_compact};

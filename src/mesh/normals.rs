@@ -122,7 +122,7 @@ pub fn face_normals(
 /// let h = core::f32::consts::FRAC_1_SQRT_2;
 /// assert_eq!(n[0], [0.0, h, h]); // between +z and +y
 /// assert_eq!(n[2], [0.0, 0.0, 1.0]); // only the first face
-/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// # Ok::<(), fixshade::error::MeshError>(())
 /// ```
 pub fn vertex_normals(
     positions: &[[f32; 3]],

@@ -40,7 +40,7 @@ use crate::num::{cross3, dot3};
 /// let uv = [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
 /// vertex_tangents(&pos, &nrm, &uv, &[[0, 1, 2], [0, 2, 3]], &mut t)?;
 /// assert_eq!(t[0], [16384, 0, 0, -16384]);
-/// # Ok::<(), fixshade::mesh::MeshError>(())
+/// # Ok::<(), fixshade::error::MeshError>(())
 /// ```
 pub fn vertex_tangents(
     positions: &[[f32; 3]],

@@ -16,7 +16,7 @@ use crate::error::{finite, ParamError};
 /// then rejects.
 ///
 /// ```
-/// use fixshade::camera::Mat4;
+/// use fixshade::num::Mat4;
 /// let m = Mat4::translate([1.0, 2.0, 3.0]).mul(&Mat4::scale([2.0, 2.0, 2.0]));
 /// assert_eq!(m.transform_point([1.0, 1.0, 1.0]), [3.0, 4.0, 5.0, 1.0]);
 /// ```
@@ -137,7 +137,7 @@ impl Mat4 {
     /// to the view direction.
     ///
     /// ```
-    /// use fixshade::camera::Mat4;
+    /// use fixshade::num::Mat4;
     /// let v = Mat4::look_at([0.0, 0.0, 5.0], [0.0, 0.0, 0.0], [0.0, 1.0, 0.0])?;
     /// assert_eq!(v, Mat4::translate([0.0, 0.0, -5.0]));
     /// # Ok::<(), fixshade::error::ParamError>(())
@@ -181,7 +181,7 @@ impl Mat4 {
     /// `near > 0` and `far > near`.
     ///
     /// ```
-    /// use fixshade::camera::Mat4;
+    /// use fixshade::num::Mat4;
     /// let p = Mat4::perspective(core::f32::consts::FRAC_PI_2, 2.0, 1.0, 3.0)?;
     /// assert_eq!(p.transform_point([2.0, 1.0, -1.0]), [1.0, 1.0, -1.0, 1.0]);
     /// assert!(Mat4::perspective(1.0, 1.0, 0.0, 10.0).is_err());
@@ -235,7 +235,7 @@ impl Mat4 {
     /// `near = far`.
     ///
     /// ```
-    /// use fixshade::camera::Mat4;
+    /// use fixshade::num::Mat4;
     /// let o = Mat4::orthographic(0.0, 4.0, 0.0, 2.0, 1.0, 3.0)?;
     /// assert_eq!(o.transform_point([4.0, 1.0, -2.0]), [1.0, 0.0, 0.0, 1.0]);
     /// # Ok::<(), fixshade::error::ParamError>(())

@@ -42,13 +42,13 @@ mod edge;
 pub mod interp;
 pub(crate) mod setup;
 
+pub(crate) use crate::num::ATTR_FRAC;
 pub(crate) use edge::Walker;
 pub(crate) use setup::ClampTo;
-pub use setup::ATTR_FRAC;
 #[doc(hidden)]
 pub use setup::{Plane, Setup};
 
-pub use crate::camera::SUBPIXEL_BITS;
+pub(crate) use crate::camera::SUBPIXEL_BITS;
 
 /// The smallest sub-pixel coordinate set-up works on: −512 pixels.
 pub(crate) const WINDOW_MIN: i32 = -(1 << 13);

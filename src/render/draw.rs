@@ -5,10 +5,11 @@ use super::refine::{self, Refine, RefineStats, Refined};
 use super::tri::{self, ClipCorner, Resume};
 use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
+use crate::camera::SUBPIXEL_BITS;
 use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
 use crate::num::Zeroed;
-use crate::raster::{Cull, SUBPIXEL_BITS};
+use crate::raster::Cull;
 use crate::shade::Kernel;
 
 /// What a triangle that continues into the next band keeps: its index, the
@@ -184,8 +185,8 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> Default
 
 /// A mesh prepared for one frame: its vertices transformed, projected and lit
 /// into the vertex cache, its visible triangles binned. Drawn by
-/// [`Bands::render`](super::Bands::render) or
-/// [`FullFrame::render`](super::FullFrame::render) through [`DrawBand`].
+/// [`Bands::render`](crate::framebuffer::Bands::render) or
+/// [`FullFrame::render`](crate::framebuffer::FullFrame::render) through [`DrawBand`].
 ///
 /// Memory, all the caller's ([`MeshMemory`] or [`MeshBuffers`]):
 /// - one [`CachedVertex`] per mesh vertex;
@@ -354,10 +355,13 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     ///
     /// ```
     /// use fixshade::camera::Camera;
-    /// use fixshade::camera::{Mat4, Viewport};
+    /// use fixshade::num::Mat4;
+    /// use fixshade::camera::Viewport;
     /// use fixshade::mesh::{uv_sphere_counts, MeshData};
     /// use fixshade::prelude::*;
-    /// use fixshade::render::{bins_len, FullFrame, Layout, MeshBuffers, MeshDraw, RefineBuffers};
+    /// use fixshade::render::{bins_len, MeshBuffers, MeshDraw};
+    /// use fixshade::framebuffer::{FullFrame, Layout};
+    /// use fixshade::render::refine::RefineBuffers;
     /// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
     /// const N: (usize, usize) = uv_sphere_counts(8, 12);
     /// static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(8, 12, 14);
@@ -486,7 +490,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// cache, the bins and the shader are shared, read only. Several band
     /// renderers, each with its own strip, depth strip and records, draw
     /// disjoint sets of bands of one frame, for example one on each core
-    /// ([`Bands::render_bands`](super::Bands::render_bands)); the frame is
+    /// ([`Bands::render_bands`](crate::framebuffer::Bands::render_bands)); the frame is
     /// the one a single renderer draws, bit for bit.
     ///
     /// Each renderer takes its bands from the top down. Consecutive bands
@@ -498,7 +502,8 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     ///
     /// ```
     /// # use fixshade::prelude::*;
-    /// # use fixshade::render::{bins_len, Bands, Carry, Layout, MeshBuffers, MeshDraw};
+    /// # use fixshade::render::{bins_len, Carry, MeshBuffers, MeshDraw};
+    /// # use fixshade::framebuffer::{Bands, Layout};
     /// # use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
     /// # let lighting = fixshade::standard::lambert::<Q14>().unwrap();
     /// # let t = fixshade::standard::transform().unwrap();

@@ -5,12 +5,12 @@
 //! | stage | where | per frame |
 //! |---|---|---|
 //! | mesh | [`crate::mesh::Mesh`] | in flash: `i16` positions, Q14 normals, `u16` triangles |
-//! | vertex stage | [`vertex`] | transform, project and (flat/Gouraud) light every vertex once, into the caller's vertex cache |
+//! | vertex stage | `vertex.rs` | transform, project and (flat/Gouraud) light every vertex once, into the caller's vertex cache |
 //! | refinement (optional) | [`refine`] | split the silhouette triangles into curved pieces within a budget ([`MeshDraw::with_refinement`]) |
-//! | bins | [`bins`] | cull back faces; sort the visible triangles by the band they start in |
+//! | bins | `bins.rs` | cull back faces; sort the visible triangles by the band they start in |
 //! | set-up | [`crate::raster`] | 32-bit set-up once per triangle; a triangle crossing a band boundary resumes from a 6-byte record |
 //! | spans | [`crate::shade::Kernel`] | the mode's depth-fused span kernel |
-//! | framebuffer | [`Bands`], [`FullFrame`] | a band strip flushed to any `DrawTarget`, or a whole frame in memory |
+//! | framebuffer | [`Bands`](crate::framebuffer::Bands), [`FullFrame`](crate::framebuffer::FullFrame) | a band strip flushed to any `DrawTarget`, or a whole frame in memory |
 //!
 //! All memory is the caller's: the vertex cache (one [`CachedVertex`] per
 //! mesh vertex), the bins (`u16`s, see [`bins_len`]), the resume records
@@ -22,21 +22,20 @@
 //! order of the mesh, and meshes in the order given, so a frame rendered in
 //! bands is bit-for-bit the frame rendered whole.
 
-pub mod bins;
+mod bins;
 mod draw;
 pub mod refine;
 #[cfg(test)]
 mod tests;
 mod tri;
-pub mod vertex;
+mod vertex;
 
-pub use crate::framebuffer::{BandSink, BandView, Bands, DrawBand, FullFrame, Layout};
 pub use draw::{Carry, DrawOptions, MeshBuffers, MeshDraw, MeshMemory};
-pub use refine::{Refine, RefineBuffers, RefineMemory, RefineStats};
 pub use tri::{draw_triangle, Corner};
 pub use vertex::CachedVertex;
 
-pub use crate::error::RenderError;
+use crate::error::RenderError;
+use crate::framebuffer::{BandView, DrawBand, Layout};
 
 /// The length of the bins slice [`MeshDraw`] needs for a mesh of `triangles`
 /// triangles in a frame of `bands` bands: `2·(bands + 1) + triangles` (the

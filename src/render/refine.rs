@@ -144,7 +144,7 @@ pub struct Refine<'a, V> {
 /// mesh).
 ///
 /// ```
-/// use fixshade::render::RefineBuffers;
+/// use fixshade::render::refine::RefineBuffers;
 /// // the standard sphere (362 vertices), Gouraud payload, 192 new vertices
 /// let b: RefineBuffers<[u16; 3], 362, 192, 768> = RefineBuffers::new();
 /// assert_eq!(core::mem::size_of_val(&b), 362 * 2 + 192 * (6 + 6 + 6 + 4 + 8 + 12) + 768 * 8);

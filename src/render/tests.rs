@@ -7,8 +7,9 @@
 mod seeded;
 
 use super::*;
-use crate::camera::{Camera, Mat4, Perspective, Viewport};
+use crate::camera::{Camera, Perspective, Viewport};
 use crate::mesh::Mesh;
+use crate::num::Mat4;
 use crate::raster::Cull;
 use crate::shade::{Kernel, VertexIn};
 use crate::test_rng::Rng;

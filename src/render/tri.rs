@@ -4,11 +4,13 @@
 //! ([`draw_triangle`]).
 
 use super::BandView;
+use crate::camera::SUBPIXEL_BITS;
 use crate::camera::{Clip, ClipSpace};
+use crate::num::ATTR_FRAC;
 use crate::raster::clip::{self, Screen};
 use crate::raster::interp::{self, within, Linear, Persp, Varyings};
 use crate::raster::setup::at3;
-use crate::raster::{Cull, Setup, Walker, ATTR_FRAC, SUBPIXEL_BITS};
+use crate::raster::{Cull, Setup, Walker};
 use crate::raster::{WINDOW_MAX, WINDOW_MIN};
 use crate::shade::{Kernel, VertexIn};
 use crate::span;
@@ -363,13 +365,14 @@ pub struct Corner {
 /// ([`MeshTransform::clip`](crate::camera::MeshTransform::clip), its normal
 /// and eye rows) gives the pixels of [`MeshDraw`](super::MeshDraw) bit for
 /// bit. Draws the triangle's rows that the band holds (call it for every
-/// band, e.g. from a [`DrawBand`](super::DrawBand) of your own); never
+/// band, e.g. from a [`DrawBand`](crate::framebuffer::DrawBand) of your own); never
 /// panics.
 ///
 /// ```
 /// use fixshade::camera::{Clip, ClipSpace};
 /// use fixshade::prelude::*;
-/// use fixshade::render::{draw_triangle, Corner, DrawBand, BandView};
+/// use fixshade::render::{draw_triangle, Corner};
+/// use fixshade::framebuffer::{DrawBand, BandView};
 /// use fixshade::shade::VertexIn;
 ///
 /// /// A triangle in screen space (sub-pixels, depth, w = 1), lit from the front.

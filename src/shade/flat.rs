@@ -3,7 +3,7 @@
 use super::{eye_point, unit_normal, Encoder, Fill, FlatShading, Kernel, Mode, Shader};
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
-use crate::raster::ATTR_FRAC;
+use crate::num::ATTR_FRAC;
 
 impl<I, C> Mode<I, C> for FlatShading {
     const NAME: &'static str = "flat";

@@ -1,9 +1,11 @@
 //! Gouraud shading: lit per vertex, encoded colour channels interpolated.
 
-use super::{eye_point, pixel565, unit_normal, Encoder, Fill, GouraudShading, Kernel, Mode, Shader};
+use super::{
+    eye_point, pixel565, unit_normal, Encoder, Fill, GouraudShading, Kernel, Mode, Shader,
+};
 use crate::color::OutputColor;
 use crate::lighting::Illuminate;
-use crate::raster::ATTR_FRAC;
+use crate::num::ATTR_FRAC;
 
 impl<I, C> Mode<I, C> for GouraudShading {
     const NAME: &'static str = "gouraud";

@@ -143,7 +143,7 @@ type Inc<'l, const NW: u8, const K: usize, M, E, C> =
 
 /// Shades one span with the incremental constants `st`, the general path of
 /// `lighting` where the span leaves the fast path's range; `a`/`d` are `[Nx,
-/// Ny, Nz, N·L₁, N·H₁, …]` (Q14 with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
+/// Ny, Nz, N·L₁, N·H₁, …]` (Q14 with [`ATTR_FRAC`](crate::num::ATTR_FRAC)
 /// bits); `SPEC`: the Blinn-Phong term.
 #[allow(clippy::too_many_arguments)]
 fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPEC: bool>(

@@ -41,7 +41,7 @@ mod phong;
 mod quadratic;
 mod textured;
 
-pub use crate::color::{Dithered, Encoder, Linear};
+use crate::color::{Encoder, Linear};
 pub use incremental::IncrementalModel;
 pub use normal_mapped::NormalMapped;
 pub use quadratic::QuadraticModel;
@@ -259,7 +259,7 @@ pub trait Kernel {
         eye: &[[i32; 3]; 3],
     ) -> (Self::Triangle, [Self::Varyings; 3]);
 
-    /// The range (with [`ATTR_FRAC`](crate::raster::ATTR_FRAC) fraction bits)
+    /// The range (with [`ATTR_FRAC`](crate::num::ATTR_FRAC) fraction bits)
     /// that value `i` must stay in when handed to [`Kernel::span`]: where the
     /// screen-linear interpolation's error bound could carry it out, the
     /// pipeline clamps the run to the vertices' range. The default is
@@ -271,7 +271,7 @@ pub trait Kernel {
     }
 
     /// Whether value `i` needs its screen-linear interpolation exact to
-    /// rounding (one unit of 2^−[`ATTR_FRAC`](crate::raster::ATTR_FRAC) per
+    /// rounding (one unit of 2^−[`ATTR_FRAC`](crate::num::ATTR_FRAC) per
     /// pixel stepped) rather than within the 14-bit barycentric
     /// coefficients' error: texture coordinates, whose every unit can move a
     /// pixel to the neighbouring texel. Costs the triangle's set-up one
@@ -286,7 +286,7 @@ pub trait Kernel {
 
     /// Shades pixels `x..x + out.len()` of row `y` (they passed the depth
     /// test): pixel `k` has the values `start + k·step`, which stay within the
-    /// range of the corners' values (with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
+    /// range of the corners' values (with [`ATTR_FRAC`](crate::num::ATTR_FRAC)
     /// fraction bits) up to the interpolation's error.
     fn span(
         &self,
@@ -305,7 +305,12 @@ pub trait Kernel {
     /// The first two the stage writes in its own loops, the depth test fused
     /// in: one pass over the pixels instead of two.
     #[inline(always)]
-    fn fill(&self, t: &Self::Triangle, start: &Self::Varyings, step: &Self::Varyings) -> Fill<Self::Color> {
+    fn fill(
+        &self,
+        t: &Self::Triangle,
+        start: &Self::Varyings,
+        step: &Self::Varyings,
+    ) -> Fill<Self::Color> {
         let _ = (t, start, step);
         Fill::Shaded
     }
@@ -343,12 +348,12 @@ pub(crate) fn pixel565(rb: u32, g: u32) -> u16 {
 }
 
 /// The range of the values of the kernels that interpolate the unit normal
-/// and its dot products (Q14 with [`ATTR_FRAC`](crate::raster::ATTR_FRAC)
+/// and its dot products (Q14 with [`ATTR_FRAC`](crate::num::ATTR_FRAC)
 /// bits): the span code checks |N|² itself; the values must only stay inside
 /// ±2 so that nothing wraps.
 #[inline(always)]
 pub(crate) const fn normal_range() -> (i32, i32) {
-    let two = 1 << (15 + crate::raster::ATTR_FRAC);
+    let two = 1 << (15 + crate::num::ATTR_FRAC);
     (-two, two - 1)
 }
 

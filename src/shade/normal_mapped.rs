@@ -3,8 +3,8 @@
 
 use super::incremental::{channel_units, IncrementalModel, PowTable};
 use super::perpixel::{self, per_pixel_kernel, sat16, Features, PixelTriangle, Sources, UV_FRAC};
-use super::{unit_q14, Encoder, IncrementalPhongShading, Kernel, Mode, PhongShading, Shader};
 use super::VertexIn;
+use super::{unit_q14, Encoder, IncrementalPhongShading, Kernel, Mode, PhongShading, Shader};
 use crate::color::OutputColor;
 use crate::lighting::{Directional, DirectionalTerms, Illuminate};
 use crate::num::rsqrt::inv_len_q14;

@@ -15,10 +15,10 @@
 use super::{eye_point, unit_q14, Encoder, VertexIn};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::{Illuminate, LitColor};
+use crate::num::ATTR_FRAC;
 use crate::num::{Point3, Scalar, Vec3};
 use crate::raster::interp::{Varyings, VARYING_LIMIT};
 use crate::raster::ClampTo;
-use crate::raster::ATTR_FRAC;
 use crate::texture::{Filter, NormalMap, TexCoord, Texture, Wrap, TEX_FRAC};
 
 /// Fraction bits of interpolated texture coordinates: Q12 with

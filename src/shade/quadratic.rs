@@ -10,8 +10,8 @@ use super::{Encoder, Kernel, Mode, QuadraticPhongShading, Shader};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::{BlinnPhong, Directional, Illuminate, Lambert, Model, Phong, Specular};
 use crate::num::Vec3;
+use crate::num::ATTR_FRAC;
 use crate::num::{Exponent, Scalar, Q14};
-use crate::raster::ATTR_FRAC;
 use probe::{F32Probe, Q14Probe};
 use segment::{DiffuseTable, EncodeSink, Fast565Sink, PowTable, Probe, Walk, DFRAC, U_ONE};
 

@@ -6,7 +6,7 @@ use super::{eye_point, unit_normal, Encoder, GouraudShading, Kernel, Mode, Shade
 use super::{PhongShading, VertexIn};
 use crate::color::{OutputColor, Rgb};
 use crate::lighting::Illuminate;
-use crate::raster::ATTR_FRAC;
+use crate::num::ATTR_FRAC;
 use crate::texture::{modulate_run, Filter, Pieces, TexCoord, Texels, Texture, Wrap, TEX_FRAC};
 
 /// A mode with a colour texture: OpenGL's `GL_MODULATE` with

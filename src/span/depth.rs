@@ -3,8 +3,8 @@
 //! [`Fill::Ramp565`]) and the split one (the depth test of the run, then the
 //! kernel's own colours on each passing part).
 
+use crate::num::ATTR_FRAC;
 use crate::raster::interp::{get, Varyings};
-use crate::raster::ATTR_FRAC;
 use crate::shade::{pixel565, Fill, Kernel};
 
 /// Depth-tests pixels `x..x + color.len()` of row `y` (pixel `k` has the
@@ -166,7 +166,7 @@ pub(super) fn depth_runs(z: i32, dz: i32, depth: &mut [u16], mut shade: impl FnM
 mod tests {
     use super::{ramp565, solid};
     use crate::color::OutputColor;
-    use crate::raster::ATTR_FRAC;
+    use crate::num::ATTR_FRAC;
     use crate::shade::pixel565;
     use crate::test_rng::Rng;
     use embedded_graphics_core::pixelcolor::Rgb565;

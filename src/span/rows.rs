@@ -202,4 +202,3 @@ fn perspective_run<K: Kernel>(
     };
     kernel.span(t, &a, &step, x, y, rest);
 }
-

@@ -1,5 +1,5 @@
 //! The table walk of [`QuadraticPhongShading`](crate::shade::QuadraticPhongShading)
-//! for one light without a specular term and 5-6-5 [`Linear`](crate::shade::Linear)
+//! for one light without a specular term and 5-6-5 [`Linear`](crate::color::Linear)
 //! pixels: the pixel is a function of `N̂·L̂` alone, read from a 256-entry table
 //! ([`DiffuseTable`]) at the quadratically interpolated `N̂·L̂`.
 
@@ -58,7 +58,7 @@ pub(crate) struct DAnchor {
 }
 
 /// The walk of a span whose pixels are a function of one light's `N̂·L̂`
-/// (ambient + diffuse, one light, [`Linear`](crate::shade::Linear) 5-6-5): `N̂·L̂` is
+/// (ambient + diffuse, one light, [`Linear`](crate::color::Linear) 5-6-5): `N̂·L̂` is
 /// interpolated quadratically between anchors and the pixel read from the
 /// [`DiffuseTable`] (which also clamps `N̂·L̂ ≤ 0`: no kinks to avoid). The
 /// segment length follows the same bound as [`walk`](super::walk)'s ambient + diffuse part.

@@ -7,7 +7,7 @@
 use super::lut::{run_lut_clamped, DiffuseTable};
 use super::{Anchor, Probe, Quad, Segment, Sink, Walk, MAX_LOG};
 use crate::color::OutputColor;
-use crate::shade::{Encoder, Linear};
+use crate::color::{Encoder, Linear};
 
 /// The specular value of light `k` at an anchor (Q15), 0 behind the surface.
 #[inline(always)]
@@ -160,7 +160,7 @@ fn run_encode<E: Encoder<C>, C: OutputColor, const K: usize, const CLAMP: bool>(
 fn in_565(v: [i32; 3], s: i32, max: u32) -> bool {
     let (lo, hi) = Quad::range(v[0], v[1], v[2]);
     let top =
-        ((max + 1) << (crate::color::encode::vertex_shift(max) + crate::raster::ATTR_FRAC)) as i32;
+        ((max + 1) << (crate::color::encode::vertex_shift(max) + crate::num::ATTR_FRAC)) as i32;
     lo >= 0 && hi.saturating_add(s) < top
 }
 
@@ -181,7 +181,7 @@ fn quad16(v: [i32; 3], jm: u32, sh: u32) -> Quad {
     Quad { v: a, d1, d2 }
 }
 
-/// The fast sink for [`Linear`](crate::shade::Linear) 5-6-5 pixels. Segments without a
+/// The fast sink for [`Linear`](crate::color::Linear) 5-6-5 pixels. Segments without a
 /// specular term: with one light, the pixel comes from the [`DiffuseTable`]
 /// indexed by the interpolated `N̂·L̂` (one quadratic, one load per pixel);
 /// otherwise red/blue (one word, as [`fill565`](crate::shade::gouraud)) and green
