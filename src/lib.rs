@@ -69,7 +69,7 @@
 //! let lit = lighting.viewed(camera.view())?;
 //! let transform = camera.mesh_transform(&Mat4::rotate_y(0.3), SPHERE.frac)?;
 //! let shader = Shader::new(PhongShading, &lit, Linear);
-//! let mut sphere = MeshDraw::new(LAYOUT, SPHERE.mesh(), &transform, shader, buffers.memory())?;
+//! let mut sphere = MeshDraw::new(LAYOUT, SPHERE.mesh(), &transform, shader, buffers.memory(), DrawOptions::default())?;
 //! assert_eq!(sphere.carry_needed(), 48); // of the 64 resume records
 //! let mut display = Checksum::new(Size::new(240, 240)); // any DrawTarget: a display driver, the simulator
 //! Bands::new(LAYOUT, &mut strip, Some(&mut depth))?.render(&mut display, Rgb565::BLACK, &mut [&mut sphere])?;
@@ -156,7 +156,7 @@ pub mod prelude {
     pub use crate::num::Vec3;
     pub use crate::num::{F32Fast, Scalar, Q14, Q30};
     pub use crate::raster::Cull;
-    pub use crate::render::{bins_len, MeshBuffers, MeshDraw};
+    pub use crate::render::{bins_len, DrawOptions, MeshBuffers, MeshDraw};
     pub use crate::shade::{
         FlatShading, GouraudShading, IncrementalPhongShading, Kernel, PhongShading,
         QuadraticPhongShading, Shader,

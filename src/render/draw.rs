@@ -1,7 +1,7 @@
 //! A mesh prepared for one frame and drawn band by band.
 
 use super::bins::{self, Bins};
-use super::refine::{self, Refine, RefineStats, Refined};
+use super::refine::{RefineStats, Refined};
 use super::tri::{self, ClipCorner, Resume};
 use super::vertex::{self, CachedVertex};
 use super::{BandView, DrawBand, Layout, RenderError};
@@ -94,19 +94,106 @@ impl Progress<'_> {
     }
 }
 
-/// Per-mesh drawing options.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct DrawOptions {
+/// Per-mesh drawing options, the last argument of [`MeshDraw::new`].
+/// [`DrawOptions::default()`] culls back faces and nothing else.
+///
+/// ```
+/// use fixshade::raster::Cull;
+/// use fixshade::render::DrawOptions;
+/// // both faces, the vertex stage run by the caller (see MeshDraw::light_vertices)
+/// let opts = DrawOptions { cull: Cull::None, lit: true, ..DrawOptions::default() };
+/// # let _ = opts;
+/// ```
+#[derive(Debug)]
+pub struct DrawOptions<R = ()> {
     /// Face culling (back faces by default).
     pub cull: Cull,
+    /// Silhouette refinement: none (`()`, the default: no refinement code is
+    /// linked) or a [`Refine`](super::refine::Refine) with its memory (see
+    /// [`refine`](super::refine)).
+    pub refine: R,
+    /// Whether the vertex cache already holds this frame's lit vertices,
+    /// every vertex of the mesh, for the same transform and shader (the
+    /// vertex stage run in pieces by [`MeshDraw::light_vertices`], for
+    /// example half on each core): then only the bins are built. A cache not
+    /// filled so draws a wrong picture. `false` by default.
+    pub lit: bool,
+}
+
+impl<R> DrawOptions<R> {
+    /// The same options with silhouette refinement `refine` (a
+    /// [`Refine`](super::refine::Refine)).
+    pub fn with_refine<R2>(self, refine: R2) -> DrawOptions<R2> {
+        DrawOptions {
+            cull: self.cull,
+            refine,
+            lit: self.lit,
+        }
+    }
 }
 
 impl Default for DrawOptions {
-    /// Back faces culled.
+    /// Back faces culled, no refinement, the vertex stage run by
+    /// [`MeshDraw::new`].
     fn default() -> Self {
-        DrawOptions { cull: Cull::Back }
+        DrawOptions {
+            cull: Cull::Back,
+            refine: (),
+            lit: false,
+        }
     }
 }
+
+/// What [`DrawOptions::refine`] may hold: `()` (no refinement) or a
+/// [`Refine`](super::refine::Refine). Sealed: the trait and the refinement's
+/// results are not nameable outside the crate.
+#[allow(private_interfaces)]
+mod refinement {
+    use super::super::refine::{self, Refine, Refined};
+    use super::RenderError;
+    use crate::camera::{MeshTransform, Projection};
+    use crate::mesh::Mesh;
+    use crate::shade::Kernel;
+
+    /// Silhouette refinement or none.
+    pub trait Refinement<'a, V> {
+        /// The refined vertices and triangles for this frame.
+        fn build<K: Kernel<Vertex = V>, P: Projection>(
+            self,
+            mesh: &Mesh<'a>,
+            t: &MeshTransform<P>,
+            kernel: &K,
+        ) -> Result<Refined<'a, V>, RenderError>;
+    }
+
+    impl<'a, V: Copy + Default> Refinement<'a, V> for () {
+        #[inline(always)]
+        fn build<K: Kernel<Vertex = V>, P: Projection>(
+            self,
+            _: &Mesh<'a>,
+            _: &MeshTransform<P>,
+            _: &K,
+        ) -> Result<Refined<'a, V>, RenderError> {
+            Ok(Refined::default())
+        }
+    }
+
+    impl<'a, V: Copy> Refinement<'a, V> for Refine<'a, V> {
+        fn build<K: Kernel<Vertex = V>, P: Projection>(
+            self,
+            mesh: &Mesh<'a>,
+            t: &MeshTransform<P>,
+            kernel: &K,
+        ) -> Result<Refined<'a, V>, RenderError> {
+            refine::build(mesh, t, kernel, self).map_err(|e| RenderError::BufferTooSmall {
+                which: e.buffer,
+                needed: e.needed,
+                got: e.got,
+            })
+        }
+    }
+}
+use refinement::Refinement;
 
 /// The caller-owned memory of one [`MeshDraw`]: the vertex cache, the bins and
 /// the resume records, as slices (see [`MeshBuffers`] for arrays sized by
@@ -242,203 +329,68 @@ impl<K: Kernel, P: Projection> core::fmt::Debug for MeshDraw<'_, K, P> {
 
 impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// Runs the vertex stage and bins the triangles of `mesh` seen through
-    /// `transform`, for a frame of `layout`, drawn with `shader` (back faces
-    /// culled; see [`MeshDraw::with_options`]).
+    /// `transform`, for a frame of `layout`, drawn with `shader`, in the
+    /// caller's `memory`; `options`: culling, silhouette refinement, a vertex
+    /// stage already run ([`DrawOptions`]).
     ///
-    /// # Errors
-    ///
-    /// [`RenderError::BufferTooSmall`] for a vertex cache shorter than the
-    /// mesh's vertices, too few bins, or resume records given but too few
-    /// (none given: checked when the mesh is drawn, before anything is
-    /// drawn, unless it is drawn only through [`MeshDraw::share`]s);
-    /// [`RenderError::MissingAttribute`] when the shader reads texture
-    /// coordinates or tangents the mesh lacks. Nothing is drawn then.
-    pub fn new(
-        layout: Layout,
-        mesh: Mesh<'a>,
-        transform: &MeshTransform<P>,
-        shader: K,
-        memory: MeshMemory<'a, K::Vertex>,
-    ) -> Result<Self, RenderError> {
-        Self::with_options(
-            layout,
-            mesh,
-            transform,
-            shader,
-            DrawOptions::default(),
-            memory,
-        )
-    }
-
-    /// [`MeshDraw::new`] with options (culling).
-    ///
-    /// # Errors
-    ///
-    /// As [`MeshDraw::new`].
-    pub fn with_options(
-        layout: Layout,
-        mesh: Mesh<'a>,
-        transform: &MeshTransform<P>,
-        kernel: K,
-        opts: DrawOptions,
-        memory: MeshMemory<'a, K::Vertex>,
-    ) -> Result<Self, RenderError> {
-        Self::prepare(
-            layout,
-            mesh,
-            transform,
-            kernel,
-            opts,
-            memory,
-            false,
-            |_, _, _| Ok(Refined::default()),
-        )
-    }
-
-    /// The vertex stage of vertices `first .. first + part.len()` of `mesh`
-    /// (fewer at the mesh's end) into `part`, the same entries of the vertex
-    /// cache: the vertex stage in pieces, for example half of the cache on
-    /// each core (`split_at_mut`), before [`MeshDraw::with_lit_vertices`].
-    /// The same work as the vertex stage of [`MeshDraw::new`], entry for
-    /// entry.
-    pub fn light_vertices(
-        mesh: &Mesh<'_>,
-        transform: &MeshTransform<P>,
-        kernel: &K,
-        first: usize,
-        part: &mut [CachedVertex<K::Vertex>],
-    ) {
-        vertex::stage(mesh, transform, kernel, first, part);
-    }
-
-    /// [`MeshDraw::with_options`] over a vertex cache whose vertex stage has
-    /// been run, every vertex of `mesh`, with [`MeshDraw::light_vertices`]
-    /// for this frame's `transform` and `kernel` (in pieces, for example on
-    /// two cores): only the bins are built. A cache not filled so draws a
-    /// wrong picture; every other requirement is checked as by
-    /// [`MeshDraw::new`].
-    ///
-    /// # Errors
-    ///
-    /// As [`MeshDraw::new`].
-    pub fn with_lit_vertices(
-        layout: Layout,
-        mesh: Mesh<'a>,
-        transform: &MeshTransform<P>,
-        kernel: K,
-        opts: DrawOptions,
-        memory: MeshMemory<'a, K::Vertex>,
-    ) -> Result<Self, RenderError> {
-        Self::prepare(
-            layout,
-            mesh,
-            transform,
-            kernel,
-            opts,
-            memory,
-            true,
-            |_, _, _| Ok(Refined::default()),
-        )
-    }
-
-    /// [`MeshDraw::with_options`] with silhouette refinement: after the vertex
-    /// stage, the triangles along the outline of the mesh for this view are
-    /// subdivided into curved (PN triangle) pieces within the budget of
-    /// `refine` (see [`refine`](super::refine) for the rule, the geometry and
-    /// what happens when the budget runs out). The new triangles are culled,
-    /// binned and drawn like mesh triangles, after them within each band
-    /// (so a banded frame is still the whole frame bit for bit).
-    ///
-    /// The bins must hold the replacing triangles too:
-    /// [`bins_len`](super::bins_len)`(triangles + refine triangle budget, bands)`
-    /// always suffices.
+    /// With refinement, after the vertex stage the triangles along the
+    /// outline of the mesh for this view are subdivided into curved (PN
+    /// triangle) pieces within the budget of the [`Refine`](super::refine::Refine) (see
+    /// [`refine`](super::refine) for the rule, the geometry and what happens
+    /// when the budget runs out). The new triangles are culled, binned and
+    /// drawn like mesh triangles, after them within each band (so a banded
+    /// frame is still the whole frame bit for bit). The bins must hold the
+    /// replacing triangles too: [`bins_len`](super::bins_len)`(triangles +
+    /// refine triangle budget, bands)` always suffices.
     ///
     /// ```
-    /// use fixshade::camera::Camera;
-    /// use fixshade::num::Mat4;
-    /// use fixshade::camera::Viewport;
-    /// use fixshade::mesh::{uv_sphere_counts, MeshData};
     /// use fixshade::prelude::*;
-    /// use fixshade::render::{bins_len, MeshBuffers, MeshDraw};
-    /// use fixshade::framebuffer::{FullFrame, Layout};
     /// use fixshade::render::refine::RefineBuffers;
-    /// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+    /// use fixshade::render::DrawOptions;
     /// const N: (usize, usize) = uv_sphere_counts(8, 12);
     /// static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(8, 12, 14);
     /// let cam = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, Viewport::new(0, 0, 64, 64)?)?
     ///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
     /// let t = cam.mesh_transform(&Mat4::rotate_x(0.3), SPHERE.frac)?;
-    /// let lighting = fixshade::standard::lambert::<Q14>().unwrap();
+    /// let lighting = fixshade::standard::lambert::<Q14>()?;
     /// let shader = Shader::new(GouraudShading, &lighting, Linear);
     /// let mut mem: MeshBuffers<[u16; 3], { N.0 }, { bins_len(N.1 + 256, 1) }, 0> = MeshBuffers::new();
     /// let mut refine: RefineBuffers<[u16; 3], { N.0 }, 64, 256> = RefineBuffers::new();
-    /// let layout = Layout::full(64, 64).unwrap();
-    /// let mut draw = MeshDraw::with_refinement(
-    ///     layout, SPHERE.mesh(), &t, shader, Default::default(), mem.memory(), refine.refine(0),
-    /// ).unwrap();
+    /// let options = DrawOptions::default().with_refine(refine.refine(0));
+    /// let layout = Layout::full(64, 64)?;
+    /// let mut draw = MeshDraw::new(layout, SPHERE.mesh(), &t, shader, mem.memory(), options)?;
     /// assert!(draw.refine_stats().vertices > 0);
     /// let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
-    /// let mut frame = FullFrame::new(64, 64, &mut color, Some(&mut depth)).unwrap();
+    /// let mut frame = FullFrame::new(64, 64, &mut color, Some(&mut depth))?;
     /// frame.render(Rgb565::BLACK, &mut [&mut draw])?;
     /// # Ok::<(), fixshade::error::Error>(())
     /// ```
     ///
     /// # Errors
     ///
-    /// As [`MeshDraw::new`]; [`RenderError::BufferTooSmall`] for refinement
-    /// memory shorter than the mesh's vertices (`vertex_words`), and
+    /// [`RenderError::BufferTooSmall`] for a vertex cache shorter than the
+    /// mesh's vertices, too few bins, resume records given but too few
+    /// (none given: checked when the mesh is drawn, before anything is
+    /// drawn, unless it is drawn only through [`MeshDraw::share`]s), or
+    /// refinement memory shorter than the mesh's vertices (`vertex_words`);
+    /// [`RenderError::MissingAttribute`] when the shader reads texture
+    /// coordinates or tangents the mesh lacks;
     /// [`RenderError::TooManyVertices`] when the mesh and its replacing
-    /// triangles exceed `u16` indices.
-    pub fn with_refinement(
+    /// triangles exceed `u16` indices. Nothing is drawn then.
+    pub fn new<R: Refinement<'a, K::Vertex>>(
         layout: Layout,
         mesh: Mesh<'a>,
         transform: &MeshTransform<P>,
-        kernel: K,
-        opts: DrawOptions,
+        shader: K,
         memory: MeshMemory<'a, K::Vertex>,
-        refine: Refine<'a, K::Vertex>,
-    ) -> Result<Self, RenderError> {
-        Self::prepare(
-            layout,
-            mesh,
-            transform,
-            kernel,
-            opts,
-            memory,
-            false,
-            |m, t, k| {
-                refine::build(m, t, k, refine).map_err(|e| RenderError::BufferTooSmall {
-                    which: e.buffer,
-                    needed: e.needed,
-                    got: e.got,
-                })
-            },
-        )
-    }
-
-    /// The vertex stage (unless `lit`: run by the caller), the refinement
-    /// (`refine`: none for a plain mesh, so that its code is not linked) and
-    /// the bins.
-    #[allow(clippy::too_many_arguments)]
-    fn prepare(
-        layout: Layout,
-        mesh: Mesh<'a>,
-        transform: &MeshTransform<P>,
-        kernel: K,
-        opts: DrawOptions,
-        memory: MeshMemory<'a, K::Vertex>,
-        lit: bool,
-        refine: impl FnOnce(
-            &Mesh<'a>,
-            &MeshTransform<P>,
-            &K,
-        ) -> Result<Refined<'a, K::Vertex>, RenderError>,
+        options: DrawOptions<R>,
     ) -> Result<Self, RenderError> {
         let MeshMemory {
             vertices: cache,
             bins,
             carry,
         } = memory;
+        let kernel = shader;
         if K::NEEDS_TEXCOORD && mesh.texcoords().is_empty() {
             return Err(RenderError::MissingAttribute("texture coordinates"));
         }
@@ -452,10 +404,10 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
                 got: cache.len(),
             });
         }
-        if !lit {
+        if !options.lit {
             vertex::stage(&mesh, transform, &kernel, 0, cache);
         }
-        let refined = refine(&mesh, transform, &kernel)?;
+        let refined = options.refine.build(&mesh, transform, &kernel)?;
         let mut prep = Prepared {
             mesh,
             transform: *transform,
@@ -464,7 +416,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             cache,
             bins: Bins::default(),
             refined,
-            cull: opts.cull,
+            cull: options.cull,
         };
         let total = mesh
             .triangle_count()
@@ -483,6 +435,22 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
                 ..Progress::default()
             },
         })
+    }
+
+    /// The vertex stage of vertices `first .. first + part.len()` of `mesh`
+    /// (fewer at the mesh's end) into `part`, the same entries of the vertex
+    /// cache: the vertex stage in pieces, for example half of the cache on
+    /// each core (`split_at_mut`), before [`MeshDraw::new`] with
+    /// [`DrawOptions::lit`]. The same work as the vertex stage of
+    /// [`MeshDraw::new`], entry for entry.
+    pub fn light_vertices(
+        mesh: &Mesh<'_>,
+        transform: &MeshTransform<P>,
+        kernel: &K,
+        first: usize,
+        part: &mut [CachedVertex<K::Vertex>],
+    ) {
+        vertex::stage(mesh, transform, kernel, first, part);
     }
 
     /// This prepared mesh for another band renderer, with its own resume
@@ -510,7 +478,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// let layout = Layout::banded(240, 240, 8)?;
     /// let mut mem: MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 0> = MeshBuffers::new();
     /// let shader = Shader::new(GouraudShading, &lighting, Linear);
-    /// let draw = MeshDraw::new(layout, fixshade::standard::SPHERE.mesh(), &t, shader, mem.memory())?;
+    /// let draw = MeshDraw::new(layout, fixshade::standard::SPHERE.mesh(), &t, shader, mem.memory(), DrawOptions::default())?;
     /// let mut carry = [[Carry::ZERO; 64]; 2];
     /// let mut strips = [[Rgb565::BLACK; 240 * 8]; 2];
     /// let mut depths = [[0u16; 240 * 8]; 2];

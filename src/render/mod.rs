@@ -6,7 +6,7 @@
 //! |---|---|---|
 //! | mesh | [`crate::mesh::Mesh`] | in flash: `i16` positions, Q14 normals, `u16` triangles |
 //! | vertex stage | `vertex.rs` | transform, project and (flat/Gouraud) light every vertex once, into the caller's vertex cache |
-//! | refinement (optional) | [`refine`] | split the silhouette triangles into curved pieces within a budget ([`MeshDraw::with_refinement`]) |
+//! | refinement (optional) | [`refine`] | split the silhouette triangles into curved pieces within a budget ([`MeshDraw::new`] with [`DrawOptions::with_refine`]) |
 //! | bins | `bins.rs` | cull back faces; sort the visible triangles by the band they start in |
 //! | set-up | [`crate::raster`] | 32-bit set-up once per triangle; a triangle crossing a band boundary resumes from a 6-byte record |
 //! | spans | [`crate::shade::Kernel`] | the mode's depth-fused span kernel |

@@ -126,7 +126,7 @@ pub struct RefineMemory<'a, V> {
     pub triangles: &'a mut [[u16; 4]],
 }
 
-/// Silhouette refinement for [`MeshDraw::with_refinement`](super::MeshDraw::with_refinement):
+/// Silhouette refinement for [`DrawOptions::with_refine`](super::DrawOptions::with_refine):
 /// its memory and the threshold `τ` (Q14, `0..=16384`; see the [module](self)
 /// docs). `τ = 0` splits only the edges whose vertex normals straddle
 /// `N·V = 0`; a larger `τ` also splits edges next to the silhouette (rounder

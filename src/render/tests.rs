@@ -10,6 +10,7 @@ use super::*;
 use crate::camera::{Camera, Perspective, Viewport};
 use crate::mesh::Mesh;
 use crate::num::Mat4;
+use crate::framebuffer::{Bands, FullFrame};
 use crate::raster::Cull;
 use crate::shade::{Kernel, VertexIn};
 use crate::test_rng::Rng;
@@ -111,16 +112,19 @@ fn counts(s: &Sheet, band: u32) -> Vec<u8> {
     let mut cache = vec![CachedVertex::<()>::default(); s.pos.len()];
     let mut bins = vec![0u16; bins_len(s.tris.len(), layout.bands() as usize)];
     let mut carry = vec![Carry::default(); 2 * s.tris.len()];
-    let mut draw = MeshDraw::with_options(
+    let mut draw = MeshDraw::new(
         layout,
         mesh,
         &t,
         Count,
-        DrawOptions { cull: Cull::None },
         MeshMemory {
             vertices: &mut cache,
             bins: &mut bins,
             carry: &mut carry,
+        },
+        DrawOptions {
+            cull: Cull::None,
+            ..DrawOptions::default()
         },
     )
     .unwrap();
