@@ -75,6 +75,7 @@ pub struct Camera<P: Projection> {
     view: Mat4,
     viewport: Viewport,
     near: f32,
+    far: f32,
     kind: PhantomData<P>,
 }
 
@@ -100,6 +101,7 @@ impl Camera<Orthographic> {
             view: Mat4::IDENTITY,
             viewport,
             near,
+            far,
             kind: PhantomData,
         })
     }
@@ -123,6 +125,7 @@ impl Camera<Perspective> {
             view: Mat4::IDENTITY,
             viewport,
             near,
+            far,
             kind: PhantomData,
         })
     }
@@ -153,6 +156,120 @@ impl<P: Projection> Camera<P> {
     /// The near plane distance.
     pub fn near(&self) -> f32 {
         self.near
+    }
+
+    /// The clip space of [`Camera::clip`]: the viewport's centre and, under
+    /// a perspective projection, the near plane in the unit of its `w`.
+    pub fn clip_space(&self) -> ClipSpace {
+        if P::PERSPECTIVE {
+            let sub = (1 << SUBPIXEL_BITS) as f32;
+            let vp = &self.viewport;
+            let c = [
+                vp.x0() as f32 * sub + vp.width() as f32 * 8.0,
+                vp.y0() as f32 * sub + vp.height() as f32 * 8.0,
+            ];
+            let near = libm::ldexpf(self.near, self.clip_frac());
+            ClipSpace::perspective(
+                c.map(|v| v as i32),
+                libm::roundf(near).clamp(1.0, 1e9) as i32,
+            )
+        } else {
+            ClipSpace::SCREEN
+        }
+    }
+
+    /// Fraction bits of [`Camera::clip`]'s coordinates under a perspective
+    /// projection: the most that keep `8·size·far` below 2^30.
+    fn clip_frac(&self) -> i32 {
+        let vp = &self.viewport;
+        let reach = 8.0 * vp.width().max(vp.height()) as f32 * self.far.abs().max(self.near.abs());
+        let mut frac = 20;
+        while frac > 0 && libm::ldexpf(reach, frac) >= (1u32 << 30) as f32 {
+            frac -= 1;
+        }
+        frac
+    }
+
+    /// The clip coordinates of world point `position` seen through this
+    /// camera (view, projection, viewport), in [`Camera::clip_space`]: the
+    /// one conversion from a program's `f32` geometry to what
+    /// [`draw_triangle`](crate::render::draw_triangle) takes. Orthographic:
+    /// the screen position in sub-pixels and the depth; perspective:
+    /// `(8W·x_c, −8H·y_c, z_c, w_c)` scaled by a power of two fixed per
+    /// camera ([`Camera::clip_space`]'s near plane carries the same scale).
+    ///
+    /// # Errors
+    ///
+    /// [`ParamError::NotFinite`] for a non-finite position;
+    /// [`ParamError::OutOfRange`] for a point so far outside the view that its
+    /// coordinates leave `i32` (beyond about 2^30 sub-pixels, or behind the
+    /// far plane by more than the camera's depth range under a perspective
+    /// projection).
+    pub fn clip(&self, position: [f32; 3]) -> Result<Clip, ParamError> {
+        for c in position {
+            crate::error::finite("position", c)?;
+        }
+        let e = self.view.transform_point(position);
+        let c = self.projection.transform_point([e[0], e[1], e[2]]);
+        let vp = &self.viewport;
+        let (w8, h8) = (vp.width() as f32 * 8.0, vp.height() as f32 * 8.0);
+        let fit = |v: f32| {
+            if v.is_finite() && libm::fabsf(v) < 2.0e9 {
+                Ok(libm::roundf(v) as i32)
+            } else {
+                Err(ParamError::OutOfRange("clip coordinates"))
+            }
+        };
+        if P::PERSPECTIVE {
+            let k = libm::ldexpf(1.0, self.clip_frac());
+            Ok(Clip {
+                x: fit(c[0] * w8 * k)?,
+                y: fit(-c[1] * h8 * k)?,
+                z: fit(c[2] * k)?,
+                w: fit(c[3] * k)?,
+            })
+        } else {
+            let sub = (1 << SUBPIXEL_BITS) as f32;
+            Ok(Clip {
+                x: fit(vp.x0() as f32 * sub + w8 + c[0] * w8)?,
+                y: fit(vp.y0() as f32 * sub + h8 - c[1] * h8)?,
+                z: fit(((c[2] + 1.0) * 0.5 * 65535.0).clamp(0.0, 65535.0))?,
+                w: 1,
+            })
+        }
+    }
+
+    /// The eye-space position (Q16.16, saturated at ±32768) and normal (Q14,
+    /// through the normal matrix, normalised) of world point `position` with
+    /// normal `normal`: what a kernel's vertex stage reads
+    /// ([`VertexIn`](crate::shade::VertexIn)).
+    ///
+    /// # Errors
+    ///
+    /// [`ParamError::NotFinite`] for a non-finite position or normal.
+    pub fn eye(
+        &self,
+        position: [f32; 3],
+        normal: [f32; 3],
+    ) -> Result<([i32; 3], [i32; 3]), ParamError> {
+        for c in position.iter().chain(&normal) {
+            crate::error::finite("position or normal", *c)?;
+        }
+        let e = self.view.transform_point(position);
+        let m = self.view.normal_matrix();
+        let n: [f32; 3] = core::array::from_fn(|i| {
+            m[i][0] * normal[0] + m[i][1] * normal[1] + m[i][2] * normal[2]
+        });
+        let len = libm::sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        let q16 = |v: f32| libm::roundf(v * 65536.0).clamp(-2.147e9, 2.147e9) as i32;
+        let q14 = |v: f32| {
+            if len > 0.0 {
+                libm::roundf(v / len * 16384.0) as i32
+            } else {
+                0
+            }
+        };
+        Ok(([e[0], e[1], e[2]].map(q16), n.map(q14)))
     }
 
     /// The fixed-point transform of a mesh with model matrix `model` whose

@@ -31,7 +31,7 @@ mod tri;
 mod vertex;
 
 pub use draw::{Carry, DrawOptions, MeshBuffers, MeshDraw, MeshMemory};
-pub use tri::{draw_triangle, Corner};
+pub use tri::{draw_triangle, Corner, Triangle};
 pub use vertex::CachedVertex;
 
 use crate::error::RenderError;

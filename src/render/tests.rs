@@ -8,9 +8,9 @@ mod seeded;
 
 use super::*;
 use crate::camera::{Camera, Perspective, Viewport};
+use crate::framebuffer::{Bands, FullFrame};
 use crate::mesh::Mesh;
 use crate::num::Mat4;
-use crate::framebuffer::{Bands, FullFrame};
 use crate::raster::Cull;
 use crate::shade::{Kernel, VertexIn};
 use crate::test_rng::Rng;

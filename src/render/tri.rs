@@ -3,9 +3,11 @@
 //! from a mesh ([`MeshDraw`](super::MeshDraw)) or from the per-triangle front
 //! ([`draw_triangle`]).
 
-use super::BandView;
+use super::{BandView, DrawBand};
 use crate::camera::SUBPIXEL_BITS;
+use crate::camera::{Camera, Projection};
 use crate::camera::{Clip, ClipSpace};
+use crate::error::ParamError;
 use crate::num::ATTR_FRAC;
 use crate::raster::clip::{self, Screen};
 use crate::raster::interp::{self, within, Linear, Persp, Varyings};
@@ -356,43 +358,161 @@ pub struct Corner {
     pub vertex: VertexIn,
 }
 
-/// Draws one triangle into `band` with `kernel`: the per-triangle entry of
-/// the pipeline, for programs that bring their own screen- or clip-space
-/// triangles. The corners go through the kernel's vertex stage, then the same
-/// culling (`cull`), clipping (near plane and window, in clip space),
-/// set-up, interpolation and span kernel as a mesh triangle: a mesh drawn
-/// triangle by triangle with the corners of its transform
-/// ([`MeshTransform::clip`](crate::camera::MeshTransform::clip), its normal
-/// and eye rows) gives the pixels of [`MeshDraw`](super::MeshDraw) bit for
-/// bit. Draws the triangle's rows that the band holds (call it for every
-/// band, e.g. from a [`DrawBand`](crate::framebuffer::DrawBand) of your own); never
-/// panics.
+impl Corner {
+    /// The corner at world point `position` with normal `normal` (`f32`,
+    /// world coordinates) seen through `camera`: its clip coordinates
+    /// ([`Camera::clip`], in [`Camera::clip_space`]), its eye position and
+    /// normal ([`Camera::eye`]; `w` for perspective-correct texture
+    /// coordinates). Add texture coordinates or a tangent with
+    /// [`VertexIn::with_uv`], [`VertexIn::with_tangent`].
+    ///
+    /// # Errors
+    ///
+    /// As [`Camera::clip`] and [`Camera::eye`].
+    pub fn world<P: Projection>(
+        camera: &Camera<P>,
+        position: [f32; 3],
+        normal: [f32; 3],
+    ) -> Result<Corner, ParamError> {
+        let clip = camera.clip(position)?;
+        let (eye, normal) = camera.eye(position, normal)?;
+        Ok(Corner {
+            clip,
+            vertex: VertexIn::new(normal, eye).with_w(clip.w),
+        })
+    }
+
+    /// The corner at pixel position `(x, y)` (pixel centres at `.5`) and
+    /// depth `depth` (0 near to 1 far, clamped) with the kernel's input
+    /// `vertex`, in [`ClipSpace::SCREEN`].
+    ///
+    /// # Errors
+    ///
+    /// [`ParamError::NotFinite`] for a non-finite coordinate,
+    /// [`ParamError::OutOfRange`] beyond ±2^26 pixels.
+    pub fn screen(x: f32, y: f32, depth: f32, vertex: VertexIn) -> Result<Corner, ParamError> {
+        let sub = (1 << SUBPIXEL_BITS) as f32;
+        let fit = |name, v: f32| {
+            crate::error::finite(name, v)?;
+            if libm::fabsf(v) < (1 << 26) as f32 {
+                Ok(libm::roundf(v * sub) as i32)
+            } else {
+                Err(ParamError::OutOfRange(name))
+            }
+        };
+        crate::error::finite("depth", depth)?;
+        Ok(Corner {
+            clip: Clip {
+                x: fit("x", x)?,
+                y: fit("y", y)?,
+                z: libm::roundf(depth.clamp(0.0, 1.0) * 65535.0) as i32,
+                w: 1,
+            },
+            vertex,
+        })
+    }
+}
+
+/// One triangle a program brings itself, as an item of a frame
+/// ([`DrawBand`]): drawn by [`draw_triangle`] in every band, into any
+/// [`Bands`](crate::framebuffer::Bands) or
+/// [`FullFrame`](crate::framebuffer::FullFrame) and so any `DrawTarget`.
 ///
 /// ```
-/// use fixshade::camera::{Clip, ClipSpace};
+/// use fixshade::prelude::*;
+/// use fixshade::render::{Corner, Triangle};
+/// // a perspective camera 4 units back and one lit triangle in world coordinates
+/// let camera = Camera::perspective(0.8, 1.0, 1.0, 20.0, Viewport::new(0, 0, 64, 64)?)?
+///     .with_view(Mat4::translate([0.0, 0.0, -4.0]));
+/// let lighting = fixshade::standard::blinn::<Q14>()?; // lights in eye coordinates
+/// let shader = Shader::new(PhongShading, &lighting, Linear);
+/// let up = [0.0, 0.0, 1.0];
+/// let corners = [
+///     Corner::world(&camera, [-1.0, -1.0, 0.0], up)?,
+///     Corner::world(&camera, [1.0, -1.0, 0.0], up)?,
+///     Corner::world(&camera, [0.0, 1.0, 0.0], up)?,
+/// ];
+/// let mut tri = Triangle::new(&shader, camera.clip_space(), corners);
+/// let (mut strip, mut depth) = ([Rgb565::BLACK; 64 * 8], [0u16; 64 * 8]);
+/// let mut display = Checksum::new(Size::new(64, 64)); // any DrawTarget
+/// Bands::new(Layout::banded(64, 64, 8)?, &mut strip, Some(&mut depth))?
+///     .render(&mut display, Rgb565::BLACK, &mut [&mut tri])?;
+/// assert!(display.pixels() == 64 * 64);
+/// # Ok::<(), fixshade::error::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Triangle<'k, K> {
+    kernel: &'k K,
+    space: ClipSpace,
+    corners: [Corner; 3],
+    cull: Cull,
+}
+
+impl<'k, K: Kernel> Triangle<'k, K> {
+    /// The triangle of `corners` in clip space `space` drawn with `kernel`,
+    /// back faces culled.
+    pub fn new(kernel: &'k K, space: ClipSpace, corners: [Corner; 3]) -> Self {
+        Triangle {
+            kernel,
+            space,
+            corners,
+            cull: Cull::Back,
+        }
+    }
+
+    /// The same triangle with culling `cull`.
+    pub fn with_cull(mut self, cull: Cull) -> Self {
+        self.cull = cull;
+        self
+    }
+}
+
+impl<K: Kernel> DrawBand<K::Color> for Triangle<'_, K> {
+    fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
+        draw_triangle(band, &self.space, self.kernel, &self.corners, self.cull);
+    }
+}
+
+/// Draws one triangle into `band` with `kernel`: the per-triangle entry of
+/// the pipeline, for programs that bring their own screen- or clip-space
+/// triangles ([`Triangle`] makes one an item of a frame; a [`DrawBand`] of
+/// your own calls this for every band). The corners ([`Corner::world`] from
+/// `f32` world coordinates through a camera, [`Corner::screen`] from pixel
+/// positions) go through the kernel's vertex stage, then the same culling
+/// (`cull`), clipping (near plane and window, in clip space), set-up,
+/// interpolation and span stage as a mesh triangle: a mesh drawn triangle by
+/// triangle with the corners of its transform
+/// ([`MeshTransform::clip`](crate::camera::MeshTransform::clip), its normal
+/// and eye rows) gives the pixels of [`MeshDraw`](super::MeshDraw) bit for
+/// bit. Draws the triangle's rows that the band holds; never panics.
+///
+/// ```
+/// use fixshade::camera::ClipSpace;
+/// use fixshade::framebuffer::{BandView, DrawBand};
 /// use fixshade::prelude::*;
 /// use fixshade::render::{draw_triangle, Corner};
-/// use fixshade::framebuffer::{DrawBand, BandView};
 /// use fixshade::shade::VertexIn;
 ///
-/// /// A triangle in screen space (sub-pixels, depth, w = 1), lit from the front.
-/// struct One<K>(K);
-/// impl<K: Kernel<Color = Rgb565>> DrawBand<Rgb565> for One<K> {
+/// /// Two triangles in screen space, lit from the front.
+/// struct Quad<K>(K, [Corner; 4]);
+/// impl<K: Kernel<Color = Rgb565>> DrawBand<Rgb565> for Quad<K> {
 ///     fn draw_band(&mut self, band: &mut BandView<'_, Rgb565>) {
-///         let c = |x: i32, y: i32| Corner {
-///             clip: Clip { x: x << 4, y: y << 4, z: 100, w: 1 },
-///             vertex: VertexIn::new([0, 0, 16384], [0; 3]),
-///         };
-///         let tri = [c(2, 2), c(2, 30), c(30, 16)];
-///         draw_triangle(band, &ClipSpace::SCREEN, &self.0, &tri, Cull::Back);
+///         let [a, b, c, d] = self.1;
+///         draw_triangle(band, &ClipSpace::SCREEN, &self.0, &[a, b, c], Cull::Back);
+///         draw_triangle(band, &ClipSpace::SCREEN, &self.0, &[a, c, d], Cull::Back);
 ///     }
 /// }
 /// let lighting = fixshade::standard::blinn::<Q14>()?; // lights in eye coordinates
-/// let mut item = One(Shader::new(GouraudShading, &lighting, Linear));
+/// let front = VertexIn::new([0, 0, 16384], [0; 3]);
+/// let at = |x, y| Corner::screen(x, y, 0.5, front);
+/// let mut item = Quad(
+///     Shader::new(GouraudShading, &lighting, Linear),
+///     [at(2.0, 2.0)?, at(2.0, 30.0)?, at(30.0, 30.0)?, at(30.0, 2.0)?],
+/// );
 /// let (mut color, mut depth) = ([Rgb565::BLACK; 32 * 32], [0u16; 32 * 32]);
 /// let mut frame = FullFrame::new(32, 32, &mut color, Some(&mut depth))?;
 /// frame.render(Rgb565::BLACK, &mut [&mut item])?;
-/// assert!(frame.pixels().iter().filter(|&&p| p != Rgb565::BLACK).count() > 300);
+/// assert_eq!(frame.pixels().iter().filter(|&&p| p != Rgb565::BLACK).count(), 28 * 28);
 /// # Ok::<(), fixshade::error::Error>(())
 /// ```
 pub fn draw_triangle<K: Kernel>(

@@ -42,6 +42,7 @@ mod quadratic;
 mod textured;
 
 use crate::color::{Encoder, Linear};
+use embedded_graphics_core::pixelcolor::Rgb565;
 pub use incremental::IncrementalModel;
 pub use normal_mapped::NormalMapped;
 pub use quadratic::QuadraticModel;
@@ -169,6 +170,36 @@ impl<'l, M: Mode<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'l,
     }
 }
 
+/// The vertex payload of shading mode `M`: what the vertex cache
+/// ([`CachedVertex`](crate::render::CachedVertex),
+/// [`MeshBuffers`](crate::render::MeshBuffers)) holds per vertex for a
+/// [`Shader`] of that mode, the same for every lighting, encoder and output
+/// colour: `[u16; 3]` for [`GouraudShading`], `[i16; 3]` for [`FlatShading`]
+/// and the per-pixel modes, 16 bytes for `GouraudShading.textured(…)`, …
+/// A firmware sizes its `static` buffers with it:
+///
+/// ```
+/// use fixshade::prelude::*;
+/// use fixshade::shade::{Payload, Textured};
+/// use fixshade::render::bins_len;
+/// // the rocket of the QEMU firmware: 687 vertices, 784 triangles, 2-row bands
+/// static BUFFERS: MeshBuffers<Payload<Textured<'static, GouraudShading>>, 687, { bins_len(784, 120) }, 136> =
+///     MeshBuffers::new();
+/// assert_eq!(core::mem::size_of::<Payload<Textured<'static, GouraudShading>>>(), 16);
+/// assert_eq!(core::mem::size_of::<Payload<GouraudShading>>(), 6);
+/// ```
+pub type Payload<M> = <Shader<'static, M, PayloadLighting, Linear, Rgb565> as Kernel>::Vertex;
+
+/// A lighting every mode shades, for [`Payload`] (payloads do not depend on
+/// the lighting).
+type PayloadLighting = crate::lighting::Viewed<
+    crate::lighting::Lighting<
+        crate::num::Q14,
+        [crate::lighting::DirectionalLight<crate::num::Q14>; 1],
+        crate::lighting::BlinnPhong,
+    >,
+>;
+
 /// What the vertex stage hands a [`Kernel`] for one vertex.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
@@ -192,8 +223,10 @@ pub struct VertexIn {
 }
 
 impl VertexIn {
-    /// A vertex with normal `normal` and eye position `eye`, no texture
-    /// coordinates, `w = 1`, no tangent.
+    /// A vertex with eye-space normal `normal` (Q14, any length) and eye
+    /// position `eye` (Q16.16), no texture coordinates, `w = 1`, no tangent
+    /// ([`Camera::eye`](crate::camera::Camera::eye) gives both from `f32`
+    /// world coordinates).
     pub const fn new(normal: [i32; 3], eye: [i32; 3]) -> Self {
         VertexIn {
             normal,
@@ -202,6 +235,32 @@ impl VertexIn {
             w: 1,
             tangent: [0; 4],
         }
+    }
+
+    /// The same vertex with texture coordinates `uv` (Q12,
+    /// [`TEXCOORD_FRAC`](crate::mesh::TEXCOORD_FRAC) fraction bits).
+    pub const fn with_uv(mut self, uv: [i32; 2]) -> Self {
+        self.uv = uv;
+        self
+    }
+
+    /// The same vertex with eye-space tangent `tangent` (Q14) and
+    /// handedness `hand` (`±1`).
+    pub const fn with_tangent(mut self, tangent: [i32; 3], hand: i32) -> Self {
+        self.tangent = [
+            tangent[0],
+            tangent[1],
+            tangent[2],
+            if hand < 0 { -16384 } else { 16384 },
+        ];
+        self
+    }
+
+    /// The same vertex with the clip-space `w` of a perspective transform
+    /// (the unit of [`Clip::w`](crate::camera::Clip::w)).
+    pub const fn with_w(mut self, w: i32) -> Self {
+        self.w = w;
+        self
     }
 }
 
