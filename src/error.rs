@@ -169,12 +169,35 @@ impl fmt::Display for ParamError {
 
 impl core::error::Error for ParamError {}
 
-/// Checks that `v` is finite.
-pub(crate) fn finite(name: &'static str, v: f32) -> Result<f32, ParamError> {
+/// `v` when it is finite, else `err(name)` (an error type's `NotFinite`).
+pub(crate) fn finite_or<E>(
+    name: &'static str,
+    v: f32,
+    err: fn(&'static str) -> E,
+) -> Result<f32, E> {
     if v.is_finite() {
         Ok(v)
     } else {
-        Err(ParamError::NotFinite(name))
+        Err(err(name))
+    }
+}
+
+/// Checks that `v` is finite.
+pub(crate) fn finite(name: &'static str, v: f32) -> Result<f32, ParamError> {
+    finite_or(name, v, ParamError::NotFinite)
+}
+
+/// `Ok` when `got ≥ needed` (a `const fn`: [`Mesh`](crate::mesh::Mesh)'s
+/// constructors use it).
+pub(crate) const fn check_len(
+    which: &'static str,
+    needed: usize,
+    got: usize,
+) -> Result<(), MeshError> {
+    if got < needed {
+        Err(MeshError::BufferTooSmall { which, needed, got })
+    } else {
+        Ok(())
     }
 }
 

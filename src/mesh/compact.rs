@@ -9,7 +9,7 @@
 //! [`MeshData`] filled by a `const fn` generator lives in flash: no RAM, no
 //! floating point at run time.
 
-use super::error::check_len;
+use crate::error::check_len;
 use crate::error::MeshError;
 
 /// Unit normal components are stored in Q14: `16384` is 1.

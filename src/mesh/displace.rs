@@ -25,8 +25,8 @@
 //! ```
 
 use super::compact::{round_i16, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
-use super::error::check_len;
 use super::normals::{vertex_normals_welded, Weighting};
+use crate::error::check_len;
 use crate::error::MeshError;
 use crate::texture::{Filter, TexCoord, Texture, TEX_FRAC};
 

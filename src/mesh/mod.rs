@@ -6,7 +6,7 @@
 //! ([`displace`]) and conversion to the compact format ([`to_compact`]).
 //!
 //! Everything writes into caller-owned arrays (no allocation) and reports bad
-//! sizes, indices and parameters as a [`MeshError`] instead of panicking.
+//! sizes, indices and parameters as a [`MeshError`](crate::error::MeshError) instead of panicking.
 //!
 //! # Conventions
 //!
@@ -36,14 +36,12 @@
 
 mod compact;
 mod displace;
-mod error;
 mod normals;
 mod sphere;
 mod tangents;
 mod textured;
 mod torus_knot;
 
-use crate::error::MeshError;
 pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
 pub use displace::{displace, to_compact};

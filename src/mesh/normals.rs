@@ -1,7 +1,7 @@
 //! Face and vertex normals of an indexed triangle mesh (load-time work, `f32`
 //! storage with `f64` intermediate products).
 
-use super::error::check_len;
+use crate::error::check_len;
 use crate::error::MeshError;
 use crate::num::{cross3, dot3, sub3};
 

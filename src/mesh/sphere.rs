@@ -7,8 +7,7 @@
 //! texture seam) and write the exact sphere normal `(p − centre)/radius` per
 //! vertex.
 
-use super::error::{check_len, finite};
-use crate::error::MeshError;
+use crate::error::{check_len, finite_or, MeshError};
 use core::f64::consts::PI;
 
 /// The highest subdivision level [`icosphere`] accepts: 4 (2562 vertices, 5120
@@ -61,9 +60,9 @@ fn check_common(
     tris: &[[u16; 3]],
 ) -> Result<(), MeshError> {
     for c in centre {
-        finite("centre", c)?;
+        finite_or("centre", c, MeshError::NotFinite)?;
     }
-    if !(finite("radius", radius)? > 0.0) {
+    if !(finite_or("radius", radius, MeshError::NotFinite)? > 0.0) {
         return Err(MeshError::OutOfRange("radius"));
     }
     if counts.0 > 1 << 16 {

@@ -1,7 +1,6 @@
 //! Per-vertex tangents for normal mapping, once at load time.
 
-use super::error::{check_len, finite};
-use super::MeshError;
+use crate::error::{check_len, finite_or, MeshError};
 use crate::num::{cross3, dot3};
 
 /// Per-vertex tangents from positions, unit normals, texture coordinates and
@@ -90,12 +89,12 @@ pub(crate) fn tangents_into<T: Tangent>(
     check_len("out", n, out.len())?;
     for p in positions.iter().chain(normals.iter()) {
         for &c in p {
-            finite("positions/normals", c)?;
+            finite_or("positions/normals", c, MeshError::NotFinite)?;
         }
     }
     for t in uvs {
         for &c in t {
-            finite("texcoords", c)?;
+            finite_or("texcoords", c, MeshError::NotFinite)?;
         }
     }
     for (k, tri) in triangles.iter().enumerate() {

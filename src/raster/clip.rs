@@ -51,7 +51,7 @@ pub(crate) fn screen<const PERSP: bool>(s: &ClipSpace, c: Clip) -> Screen {
 
 /// The planes, as signed distances (inside: ≥ 0).
 #[derive(Clone, Copy)]
-enum Plane {
+enum ClipPlane {
     /// `w ≥ near`.
     Near,
     /// `cx + x/w ≥ WINDOW_MIN`.
@@ -64,7 +64,7 @@ enum Plane {
     YMax,
 }
 
-impl Plane {
+impl ClipPlane {
     /// The signed distance of `c` (exact: every product below 2^48, from
     /// 32-bit multiplications; `PERSP`: a perspective clip space, else
     /// `w = 1` and the centre is 0).
@@ -77,11 +77,11 @@ impl Plane {
         let hi = |centre: i32| times_w(i64::from(WINDOW_MAX) - i64::from(centre));
         let centre = s.centre();
         match self {
-            Plane::Near => w - i64::from(s.near()),
-            Plane::XMin => i64::from(c.x) - lo(centre[0]),
-            Plane::XMax => hi(centre[0]) - i64::from(c.x),
-            Plane::YMin => i64::from(c.y) - lo(centre[1]),
-            Plane::YMax => hi(centre[1]) - i64::from(c.y),
+            ClipPlane::Near => w - i64::from(s.near()),
+            ClipPlane::XMin => i64::from(c.x) - lo(centre[0]),
+            ClipPlane::XMax => hi(centre[0]) - i64::from(c.x),
+            ClipPlane::YMin => i64::from(c.y) - lo(centre[1]),
+            ClipPlane::YMax => hi(centre[1]) - i64::from(c.y),
         }
     }
 }
@@ -125,11 +125,11 @@ pub(crate) fn clipped<V: Copy, const PERSP: bool>(
     }
     let mut p = Polygon { c, n: 3 };
     let planes = [
-        Plane::Near,
-        Plane::XMin,
-        Plane::XMax,
-        Plane::YMin,
-        Plane::YMax,
+        ClipPlane::Near,
+        ClipPlane::XMin,
+        ClipPlane::XMax,
+        ClipPlane::YMin,
+        ClipPlane::YMax,
     ];
     for plane in planes.iter().skip(usize::from(!PERSP)) {
         if p.n < 3 {
@@ -168,7 +168,7 @@ impl Polygon {
     /// Cuts the polygon by `plane`: how each new corner is made, `None`
     /// when every corner is inside (nothing changes).
     #[inline(never)]
-    fn clip<const PERSP: bool>(&mut self, plane: Plane, s: &ClipSpace) -> Option<[Step; MAX]> {
+    fn clip<const PERSP: bool>(&mut self, plane: ClipPlane, s: &ClipSpace) -> Option<[Step; MAX]> {
         let n = self.n.min(MAX);
         let d: [i64; MAX] = core::array::from_fn(|i| {
             if i < n {

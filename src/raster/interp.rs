@@ -132,11 +132,11 @@ fn corner<V: Varyings>(s: &Setup, v: &[V; 3], k: usize, i: usize) -> i32 {
 
 /// Screen-linear interpolation: one absolute plane per varying.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Linear<V: Varyings> {
+pub(crate) struct Affine<V: Varyings> {
     planes: V::Planes,
 }
 
-impl<V: Varyings> Linear<V> {
+impl<V: Varyings> Affine<V> {
     /// The planes of the first `used` of the vertices' values `v` (in the
     /// order given to [`Setup::new`]; clamped to ±[`VARYING_LIMIT`]; the
     /// others are not interpolated), positioned at the triangle's first row;
@@ -173,7 +173,7 @@ impl<V: Varyings> Linear<V> {
             }
             plane.absolute(base)
         });
-        Linear { planes }
+        Affine { planes }
     }
 
     /// The next row.

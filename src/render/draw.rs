@@ -297,7 +297,7 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> Default
 ///   near plane (the property tests render random sheets through it and count
 ///   every pixel). No far-plane clipping: depth saturates at 65535 beyond it.
 pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
-    prep: Prepared<'a, K, P>,
+    prep: Binned<'a, K, P>,
     /// This renderer's resume records and where it is in the frame.
     progress: Progress<'a>,
 }
@@ -305,7 +305,7 @@ pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
 /// What every band renderer of a [`MeshDraw`] reads: the mesh, its frame's
 /// transform, shader, vertex cache and bins.
 #[derive(Clone)]
-struct Prepared<'a, K: Kernel, P: Projection> {
+struct Binned<'a, K: Kernel, P: Projection> {
     mesh: Mesh<'a>,
     transform: MeshTransform<P>,
     kernel: K,
@@ -408,7 +408,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
             vertex::stage(&mesh, transform, &kernel, 0, cache);
         }
         let refined = options.refine.build(&mesh, transform, &kernel)?;
-        let mut prep = Prepared {
+        let mut prep = Binned {
             mesh,
             transform: *transform,
             kernel,
@@ -528,7 +528,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     }
 }
 
-impl<K: Kernel, P: Projection> Prepared<'_, K, P> {
+impl<K: Kernel, P: Projection> Binned<'_, K, P> {
     /// Resume records a band renderer needs.
     fn carry_needed(&self) -> usize {
         2 * self.bins.crossing
@@ -713,7 +713,7 @@ impl<K: Kernel, P: Projection> Prepared<'_, K, P> {
     /// (within a band, mesh order) with those starting in the band. Each is
     /// drawn into `Ok(band)`, its record kept when it continues (a band at
     /// or above the last one drawn starts a new frame; after a gap,
-    /// [`Prepared::catch_up`] first); or, for band `Err(b)`, not drawn, kept
+    /// [`Binned::catch_up`] first); or, for band `Err(b)`, not drawn, kept
     /// (to be set up again) when it reaches the first row of band `p.next`.
     /// (Three arguments, the band's drawing a tail call from
     /// `draw_band`: its stack holds no frame between the two.)
@@ -767,7 +767,7 @@ impl<K: Kernel, P: Projection> Prepared<'_, K, P> {
     }
 
     /// The last frame row of triangle `t` (−1 when it is not drawn): from
-    /// the cached screen positions, as [`Prepared::classify`] computes it.
+    /// the cached screen positions, as [`Binned::classify`] computes it.
     fn last_row(&self, t: usize) -> i32 {
         let y = |i: usize| self.vertex(i).filter(|v| v.inside()).map(|v| v.y);
         let inside = self

@@ -10,7 +10,7 @@ use crate::camera::{Clip, ClipSpace};
 use crate::error::ParamError;
 use crate::num::ATTR_FRAC;
 use crate::raster::clip::{self, Screen};
-use crate::raster::interp::{self, within, Linear, Persp, Varyings};
+use crate::raster::interp::{self, within, Affine, Persp, Varyings};
 use crate::raster::setup::at3;
 use crate::raster::{Cull, Setup, Walker};
 use crate::raster::{WINDOW_MAX, WINDOW_MIN};
@@ -93,7 +93,7 @@ pub(crate) fn draw<K: Kernel, const PERSP: bool>(
         let mut clamp = zclamp;
         let (safe, exact) = (|i| kernel.safe(i), |i| kernel.exact(i));
         let decide = known.is_none().then_some(&mut clamp);
-        let mut l = Linear::new(&s, v, K::USED, safe, exact, decide);
+        let mut l = Affine::new(&s, v, K::USED, safe, exact, decide);
         if skip > 0 {
             l.skip_rows(skip, K::USED);
         }

@@ -4,7 +4,7 @@
 
 use super::depth;
 use crate::framebuffer::BandView;
-use crate::raster::interp::{eighth, step_over, Linear, Persp, Varyings};
+use crate::raster::interp::{eighth, step_over, Affine, Persp, Varyings};
 use crate::raster::{Plane, Walker, PERSPECTIVE_SPAN};
 use crate::shade::Kernel;
 
@@ -19,25 +19,25 @@ pub(crate) trait Runs<K: Kernel> {
     /// The screen-linear planes, if that is what these are (a kernel that
     /// fuses the depth test takes their runs whole).
     #[inline(always)]
-    fn linear(&self) -> Option<&Linear<K::Varyings>> {
+    fn linear(&self) -> Option<&Affine<K::Varyings>> {
         None
     }
 }
 
-impl<K: Kernel> Runs<K> for Linear<K::Varyings> {
+impl<K: Kernel> Runs<K> for Affine<K::Varyings> {
     #[inline(always)]
     fn next_row(&mut self) {
-        Linear::next_row(self, K::USED)
+        Affine::next_row(self, K::USED)
     }
 
     #[inline(always)]
     fn run(&self, kernel: &K, t: &K::Triangle, x: i32, y: i32, out: &mut [K::Color], clamp: bool) {
-        let (a, d) = Linear::run(self, x, out.len(), K::USED, clamp);
+        let (a, d) = Affine::run(self, x, out.len(), K::USED, clamp);
         kernel.span(t, &a, &d, x, y, out)
     }
 
     #[inline(always)]
-    fn linear(&self) -> Option<&Linear<K::Varyings>> {
+    fn linear(&self) -> Option<&Affine<K::Varyings>> {
         Some(self)
     }
 }
