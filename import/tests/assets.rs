@@ -20,8 +20,8 @@ fn committed_assets_equal_a_fresh_generation() {
 fn asset_sizes_are_small() {
     let model =
         fixshade_import::import(&common::asset("rocket.obj"), &common::rocket_options()).unwrap();
-    assert!(model.mesh.triangles.len() <= 1500);
-    let tex = model.texture.as_ref().unwrap();
+    assert!(model.mesh().triangles.len() <= 1500);
+    let tex = model.texture().unwrap();
     assert!(tex.converted.log2_width <= 7 && tex.converted.log2_height <= 7);
 }
 

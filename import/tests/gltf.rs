@@ -131,8 +131,8 @@ fn gltf_glb_and_obj_agree() {
         let m = import(p, &Options::new("C")).unwrap();
         // no normals in the file: the 60° crease splits the cube into 24
         assert_eq!(m.report.normals, NormalSource::CreaseAngle(60.0));
-        assert_eq!(m.mesh, reference.mesh, "{}", p.display());
-        assert!((volume(&m.mesh) - 8.0).abs() < 1e-9);
+        assert_eq!(m.mesh(), reference.mesh(), "{}", p.display());
+        assert!((volume(m.mesh()) - 8.0).abs() < 1e-9);
     }
     assert!(import(&external, &Options::new("C"))
         .unwrap()
@@ -158,7 +158,7 @@ fn node_transforms_apply_and_mirrors_keep_the_winding() {
     let m = import(&moved, &Options::new("C")).unwrap();
     let b = m.report.bounds;
     assert_eq!(b, [[9.5, -0.5, -0.5], [10.5, 0.5, 0.5]]);
-    assert!((volume(&m.mesh) - 1.0).abs() < 1e-9);
+    assert!((volume(m.mesh()) - 1.0).abs() < 1e-9);
     // mirrored in x: the importer reverses the winding, the volume stays positive
     let mirrored = write(
         &dir,
@@ -166,7 +166,7 @@ fn node_transforms_apply_and_mirrors_keep_the_winding() {
         cube_json(Some(&uri), bin.len(), r#", "scale": [-1, 1, 1]"#),
     );
     let m = import(&mirrored, &Options::new("C")).unwrap();
-    assert!((volume(&m.mesh) - 8.0).abs() < 1e-9);
+    assert!((volume(m.mesh()) - 8.0).abs() < 1e-9);
 }
 
 /// A GLB with normals, texture coordinates and an embedded PNG texture.
@@ -242,14 +242,14 @@ fn glb_with_an_embedded_texture() {
     let p = write(&dir, "quad.glb", glb(&json, &bin));
     let m = import(&p, &Options::new("Q")).unwrap();
     assert_eq!(m.report.normals, NormalSource::File);
-    assert_eq!(m.mesh.positions.len(), 4);
-    assert_eq!(m.mesh.normals, [[0, 0, 16384]; 4]);
+    assert_eq!(m.mesh().positions.len(), 4);
+    assert_eq!(m.mesh().normals, [[0, 0, 16384]; 4]);
     // glTF's v already runs down the image: kept as is
     assert_eq!(
-        m.mesh.texcoords.as_deref().unwrap(),
+        m.mesh().texcoords.as_deref().unwrap(),
         [[0, 4096], [4096, 4096], [4096, 0], [0, 0]]
     );
-    let t = m.texture.unwrap();
+    let t = m.texture().unwrap();
     assert_eq!(t.name, "image 0");
     assert_eq!(
         t.converted.texels,

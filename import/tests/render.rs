@@ -15,7 +15,7 @@ use fixshade::prelude::RgbColor;
 fn generated_statics_agree_with_the_importer() {
     let model =
         fixshade_import::import(&common::asset("rocket.obj"), &common::rocket_options()).unwrap();
-    let m = &model.mesh;
+    let m = model.mesh();
     assert_eq!(generated::ROCKET.vertex_count(), m.positions.len());
     assert_eq!(generated::ROCKET.triangle_count(), m.triangles.len());
     assert_eq!(generated::ROCKET.frac(), generated::ROCKET_FRAC);
@@ -85,8 +85,8 @@ fn untextured_import_renders_too() {
     let model = fixshade_import::import(&common::asset("rocket.obj"), &o).unwrap();
     // the renderer keeps the mesh for 'static: leak the arrays of this test
     let mesh: fixshade::mesh::Mesh<'static> =
-        Box::leak(Box::new(model.mesh.clone())).mesh().unwrap();
-    assert_eq!(mesh.vertex_count(), model.mesh.positions.len());
+        Box::leak(Box::new(model.mesh().clone())).mesh().unwrap();
+    assert_eq!(mesh.vertex_count(), model.mesh().positions.len());
     let side = 120;
     let px = common::render::render(mesh, None, &Mat4::rotate_y(0.4), side);
     let lit = px.iter().filter(|&&p| p != common::render::BG).count();
