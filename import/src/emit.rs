@@ -38,13 +38,13 @@ pub fn rust_source(model: &Model) -> String {
     let _ = writeln!(s, "// {}", model.options_line);
     let _ = writeln!(s);
     let of = if several {
-        format!("the positions of every part of `{n}`")
+        format!("the positions of every part of `{n}`: a position is\n/// `raw · 2^-{frac}` model units")
     } else {
-        format!("`{n}_POSITIONS`")
+        format!("`{n}_POSITIONS`: a position is `raw · 2^-{frac}` model units")
     };
     let _ = writeln!(
         s,
-        "/// Fraction bits of {of}: a position is `raw · 2^-{frac}` model units\n\
+        "/// Fraction bits of {of}\n\
          /// (quantisation step 2^-{frac} = {step}; largest rounding error {:.3e}).",
         r.max_position_error
     );
@@ -67,25 +67,25 @@ pub fn rust_source(model: &Model) -> String {
     let _ = writeln!(s, "pub const {n}_PART_COUNT: usize = {count};");
     let _ = writeln!(s);
     let _ = writeln!(s, "/// The most vertices of a part of `{n}`.");
-    let _ = writeln!(
-        s,
-        "pub const {n}_MAX_VERTICES: usize = {};",
-        if several {
-            max_v.unwrap_or(0).to_string()
+    assign(
+        &mut s,
+        &format!("pub const {n}_MAX_VERTICES: usize ="),
+        &[if several {
+            format!("{};", max_v.unwrap_or(0))
         } else {
-            format!("{n}_VERTICES")
-        }
+            format!("{n}_VERTICES;")
+        }],
     );
     let _ = writeln!(s);
     let _ = writeln!(s, "/// The most triangles of a part of `{n}`.");
-    let _ = writeln!(
-        s,
-        "pub const {n}_MAX_TRIANGLES: usize = {};",
-        if several {
-            max_t.unwrap_or(0).to_string()
+    assign(
+        &mut s,
+        &format!("pub const {n}_MAX_TRIANGLES: usize ="),
+        &[if several {
+            format!("{};", max_t.unwrap_or(0))
         } else {
-            format!("{n}_TRIANGLE_COUNT")
-        }
+            format!("{n}_TRIANGLE_COUNT;")
+        }],
     );
     if several {
         buffers_alias(
@@ -158,6 +158,31 @@ fn assign(s: &mut String, lhs: &str, rhs: &[String]) {
             let _ = writeln!(s, "    {line}");
         }
     }
+}
+
+/// Appends `{indent}{lhs} {function}(args);` as `rustfmt` writes it: the
+/// arguments on one line when they take at most 60 columns (its
+/// `fn_call_width`) and the call fits on the line or the next, else one a
+/// line.
+fn call(s: &mut String, indent: &str, lhs: &str, function: &str, args: &[String]) {
+    let joined = args.join(", ");
+    let line = format!("{indent}{lhs} {function}({joined});");
+    let next = format!("{indent}    {function}({joined});");
+    if joined.chars().count() <= 60 {
+        if line.chars().count() <= WIDTH {
+            let _ = writeln!(s, "{line}");
+            return;
+        }
+        if next.chars().count() <= WIDTH {
+            let _ = writeln!(s, "{indent}{lhs}\n{next}");
+            return;
+        }
+    }
+    let _ = writeln!(s, "{indent}{lhs} {function}(");
+    for a in args {
+        let _ = writeln!(s, "{indent}    {a},");
+    }
+    let _ = writeln!(s, "{indent});");
 }
 
 /// An `f32` as a Rust literal (the shortest that reads back the same).
@@ -254,19 +279,26 @@ fn part<'a>(
             b[1][2],
         );
     }
-    let mesh = format!(
-        "::fixshade::mesh::Mesh::checked(\n        &{n}_POSITIONS,\n        &{n}_NORMALS,\n        &{n}_TRIANGLES,\n        {model_name}_FRAC,\n    )"
-    );
+    let args = [
+        format!("&{n}_POSITIONS"),
+        format!("&{n}_NORMALS"),
+        format!("&{n}_TRIANGLES"),
+        format!("{model_name}_FRAC"),
+    ];
+    let checked = "::fixshade::mesh::Mesh::checked";
     match (&m.texcoords, &m.tangents) {
         (None, _) => {
-            let _ = writeln!(
+            call(
                 s,
-                "pub static {n}: ::fixshade::mesh::Mesh<'static> = {mesh};"
+                "",
+                &format!("pub static {n}: ::fixshade::mesh::Mesh<'static> ="),
+                checked,
+                &args,
             );
         }
         (Some(_), tangents) => {
             let _ = writeln!(s, "pub static {n}: ::fixshade::mesh::Mesh<'static> = {{");
-            let _ = writeln!(s, "    let m = {mesh};");
+            call(s, "    ", "let m =", checked, &args);
             let with_uv = format!("m.with_texcoords(&{n}_TEXCOORDS)");
             let uv_panic = "texture coordinates shorter than the positions";
             if tangents.is_some() {
