@@ -609,15 +609,16 @@ fn load_texture(
 
 /// The build-script route: import a model into `$OUT_DIR`.
 pub mod build {
+    use std::io::Write;
     use std::path::{Path, PathBuf};
 
-    use crate::{import, Error, Options};
+    use crate::{import, Error, FileKind, Options};
 
     /// Imports `input` (relative to the package being built) with `options`,
     /// writes the source to `$OUT_DIR/file_name`, prints
-    /// `cargo:rerun-if-changed` for every file read (and every missing file
-    /// the model names: the script reruns once it exists), and returns the
-    /// path written. Warnings (a missing MTL or texture, a clamped material
+    /// `cargo:rerun-if-changed` for every file read (and for the folder of
+    /// every missing file the model names: the script reruns when the file
+    /// appears), and returns the path written. Warnings (a missing MTL or texture, a clamped material
     /// value, a model wound clockwise, …) are printed as `cargo:warning=`
     /// lines; [`Options::strict`] makes the missing files and bad values
     /// errors.
@@ -632,16 +633,52 @@ pub mod build {
         options: &Options,
     ) -> Result<PathBuf, Error> {
         let out_dir = std::env::var_os("OUT_DIR").ok_or(Error::NoOutDir)?;
-        let out = Path::new(&out_dir).join(file_name);
+        generate_in(
+            input,
+            Path::new(&out_dir),
+            file_name,
+            options,
+            &mut std::io::stdout().lock(),
+        )
+    }
+
+    /// [`generate`] without the environment: writes `out_dir/file_name` and
+    /// the `cargo:` lines to `cargo` (a build script's standard output).
+    ///
+    /// # Errors
+    ///
+    /// As [`generate`] (but for [`Error::NoOutDir`]); writing to `cargo`
+    /// failing is an [`Error::Io`].
+    pub fn generate_in(
+        input: impl AsRef<Path>,
+        out_dir: &Path,
+        file_name: &str,
+        options: &Options,
+        cargo: &mut dyn Write,
+    ) -> Result<PathBuf, Error> {
+        let io = |e: std::io::Error| Error::Io {
+            kind: FileKind::Output,
+            path: PathBuf::from("<build script output>"),
+            source: e,
+        };
+        let out = out_dir.join(file_name);
         let result = import(input.as_ref(), options);
         // rerun when the model changes, even after an error
-        println!("cargo:rerun-if-changed={}", input.as_ref().display());
+        writeln!(cargo, "cargo:rerun-if-changed={}", input.as_ref().display()).map_err(io)?;
         let model = result?;
         for f in &model.files {
-            println!("cargo:rerun-if-changed={}", f.display());
+            // a missing file: its folder (or the nearest one that exists),
+            // which changes when the file appears; cargo would rerun the
+            // script on every build for a path that does not exist
+            let watched = f
+                .ancestors()
+                .find(|a| a.exists())
+                .filter(|a| !a.as_os_str().is_empty())
+                .unwrap_or(Path::new("."));
+            writeln!(cargo, "cargo:rerun-if-changed={}", watched.display()).map_err(io)?;
         }
         for w in &model.warnings {
-            println!("cargo:warning={}: {w}", model.source_name);
+            writeln!(cargo, "cargo:warning={}: {w}", model.source_name).map_err(io)?;
         }
         model.write_rust(&out)?;
         Ok(out)

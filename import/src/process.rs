@@ -991,6 +991,41 @@ mod tests {
     }
 
     #[test]
+    fn normals_in_chunks_equal_one_call() {
+        // a waving 12 × 12 grid, vertices numbered in an order that scatters
+        // neighbours across the chunks
+        let n = 12usize;
+        let id = |i: usize, j: usize| ((j * n + i) * 37 % (n * n)) as u32;
+        let mut positions = vec![[0.0f32; 3]; n * n];
+        for j in 0..n {
+            for i in 0..n {
+                let (x, y) = (i as f32 / 3.0, j as f32 / 3.0);
+                positions[id(i, j) as usize] = [x, y, (x * 1.3).sin() * (y * 0.7).cos()];
+            }
+        }
+        let mut tris = Vec::new();
+        for j in 0..n - 1 {
+            for i in 0..n - 1 {
+                tris.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let whole = smooth_normals(&positions, &tris, Weighting::Angle, NORMAL_CHUNK).unwrap();
+        for chunk in [64, 40, 24] {
+            let parts = smooth_normals(&positions, &tris, Weighting::Angle, chunk).unwrap();
+            assert_eq!(parts, whole, "chunk {chunk}");
+        }
+        // area weighting scales each chunk by its largest face: the same up to rounding
+        let whole = smooth_normals(&positions, &tris, Weighting::Area, NORMAL_CHUNK).unwrap();
+        let parts = smooth_normals(&positions, &tris, Weighting::Area, 24).unwrap();
+        for (a, b) in whole.iter().zip(&parts) {
+            for k in 0..3 {
+                assert!((a[k] - b[k]).abs() < 1e-6, "{a:?} {b:?}");
+            }
+        }
+    }
+
+    #[test]
     fn union_find_joins_transitively() {
         let mut p: Vec<u32> = (0..6).collect();
         union(&mut p, 4, 5);

@@ -7,7 +7,9 @@ mod common;
 use std::path::Path;
 
 use common::{asset, cube_obj, scratch, write};
-use fixshade_import::{import, Error, FileKind, NormalSource, Options, TextureChoice, Weighting};
+use fixshade_import::{
+    import, Error, FileKind, NormalSource, Options, Orientation, TextureChoice, Weighting,
+};
 
 fn opts() -> Options {
     Options::new("M")
@@ -306,6 +308,160 @@ fn winding_is_kept_counter_clockwise_from_outside() {
         .collect();
     let m = import(&obj(&dir, &reversed), &opts()).unwrap();
     assert!((signed_volume(m.mesh()) + 8.0).abs() < 1e-9);
+}
+
+/// `cube_obj`'s cube (`s off`), each face reversed when `clockwise`, with a
+/// normal per face (`vn`, outward times `normal_sign`) when `normal_sign` is
+/// not 0.
+fn cube_with(clockwise: bool, normal_sign: i32) -> String {
+    let mut s = String::new();
+    for i in 0..8 {
+        let c = |bit: usize| if i & bit != 0 { 1 } else { -1 };
+        s += &format!("v {} {} {}\n", c(1), c(2), c(4));
+    }
+    let faces = [
+        ([1, 3, 4, 2], [0, 0, -1]),
+        ([5, 6, 8, 7], [0, 0, 1]),
+        ([1, 2, 6, 5], [0, -1, 0]),
+        ([3, 7, 8, 4], [0, 1, 0]),
+        ([1, 5, 7, 3], [-1, 0, 0]),
+        ([2, 4, 8, 6], [1, 0, 0]),
+    ];
+    for (_, n) in faces {
+        s += &format!(
+            "vn {} {} {}\n",
+            n[0] * normal_sign,
+            n[1] * normal_sign,
+            n[2] * normal_sign
+        );
+    }
+    s += "s off\n";
+    for (k, (mut f, _)) in faces.into_iter().enumerate() {
+        if clockwise {
+            f.reverse();
+        }
+        let corner = |v: usize| {
+            if normal_sign == 0 {
+                format!("{v}")
+            } else {
+                format!("{v}//{}", k + 1)
+            }
+        };
+        s += &format!("f {}\n", f.map(corner).join(" "));
+    }
+    s
+}
+
+/// Every vertex normal agrees with its triangle's face normal, and both
+/// point away from the centre.
+fn normals_point_outward(m: &fixshade_import::CompactMesh) -> bool {
+    m.triangles.iter().all(|t| {
+        let [a, b, c] = t.map(|i| dequant(m, usize::from(i)));
+        let n = [
+            (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+            (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]),
+        ];
+        let centre = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
+        let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+        dot(n, centre) > 0.0
+            && t.iter()
+                .all(|&i| dot(n, m.normals[usize::from(i)].map(f64::from)) > 0.0)
+    })
+}
+
+fn flip() -> Options {
+    let mut o = opts();
+    o.process.flip_winding = true;
+    o
+}
+
+#[test]
+fn a_clockwise_cube_warns_and_flip_winding_turns_it_outward() {
+    let dir = scratch("clockwise");
+    let p = obj(&dir, &cube_with(true, 0));
+    let m = import(&p, &opts()).unwrap();
+    assert!(
+        matches!(m.report.orientation, Orientation::Closed { volume } if (volume + 8.0).abs() < 1e-9)
+    );
+    assert_eq!(
+        m.warnings,
+        [
+            "wound clockwise from outside (signed volume -8.0000): renders inside-out; \
+          pass --flip-winding"
+        ]
+    );
+    assert!(m.summary().contains(
+        "orientation: closed, signed volume -8.0000 (clockwise from outside: inside-out)"
+    ));
+    // --flip-winding: every triangle reversed, the volume positive, the
+    // computed normals outward, no warning
+    let m = import(&p, &flip()).unwrap();
+    assert!(
+        matches!(m.report.orientation, Orientation::Closed { volume } if (volume - 8.0).abs() < 1e-9)
+    );
+    assert!((signed_volume(m.mesh()) - 8.0).abs() < 1e-9);
+    assert!(normals_point_outward(m.mesh()));
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    assert!(m.report.winding_flipped && !m.report.file_normals_negated);
+    assert!(m.to_rust().contains("--flip-winding"));
+    // --flip-winding on a cube that was right: the warning says so
+    let m = import(&obj(&dir, &cube_with(false, 0)), &flip()).unwrap();
+    assert!(
+        m.warnings[0].contains("after --flip-winding"),
+        "{:?}",
+        m.warnings
+    );
+}
+
+#[test]
+fn flip_winding_turns_inward_file_normals_and_keeps_outward_ones() {
+    let dir = scratch("clockwise_normals");
+    // clockwise, its normals inward too (a mirrored export): both turned
+    let m = import(&obj(&dir, &cube_with(true, -1)), &flip()).unwrap();
+    assert_eq!(m.report.normals, NormalSource::File);
+    assert!(m.report.file_normals_negated);
+    assert!(normals_point_outward(m.mesh()));
+    assert!((signed_volume(m.mesh()) - 8.0).abs() < 1e-9);
+    assert!(m
+        .summary()
+        .contains("the file's normals negated with the winding"));
+    // clockwise, its normals outward (only the winding wrong): normals kept
+    let m = import(&obj(&dir, &cube_with(true, 1)), &flip()).unwrap();
+    assert!(!m.report.file_normals_negated);
+    assert!(normals_point_outward(m.mesh()));
+    // without --flip-winding the file's normals are never touched
+    let m = import(&obj(&dir, &cube_with(true, -1)), &opts()).unwrap();
+    assert!(m.mesh().normals.contains(&[0, 0, 16384])); // the -z face's, inward
+}
+
+#[test]
+fn open_and_inconsistent_meshes() {
+    let dir = scratch("open");
+    // a cube without its last face: open, not checked, no warning
+    let text = cube_with(true, 0);
+    let open: String = text
+        .lines()
+        .take(text.lines().count() - 1)
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let m = import(&obj(&dir, &open), &opts()).unwrap();
+    assert_eq!(m.report.orientation, Orientation::Open { edges: 4 });
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    assert!(m.summary().contains("winding not checked"));
+    // one face turned against the others: closed, inconsistent
+    let mut lines: Vec<String> = cube_with(false, 0).lines().map(String::from).collect();
+    let last = lines.len() - 1;
+    let mut f: Vec<&str> = lines[last].split_whitespace().skip(1).collect();
+    f.reverse();
+    lines[last] = format!("f {}", f.join(" "));
+    let m = import(&obj(&dir, &(lines.join("\n") + "\n")), &opts()).unwrap();
+    assert_eq!(m.report.orientation, Orientation::Inconsistent { edges: 4 });
+    assert!(
+        m.warnings[0].contains("4 edges run the same way"),
+        "{:?}",
+        m.warnings
+    );
 }
 
 #[test]
