@@ -10,9 +10,10 @@
 //! firmware `include!`s.
 //!
 //! One module per stage: [`read_obj`] and [`read_gltf`] read a file into a
-//! [`SourceMesh`]; [`process`] makes the [`CompactMesh`]; [`texture`]
-//! converts the image; [`emit`] writes the source; [`cli`] is the
-//! command-line tool. [`import`] runs them all.
+//! [`SourceMesh`]; [`process`] makes a [`CompactMesh`] per part;
+//! [`material`] converts the materials; [`texture`] converts the images;
+//! [`emit`] writes the source; [`cli`] is the command-line tool. [`import`]
+//! runs them all.
 //!
 //! From a build script (`build.rs`), with `fixshade-import` as a
 //! build-dependency:
@@ -26,8 +27,17 @@
 //! ```
 //!
 //! and in the firmware: `include!(concat!(env!("OUT_DIR"), "/teapot.rs"));`
-//! defines `TEAPOT: fixshade::mesh::Mesh<'static>`, `TEAPOT_FRAC` and the
-//! arrays.
+//! defines `TEAPOT: fixshade::mesh::Mesh<'static>`, `TEAPOT_FRAC`, the
+//! arrays, `TEAPOT_MATERIAL` (a `fixshade::lighting::MaterialDesc`), the
+//! counts `TEAPOT_VERTICES` and `TEAPOT_TRIANGLE_COUNT`, the buffers alias
+//! `TEAPOT_BUFFERS` and the list `TEAPOT_PARTS`. A model of several materials
+//! (or cut by [`ProcessOptions::split`]) gives one part each, `TEAPOT_PART0`,
+//! `TEAPOT_PART1`, …, with the same items under its own prefix.
+//!
+//! A missing material library or texture is a warning and a default
+//! (OpenGL's default material, no texture) unless [`Options::strict`]; the
+//! materials are mapped by [`material`]; a closed mesh wound clockwise is a
+//! warning ([`ProcessOptions::flip_winding`] reverses it).
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs, missing_debug_implementations)]

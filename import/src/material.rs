@@ -7,7 +7,7 @@
 //! An absent statement keeps OpenGL's default ([`MaterialDesc::default`]:
 //! ambient 0.2, diffuse 0.8, specular 0, emission 0, shininess 0; opacity 1).
 //!
-//! **glTF** (metallic-roughness; see [`from_gltf`] for the reasons):
+//! **glTF** (metallic-roughness; the reasons are in the crate's README):
 //!
 //! - diffuse = base colour · (1 − metallic);
 //! - ambient = base colour;

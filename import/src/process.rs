@@ -48,8 +48,7 @@ use crate::source::{Smoothing, SourceMesh};
 pub const DEFAULT_CREASE_ANGLE: f64 = 60.0;
 
 /// The most vertices an imported mesh (a part) may have: `u16` indices, the
-/// last value kept free (the library's silhouette refinement numbers its new
-/// vertices after the mesh's, within `u16`).
+/// last value kept free.
 pub const MAX_VERTICES: usize = 65_535;
 
 /// The most triangles an imported mesh (a part) may have: the renderer bins
