@@ -230,11 +230,19 @@ pub struct Model {
 
 impl Model {
     /// The first part's mesh: the model's, when it has one part.
+    ///
+    /// # Panics
+    ///
+    /// For a model without parts ([`import`] never makes one).
     pub fn mesh(&self) -> &CompactMesh {
         &self.parts[0].mesh
     }
 
     /// The first part's texture: the model's, when it has one part.
+    ///
+    /// # Panics
+    ///
+    /// For a model without parts ([`import`] never makes one).
     pub fn texture(&self) -> Option<&ModelTexture> {
         self.texture_of(&self.parts[0])
     }

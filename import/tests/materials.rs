@@ -190,6 +190,22 @@ fn a_missing_mtl_is_a_warning_and_the_default_material() {
 }
 
 #[test]
+fn a_material_no_library_defines_is_the_default_material() {
+    let dir = scratch("unfound_material");
+    write(&dir, "m.mtl", "newmtl a\nKd 1 0 0\n");
+    let p = write(&dir, "m.obj", square("m.mtl", ["a", "b"]));
+    let m = import(&p, &Options::new("M")).unwrap();
+    assert_eq!(
+        m.warnings,
+        ["no material library defines `b`: OpenGL's default material used"]
+    );
+    assert_eq!(m.parts.len(), 2);
+    assert_eq!(m.parts[0].material.desc.diffuse, [1.0, 0.0, 0.0]);
+    assert_eq!(m.parts[1].material.name, None);
+    assert_eq!(m.parts[1].material.desc, MaterialDesc::default());
+}
+
+#[test]
 fn a_missing_texture_is_a_warning_and_no_texture() {
     let dir = scratch("missing_texture");
     write(&dir, "m.mtl", "newmtl a\nKd 0.5 0.5 0.5\nmap_Kd gone.png\n");
