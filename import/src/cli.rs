@@ -11,9 +11,11 @@ fixshade-import: a model file to fixshade's compact static mesh (and texture) as
 
 Usage: fixshade-import MODEL [options]
 
-MODEL is a Wavefront .obj (its .mtl and map_Kd texture are read too), a .gltf
+MODEL is a Wavefront .obj (its .mtl and map_Kd textures are read too), a .gltf
 or a .glb. The source goes to --out (default: standard output); what was done
-(counts, the chosen frac and quantisation step, texture error) to standard error.
+(counts, the chosen frac and quantisation step, materials, texture error,
+warnings) to standard error. Each material becomes a part (its own mesh,
+MaterialDesc and texture); NAME_PARTS lists them.
 
 Options:
   -o, --out FILE             write the Rust source to FILE
@@ -29,6 +31,11 @@ Options:
       --recompute-normals    ignore the file's normals
       --weighting angle|area face weights of the normal average (default: angle)
       --tangents             emit tangents (for normal maps; needs texture coordinates)
+      --flip-winding         reverse every triangle (a model wound clockwise from
+                             outside; the file's normals are negated too if they
+                             point inward)
+      --split                cut a part over 65535 vertices or triangles into
+                             parts that fit (default: an error)
       --no-texcoords         drop texture coordinates
       --texture FILE         convert this PNG instead of the material's texture
       --no-texture           emit no texture
@@ -36,6 +43,10 @@ Options:
       --clamp                the texture clamps at its edges (default: repeats)
       --resize               resample a texture whose sides are not powers of
                              two to the nearest ones (default: an error)
+      --strict               a missing MTL or texture, or a material value outside
+                             OpenGL's ranges, is an error (default: a warning, and
+                             OpenGL's default material / no texture / the value
+                             clamped)
   -q, --quiet                print nothing but errors
   -h, --help                 this text
   -V, --version              the version
@@ -134,6 +145,9 @@ pub fn parse(args: &[String]) -> Result<Command, String> {
                 }
             }
             "--tangents" => o.process.tangents = true,
+            "--flip-winding" => o.process.flip_winding = true,
+            "--split" => o.process.split = true,
+            "--strict" => o.strict = true,
             "--no-texcoords" => o.process.texcoords = false,
             "--texture" => o.texture = TextureChoice::File(PathBuf::from(value(a)?)),
             "--no-texture" => o.texture = TextureChoice::None,
@@ -260,6 +274,13 @@ mod tests {
         assert_eq!(options.process.scale, 0.5);
         assert_eq!(options.process.crease_angle, Some(30.0));
         assert_eq!(options.texture_format, TextureFormat::Palette8);
+        assert!(!options.strict && !options.process.flip_winding && !options.process.split);
+        let Ok(Command::Import { options, .. }) =
+            parse(&args("m.obj --strict --flip-winding --split"))
+        else {
+            panic!()
+        };
+        assert!(options.strict && options.process.flip_winding && options.process.split);
     }
 
     #[test]

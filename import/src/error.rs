@@ -83,15 +83,28 @@ pub enum Error {
         what: &'static str,
     },
     /// More vertices after welding than `u16` indices address with the
-    /// last index kept free (the limit is 65 535).
+    /// last index kept free (the limit is 65 535): pass `--split`.
     TooManyVertices {
+        /// The model file.
+        path: PathBuf,
+        /// The material whose faces are too many, when the model has several.
+        material: Option<String>,
         /// The vertices the mesh needs.
         count: usize,
+        /// Its triangles.
+        triangles: usize,
     },
-    /// More triangles than the renderer's `u16` bins address (65 535).
+    /// More triangles than the renderer's `u16` bins address (65 535): pass
+    /// `--split`.
     TooManyTriangles {
+        /// The model file.
+        path: PathBuf,
+        /// The material whose faces are too many, when the model has several.
+        material: Option<String>,
         /// The triangles the mesh has.
         count: usize,
+        /// Its distinct (quantised) positions.
+        positions: usize,
     },
     /// A coordinate does not fit `i16` even with `frac = 0` (|x| ≥ 32 767.5):
     /// use `--scale`.
@@ -114,13 +127,13 @@ pub enum Error {
     /// A texture was asked for (or tangents) but the mesh has no texture
     /// coordinates.
     NoTexcoords,
-    /// The faces use materials with different diffuse textures; a fixshade
-    /// mesh has one. Pass `--texture FILE` to choose.
-    SeveralTextures {
-        /// The first texture.
-        first: PathBuf,
-        /// Another one.
-        second: PathBuf,
+    /// A material value outside what OpenGL accepts (with `--strict`;
+    /// without, it is clamped and a warning given).
+    Material {
+        /// The material's name.
+        material: String,
+        /// The value and its range.
+        message: String,
     },
     /// A texture image could not be decoded.
     Texture {
@@ -179,13 +192,31 @@ impl fmt::Display for Error {
             }
             Error::Empty { path } => write!(f, "{}: no triangles", path.display()),
             Error::NotFinite { what } => write!(f, "a {what} is NaN or infinite"),
-            Error::TooManyVertices { count } => write!(
+            Error::TooManyVertices {
+                path,
+                material,
+                count,
+                triangles,
+            } => write!(
                 f,
-                "{count} vertices after welding: more than the 65535 that u16 indices address"
+                "{}: {count} vertices after welding ({triangles} triangles){}: more than the \
+                 65535 vertices a fixshade mesh's u16 indices address; pass --split to cut the \
+                 model into parts of at most 65535 vertices and 65535 triangles each",
+                path.display(),
+                of_material(material)
             ),
-            Error::TooManyTriangles { count } => write!(
+            Error::TooManyTriangles {
+                path,
+                material,
+                count,
+                positions,
+            } => write!(
                 f,
-                "{count} triangles: more than the 65535 the renderer's u16 bins address"
+                "{}: {count} triangles ({positions} positions){}: more than the 65535 triangles \
+                 the renderer's u16 bins address; pass --split to cut the model into parts of \
+                 at most 65535 vertices and 65535 triangles each",
+                path.display(),
+                of_material(material)
             ),
             Error::PositionRange { max_abs } => write!(
                 f,
@@ -204,11 +235,9 @@ impl fmt::Display for Error {
             Error::NoTexcoords => f.write_str(
                 "a texture or tangents were asked for but the mesh has no texture coordinates",
             ),
-            Error::SeveralTextures { first, second } => write!(
+            Error::Material { material, message } => write!(
                 f,
-                "the materials use several textures ({} and {}); a mesh has one: choose it with --texture",
-                first.display(),
-                second.display()
+                "material `{material}`: {message} (--strict: OpenGL's ranges are enforced)"
             ),
             Error::Texture { path, message } => write!(f, "texture {}: {message}", path.display()),
             Error::TextureSize {
@@ -229,6 +258,13 @@ impl fmt::Display for Error {
             Error::NoOutDir => f.write_str("OUT_DIR is not set: call this from a build script"),
         }
     }
+}
+
+/// `" in material `m`"`, or nothing.
+fn of_material(material: &Option<String>) -> String {
+    material
+        .as_ref()
+        .map_or_else(String::new, |m| format!(" in material `{m}`"))
 }
 
 impl std::error::Error for Error {

@@ -7,8 +7,10 @@
 //! mirrored nodes (negative determinant) is reversed so that triangles stay
 //! counter-clockwise from outside. Triangle lists, strips and fans are read;
 //! points and lines are skipped. glTF's texture coordinates already run down
-//! the image, as fixshade's do. The base colour texture of the materials is
-//! the texture (PNG only; `KHR_texture_transform` is not applied).
+//! the image, as fixshade's do. Each material's base colour factor,
+//! metallic and roughness factors, emissive factor and alpha mode are kept
+//! (mapped to Blinn-Phong by [`crate::material`]), its base colour texture is
+//! its texture (PNG only; `KHR_texture_transform` is not applied).
 
 use std::path::{Path, PathBuf};
 
@@ -16,7 +18,9 @@ use base64::Engine as _;
 use gltf::mesh::Mode;
 
 use crate::error::{read_file, Error, FileKind};
-use crate::source::{Corner, Smoothing, SourceMesh, SourceTriangle, TextureSource};
+use crate::source::{
+    Corner, MaterialValues, Smoothing, SourceMaterial, SourceMesh, SourceTriangle, TextureSource,
+};
 
 /// Reads the glTF or GLB at `path` and the buffers it names.
 ///
@@ -75,6 +79,7 @@ pub fn read(path: &Path) -> Result<SourceMesh, Error> {
         buffers: &buffers,
         dir: &dir,
         out: &mut out,
+        materials: Vec::new(),
     };
     let doc = &gltf.document;
     match doc.default_scene().or_else(|| doc.scenes().next()) {
@@ -115,6 +120,8 @@ struct Reader<'a> {
     buffers: &'a [Vec<u8>],
     dir: &'a Path,
     out: &'a mut SourceMesh,
+    /// The document's material index of each of `out.materials`.
+    materials: Vec<usize>,
 }
 
 impl Reader<'_> {
@@ -167,17 +174,10 @@ impl Reader<'_> {
                     .push(format!("{what}: {mode:?} skipped (not triangles)"));
                 continue;
             }
-            let texture = prim
-                .material()
-                .pbr_metallic_roughness()
-                .base_color_texture();
+            let material = prim.material();
+            let texture = material.pbr_metallic_roughness().base_color_texture();
             let set = texture.as_ref().map_or(0, |t| t.tex_coord());
-            if let Some(info) = texture {
-                let t = self.texture(&info.texture())?;
-                if !self.out.textures.contains(&t) {
-                    self.out.textures.push(t);
-                }
-            }
+            let material = self.material(&material)?;
             let r = prim.reader(|b| self.buffers.get(b.index()).map(Vec::as_slice));
             let Some(positions) = r.read_positions() else {
                 self.out
@@ -237,10 +237,42 @@ impl Reader<'_> {
                 self.out.triangles.push(SourceTriangle {
                     corners: t.map(corner),
                     smoothing: Smoothing::Unspecified,
+                    material,
                 });
             }
         }
         Ok(())
+    }
+
+    /// The index in `out.materials` of a primitive's material (added at its
+    /// first use); `None` for the default material (no `material`).
+    fn material(&mut self, material: &gltf::Material<'_>) -> Result<Option<usize>, String> {
+        let Some(index) = material.index() else {
+            return Ok(None);
+        };
+        if let Some(i) = self.materials.iter().position(|&m| m == index) {
+            return Ok(Some(i));
+        }
+        let pbr = material.pbr_metallic_roughness();
+        let texture = match pbr.base_color_texture() {
+            Some(info) => Some(self.texture(&info.texture())?),
+            None => None,
+        };
+        self.out.materials.push(SourceMaterial {
+            name: material
+                .name()
+                .map_or_else(|| format!("material {index}"), str::to_string),
+            values: MaterialValues::Gltf {
+                base_colour: pbr.base_color_factor().map(f64::from),
+                metallic: f64::from(pbr.metallic_factor()),
+                roughness: f64::from(pbr.roughness_factor()),
+                emissive: material.emissive_factor().map(f64::from),
+                opaque: material.alpha_mode() == gltf::material::AlphaMode::Opaque,
+            },
+            texture,
+        });
+        self.materials.push(index);
+        Ok(Some(self.out.materials.len() - 1))
     }
 
     fn texture(&mut self, texture: &gltf::Texture<'_>) -> Result<TextureSource, String> {

@@ -23,16 +23,21 @@ use std::io::{BufRead, Cursor, Read};
 use std::path::{Path, PathBuf};
 
 use crate::error::{io_error, read_file, Error, FileKind};
-use crate::source::{Corner, Smoothing, SourceMesh, SourceTriangle, TextureSource};
+use crate::source::{
+    Corner, MaterialValues, MissingFile, Smoothing, SourceMaterial, SourceMesh, SourceTriangle,
+    TextureSource,
+};
 
 /// Reads the OBJ at `path` and the material libraries it names (relative to
-/// its folder).
+/// its folder). A missing material library is not an error here: it is
+/// listed in [`SourceMesh::missing`] and its materials are OpenGL's default
+/// ([`crate::import`] makes it an error with `--strict`).
 ///
 /// # Errors
 ///
-/// [`Error::MissingFile`] for a missing OBJ or MTL; [`Error::Parse`] with
-/// the line number for a malformed OBJ or MTL line or a face index out of
-/// range; [`Error::Io`] for other read failures.
+/// [`Error::MissingFile`] for a missing OBJ; [`Error::Parse`] with the line
+/// number for a malformed OBJ or MTL line or a face index out of range;
+/// [`Error::Io`] for other read failures.
 pub fn read(path: &Path) -> Result<SourceMesh, Error> {
     let bytes = read_file(FileKind::Model, path)?;
     read_bytes(path, &bytes)
@@ -41,7 +46,12 @@ pub fn read(path: &Path) -> Result<SourceMesh, Error> {
 /// [`read`] on the file's bytes (`path` names it and anchors relative paths).
 fn read_bytes(path: &Path, bytes: &[u8]) -> Result<SourceMesh, Error> {
     let dir = path.parent().unwrap_or(Path::new("")).to_path_buf();
-    let (faces, text, polylines) = prescan(bytes);
+    let Prescan {
+        faces,
+        text,
+        polylines,
+        usemtl,
+    } = prescan(bytes);
     let loader = MaterialLoader::new(dir);
     let options = tobj::LoadOptions {
         triangulate: false,
@@ -68,6 +78,7 @@ fn read_bytes(path: &Path, bytes: &[u8]) -> Result<SourceMesh, Error> {
         error,
         material_dirs,
         files,
+        missing,
         ..
     } = loader;
     if let Some(e) = error.into_inner() {
@@ -80,8 +91,29 @@ fn read_bytes(path: &Path, bytes: &[u8]) -> Result<SourceMesh, Error> {
         files: std::iter::once(path.to_path_buf())
             .chain(files.into_inner())
             .collect(),
+        missing: missing.into_inner(),
         ..SourceMesh::default()
     };
+    // `usemtl` names no library defines (tobj gives their faces no material)
+    let mut unfound: Vec<&str> = usemtl
+        .iter()
+        .map(String::as_str)
+        .filter(|n| !materials.iter().any(|m| m.name == *n))
+        .collect();
+    unfound.dedup();
+    // (a missing library has its own warning)
+    if !unfound.is_empty() && out.missing.is_empty() {
+        out.warnings.push(format!(
+            "no material library defines {}: OpenGL's default material used",
+            unfound
+                .iter()
+                .map(|n| format!("`{n}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    // tobj's material index → ours (the materials used, in order of first use)
+    let mut material_index: HashMap<usize, usize> = HashMap::new();
     let mut face_index = 0usize;
     let mut mismatch = false;
     let mut partial = [false; 2];
@@ -104,15 +136,23 @@ fn read_bytes(path: &Path, bytes: &[u8]) -> Result<SourceMesh, Error> {
                 texcoord: has_uv.then(|| [t(0), 1.0 - t(1)]),
             }
         };
-        if let Some(texture) = m
-            .material_id
-            .and_then(|id| materials.get(id))
-            .and_then(|mat| diffuse_texture(mat, &material_dirs, &mut out.warnings))
-        {
-            if !out.textures.contains(&texture) {
-                out.textures.push(texture);
-            }
-        }
+        let material = match m.material_id.filter(|&id| id < materials.len()) {
+            None => None,
+            Some(id) => Some(match material_index.get(&id) {
+                Some(&i) => i,
+                None => {
+                    let mat = &materials[id];
+                    let texture = diffuse_texture(mat, &material_dirs, &mut out.warnings);
+                    out.materials.push(SourceMaterial {
+                        name: mat.name.clone(),
+                        values: mtl_values(mat, &mut out.warnings),
+                        texture,
+                    });
+                    material_index.insert(id, out.materials.len() - 1);
+                    out.materials.len() - 1
+                }
+            }),
+        };
         let arities: Vec<u32> = if m.face_arities.is_empty() {
             vec![3; m.indices.len() / 3]
         } else {
@@ -135,6 +175,7 @@ fn read_bytes(path: &Path, bytes: &[u8]) -> Result<SourceMesh, Error> {
                 out.triangles.push(SourceTriangle {
                     corners: [corner(idx[0]), corner(idx[k]), corner(idx[k + 1])],
                     smoothing,
+                    material,
                 });
             }
         }
@@ -167,6 +208,31 @@ fn read_bytes(path: &Path, bytes: &[u8]) -> Result<SourceMesh, Error> {
     Ok(out)
 }
 
+/// The values of an MTL material as written (`Tr` is not kept by `tobj`:
+/// read from its unknown parameters).
+fn mtl_values(mat: &tobj::Material, warnings: &mut Vec<String>) -> MaterialValues {
+    let c = |v: Option<[f32; 3]>| v.map(|v| v.map(f64::from));
+    let transparency = mat.unknown_param.get("Tr").and_then(|v| {
+        let parsed = v.trim().parse::<f64>().ok();
+        if parsed.is_none() {
+            warnings.push(format!(
+                "material `{}`: `Tr {v}` is not a number: ignored",
+                mat.name
+            ));
+        }
+        parsed
+    });
+    MaterialValues::Mtl {
+        ambient: c(mat.ambient),
+        diffuse: c(mat.diffuse),
+        specular: c(mat.specular),
+        emission: c(mat.emissive),
+        shininess: mat.shininess.map(f64::from),
+        dissolve: mat.dissolve.map(f64::from),
+        transparency,
+    }
+}
+
 /// The diffuse texture of `mat`, resolved against the folder of its MTL.
 fn diffuse_texture(
     mat: &tobj::Material,
@@ -185,10 +251,22 @@ fn diffuse_texture(
     Some(TextureSource::File(dir.join(name.replace('\\', "/"))))
 }
 
-/// The smoothing group of every face (`f` of three or more corners) in file
-/// order; the text for `tobj` with polylines (`l` lines, which it would read
-/// as faces) blanked to comments, line numbers kept; the number of those.
-fn prescan(bytes: &[u8]) -> (Vec<Smoothing>, Vec<u8>, usize) {
+/// What the pre-scan finds.
+struct Prescan {
+    /// The smoothing group of every face (`f` of three or more corners) in
+    /// file order.
+    faces: Vec<Smoothing>,
+    /// The text for `tobj`, polylines (`l` lines, which it would read as
+    /// faces) blanked to comments, line numbers kept.
+    text: Vec<u8>,
+    /// The number of those.
+    polylines: usize,
+    /// The material names of the `usemtl` lines, in order.
+    usemtl: Vec<String>,
+}
+
+/// See [`Prescan`].
+fn prescan(bytes: &[u8]) -> Prescan {
     let mut kept = Vec::with_capacity(bytes.len());
     let mut polylines = 0;
     for line in bytes.split_inclusive(|&b| b == b'\n') {
@@ -214,9 +292,17 @@ fn prescan(bytes: &[u8]) -> (Vec<Smoothing>, Vec<u8>, usize) {
         Smoothing::Unspecified
     };
     let mut faces = Vec::new();
+    let mut usemtl = Vec::new();
     for line in text.lines() {
         let mut words = line.split_whitespace();
         match words.next() {
+            Some("usemtl") => {
+                // as tobj reads it: the rest of the line, trimmed
+                let name = line.trim().split_once(' ').unwrap_or_default().1.trim();
+                if !name.is_empty() && !usemtl.iter().any(|n| n == name) {
+                    usemtl.push(name.to_string());
+                }
+            }
             Some("s") => {
                 smoothing = match words.next() {
                     Some("off") | Some("0") | None => Smoothing::Off,
@@ -227,7 +313,12 @@ fn prescan(bytes: &[u8]) -> (Vec<Smoothing>, Vec<u8>, usize) {
             _ => {}
         }
     }
-    (faces, kept, polylines)
+    Prescan {
+        faces,
+        text: kept,
+        polylines,
+        usemtl,
+    }
 }
 
 /// The first line (1-based) of a face whose vertex, texture or normal index
@@ -298,13 +389,15 @@ fn parse_error(path: &Path, bytes: &[u8], line: Option<usize>, message: &str) ->
 }
 
 /// `tobj`'s material callback: opens an MTL relative to the OBJ's folder,
-/// keeps the first error (missing file, malformed line) and the folder of
-/// every material (its textures are relative to it).
+/// keeps the first error (a malformed line, a read failure), the missing
+/// libraries (read as empty) and the folder of every material (its textures
+/// are relative to it).
 struct MaterialLoader {
     dir: PathBuf,
     error: RefCell<Option<Error>>,
     material_dirs: RefCell<HashMap<String, PathBuf>>,
     files: RefCell<Vec<PathBuf>>,
+    missing: RefCell<Vec<MissingFile>>,
 }
 
 impl MaterialLoader {
@@ -314,6 +407,7 @@ impl MaterialLoader {
             error: RefCell::new(None),
             material_dirs: RefCell::new(HashMap::new()),
             files: RefCell::new(Vec::new()),
+            missing: RefCell::new(Vec::new()),
         }
     }
 
@@ -325,6 +419,17 @@ impl MaterialLoader {
         };
         let bytes = match std::fs::read(&path) {
             Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                let mut missing = self.missing.borrow_mut();
+                if !missing.iter().any(|m| m.path == path) {
+                    missing.push(MissingFile {
+                        kind: FileKind::MaterialLibrary,
+                        path,
+                        instead: "its materials are OpenGL's default material, untextured".into(),
+                    });
+                }
+                return Ok((Vec::new(), HashMap::new()));
+            }
             Err(e) => return fail(io_error(FileKind::MaterialLibrary, &path, e)),
         };
         self.files.borrow_mut().push(path.clone());

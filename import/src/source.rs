@@ -3,6 +3,8 @@
 
 use std::path::PathBuf;
 
+use crate::error::FileKind;
+
 /// One corner of a [`SourceTriangle`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Corner {
@@ -36,6 +38,10 @@ pub struct SourceTriangle {
     pub corners: [Corner; 3],
     /// The smoothing of the face the triangle came from.
     pub smoothing: Smoothing,
+    /// Its material: an index into [`SourceMesh::materials`]; `None` for
+    /// none (OBJ faces before any `usemtl` or naming a material no library
+    /// defines, glTF primitives without one): OpenGL's default material.
+    pub material: Option<usize>,
 }
 
 /// Where a texture's PNG bytes are.
@@ -55,19 +61,81 @@ pub enum TextureSource {
     },
 }
 
+/// A material's values as the file states them (validated and converted to
+/// a `fixshade::lighting::MaterialDesc` by [`crate::material`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialValues {
+    /// A Wavefront MTL material: the statements present (`None` for absent).
+    Mtl {
+        /// `Ka`.
+        ambient: Option<[f64; 3]>,
+        /// `Kd`.
+        diffuse: Option<[f64; 3]>,
+        /// `Ks`.
+        specular: Option<[f64; 3]>,
+        /// `Ke`.
+        emission: Option<[f64; 3]>,
+        /// `Ns`.
+        shininess: Option<f64>,
+        /// `d` (opacity, "dissolve").
+        dissolve: Option<f64>,
+        /// `Tr` (transparency, `1 − d`), used when there is no `d`.
+        transparency: Option<f64>,
+    },
+    /// A glTF 2.0 metallic-roughness material (the specification's defaults
+    /// for absent values).
+    Gltf {
+        /// `pbrMetallicRoughness.baseColorFactor` (linear RGBA).
+        base_colour: [f64; 4],
+        /// `metallicFactor`.
+        metallic: f64,
+        /// `roughnessFactor`.
+        roughness: f64,
+        /// `emissiveFactor`.
+        emissive: [f64; 3],
+        /// `alphaMode` is `OPAQUE` (the base colour's alpha is ignored).
+        opaque: bool,
+    },
+}
+
+/// A material the faces of a [`SourceMesh`] use.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SourceMaterial {
+    /// Its name (`newmtl`, the glTF material's name or `material N`).
+    pub name: String,
+    /// Its values.
+    pub values: MaterialValues,
+    /// Its diffuse texture (`map_Kd`, the base colour texture), if any.
+    pub texture: Option<TextureSource>,
+}
+
+/// A file the model refers to that does not exist: a warning and a default
+/// (or an error with `--strict`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MissingFile {
+    /// What it is.
+    pub kind: FileKind,
+    /// The path tried (resolved against the referring file).
+    pub path: PathBuf,
+    /// What is used instead (for the warning).
+    pub instead: String,
+}
+
 /// A model as read from a file.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SourceMesh {
     /// The triangles (polygons already split into fans).
     pub triangles: Vec<SourceTriangle>,
-    /// The distinct diffuse textures the faces' materials name, in order of
-    /// first use.
-    pub textures: Vec<TextureSource>,
+    /// The materials the triangles name (`SourceTriangle::material`).
+    pub materials: Vec<SourceMaterial>,
     /// Polygons (faces of more than three corners) split into triangles.
     pub polygons_split: usize,
     /// Files read (the model, its material libraries, buffers), for a build
     /// script's `rerun-if-changed`.
     pub files: Vec<PathBuf>,
+    /// Referenced files that do not exist (a material library); the reader
+    /// went on without them.
+    pub missing: Vec<MissingFile>,
     /// Things the reader skipped or assumed, for the user.
     pub warnings: Vec<String>,
 }

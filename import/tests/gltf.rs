@@ -131,8 +131,8 @@ fn gltf_glb_and_obj_agree() {
         let m = import(p, &Options::new("C")).unwrap();
         // no normals in the file: the 60° crease splits the cube into 24
         assert_eq!(m.report.normals, NormalSource::CreaseAngle(60.0));
-        assert_eq!(m.mesh, reference.mesh, "{}", p.display());
-        assert!((volume(&m.mesh) - 8.0).abs() < 1e-9);
+        assert_eq!(m.mesh(), reference.mesh(), "{}", p.display());
+        assert!((volume(m.mesh()) - 8.0).abs() < 1e-9);
     }
     assert!(import(&external, &Options::new("C"))
         .unwrap()
@@ -158,7 +158,7 @@ fn node_transforms_apply_and_mirrors_keep_the_winding() {
     let m = import(&moved, &Options::new("C")).unwrap();
     let b = m.report.bounds;
     assert_eq!(b, [[9.5, -0.5, -0.5], [10.5, 0.5, 0.5]]);
-    assert!((volume(&m.mesh) - 1.0).abs() < 1e-9);
+    assert!((volume(m.mesh()) - 1.0).abs() < 1e-9);
     // mirrored in x: the importer reverses the winding, the volume stays positive
     let mirrored = write(
         &dir,
@@ -166,7 +166,7 @@ fn node_transforms_apply_and_mirrors_keep_the_winding() {
         cube_json(Some(&uri), bin.len(), r#", "scale": [-1, 1, 1]"#),
     );
     let m = import(&mirrored, &Options::new("C")).unwrap();
-    assert!((volume(&m.mesh) - 8.0).abs() < 1e-9);
+    assert!((volume(m.mesh()) - 8.0).abs() < 1e-9);
 }
 
 /// A GLB with normals, texture coordinates and an embedded PNG texture.
@@ -242,14 +242,14 @@ fn glb_with_an_embedded_texture() {
     let p = write(&dir, "quad.glb", glb(&json, &bin));
     let m = import(&p, &Options::new("Q")).unwrap();
     assert_eq!(m.report.normals, NormalSource::File);
-    assert_eq!(m.mesh.positions.len(), 4);
-    assert_eq!(m.mesh.normals, [[0, 0, 16384]; 4]);
+    assert_eq!(m.mesh().positions.len(), 4);
+    assert_eq!(m.mesh().normals, [[0, 0, 16384]; 4]);
     // glTF's v already runs down the image: kept as is
     assert_eq!(
-        m.mesh.texcoords.as_deref().unwrap(),
+        m.mesh().texcoords.as_deref().unwrap(),
         [[0, 4096], [4096, 4096], [4096, 0], [0, 0]]
     );
-    let t = m.texture.unwrap();
+    let t = m.texture().unwrap();
     assert_eq!(t.name, "image 0");
     assert_eq!(
         t.converted.texels,
@@ -295,4 +295,178 @@ fn gltf_errors() {
         Err(Error::Parse { line: None, .. })
     ));
     let _: PathBuf = p;
+}
+
+/// The cube of `cube_bin` as several meshes, one per entry of `materials`
+/// (a glTF material's JSON, or `None` for a primitive without one), side by
+/// side along x, with `images` (JSON) for textures.
+fn materials_json(bin_uri: &str, len: usize, materials: &[Option<&str>], images: &str) -> String {
+    let mut meshes = Vec::new();
+    let mut nodes = Vec::new();
+    let mut list = Vec::new();
+    for (i, m) in materials.iter().enumerate() {
+        let material = match m {
+            Some(json) => {
+                list.push(json.to_string());
+                format!(r#", "material": {}"#, list.len() - 1)
+            }
+            None => String::new(),
+        };
+        meshes.push(format!(
+            r#"{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1{material}}}]}}"#
+        ));
+        nodes.push(format!(
+            r#"{{"mesh": {i}, "translation": [{}, 0, 0]}}"#,
+            3 * i
+        ));
+    }
+    let scene: Vec<String> = (0..materials.len()).map(|i| i.to_string()).collect();
+    format!(
+        r#"{{
+  "asset": {{"version": "2.0"}},
+  "scene": 0,
+  "scenes": [{{"nodes": [{}]}}],
+  "nodes": [{}],
+  "meshes": [{}],
+  "materials": [{}],
+  {images}
+  "buffers": [{{"byteLength": {len}, "uri": "{bin_uri}"}}],
+  "bufferViews": [
+    {{"buffer": 0, "byteOffset": 0, "byteLength": 96}},
+    {{"buffer": 0, "byteOffset": 96, "byteLength": 72}}
+  ],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+      "min": [-1, -1, -1], "max": [1, 1, 1]}},
+    {{"bufferView": 1, "componentType": 5123, "count": 36, "type": "SCALAR"}}
+  ]
+}}
+"#,
+        scene.join(", "),
+        nodes.join(", "),
+        meshes.join(", "),
+        list.join(", ")
+    )
+}
+
+fn close(a: [f32; 3], b: [f64; 3]) -> bool {
+    (0..3).all(|k| (f64::from(a[k]) - b[k]).abs() < 1e-6)
+}
+
+/// glTF metallic-roughness to Blinn-Phong as the README states: diffuse =
+/// base · (1 − metallic), ambient = base, specular = 0.04 · (1 − metallic) +
+/// base · metallic, shininess 2/α² − 2 with α = roughness² (0..=128),
+/// emission = emissive, opacity = alpha unless OPAQUE; one part per material.
+#[test]
+fn gltf_metallic_roughness_maps_as_documented() {
+    let dir = scratch("gltf_materials");
+    let bin = cube_bin();
+    let materials = [
+        Some(
+            r#"{"name": "clay", "pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.4, 0.2, 1],
+               "metallicFactor": 0, "roughnessFactor": 0.5}}"#,
+        ),
+        Some(
+            r#"{"name": "gold", "pbrMetallicRoughness": {"baseColorFactor": [1, 0.8, 0.3, 1],
+               "metallicFactor": 1, "roughnessFactor": 0.3}, "emissiveFactor": [0.1, 0, 0]}"#,
+        ),
+        Some(
+            r#"{"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 0.25],
+               "metallicFactor": 0.5, "roughnessFactor": 0.8}, "alphaMode": "BLEND"}"#,
+        ),
+        // glTF's defaults: base colour 1, metallic 1, roughness 1
+        Some(r#"{"name": "plain"}"#),
+        None,
+    ];
+    let p = write(
+        &dir,
+        "materials.gltf",
+        materials_json(&data_uri(&bin), bin.len(), &materials, ""),
+    );
+    let m = import(&p, &Options::new("M")).unwrap();
+    assert_eq!(m.parts.len(), 5);
+    let names: Vec<_> = m.parts.iter().map(|p| p.name.as_str()).collect();
+    assert_eq!(
+        names,
+        ["M_PART0", "M_PART1", "M_PART2", "M_PART3", "M_PART4"]
+    );
+    let d: Vec<_> = m.parts.iter().map(|p| &p.material).collect();
+    // clay: a rough dielectric
+    assert_eq!(d[0].name.as_deref(), Some("clay"));
+    assert!(close(d[0].desc.diffuse, [0.8, 0.4, 0.2]));
+    assert!(close(d[0].desc.ambient, [0.8, 0.4, 0.2]));
+    assert!(close(d[0].desc.specular, [0.04; 3]));
+    assert_eq!(d[0].desc.shininess, 30.0); // α = 0.25: 2/0.0625 − 2
+    assert_eq!(d[0].opacity, 1.0);
+    // gold: a metal, shininess 2/0.0081 − 2 = 244.9 clamped to OpenGL's 128
+    assert!(close(d[1].desc.diffuse, [0.0; 3]));
+    assert!(close(d[1].desc.ambient, [1.0, 0.8, 0.3]));
+    assert!(close(d[1].desc.specular, [1.0, 0.8, 0.3]));
+    assert_eq!(d[1].desc.shininess, 128.0);
+    assert!(close(d[1].desc.emission, [0.1, 0.0, 0.0]));
+    // glass: half metal, blended: its alpha is the opacity
+    assert!(close(d[2].desc.diffuse, [0.25; 3]));
+    assert!(close(d[2].desc.specular, [0.02 + 0.25; 3]));
+    let a: f64 = 0.8 * 0.8;
+    assert!((f64::from(d[2].desc.shininess) - (2.0 / (a * a) - 2.0)).abs() < 1e-5);
+    assert_eq!(d[2].opacity, 0.25);
+    // glTF's default values: a rough white metal (Blinn-Phong draws it flat)
+    assert!(close(d[3].desc.diffuse, [0.0; 3]));
+    assert!(close(d[3].desc.specular, [1.0; 3]));
+    assert_eq!(d[3].desc.shininess, 0.0);
+    // no material: OpenGL's default, as for an OBJ without one
+    assert_eq!(d[4].name, None);
+    assert_eq!(d[4].desc, fixshade::lighting::MaterialDesc::default());
+    for p in &m.parts {
+        assert!(fixshade::lighting::Material::<fixshade::num::Q14>::new(&p.material.desc).is_ok());
+    }
+    // every part is the whole cube, one frac for all
+    assert!(m.parts.iter().all(|p| p.mesh.triangles.len() == 12));
+    assert!(m.parts.iter().all(|p| p.mesh.frac == m.report.frac));
+    let src = m.to_rust();
+    assert!(src.contains("pub const M_PART1_MATERIAL: ::fixshade::lighting::MaterialDesc"));
+    assert!(
+        src.contains("pub const M_PART2_OPACITY: f32 = 0.25;"),
+        "{src}"
+    );
+    assert!(src.contains("pub const M_PART_COUNT: usize = 5;"));
+}
+
+#[test]
+fn gltf_missing_image_is_a_warning_and_no_texture() {
+    let dir = scratch("gltf_missing_image");
+    let bin = cube_bin();
+    let materials = [Some(
+        r#"{"name": "painted", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0}}"#,
+    )];
+    let images = r#""textures": [{"source": 0}], "images": [{"uri": "paint.png"}],"#;
+    let p = write(
+        &dir,
+        "painted.gltf",
+        materials_json(&data_uri(&bin), bin.len(), &materials, images),
+    );
+    let m = import(&p, &Options::new("P")).unwrap();
+    assert!(m.texture().is_none());
+    let w = m.warnings.join("\n");
+    assert!(
+        w.contains(&format!(
+            "texture file not found: {}",
+            dir.join("paint.png").display()
+        )) && w.contains("(material `painted`): drawn untextured"),
+        "{w}"
+    );
+    // the rest of the material is kept
+    assert!(close(m.parts[0].material.desc.specular, [0.04; 3]));
+    // --strict: the error
+    let strict = Options {
+        strict: true,
+        ..Options::new("P")
+    };
+    match import(&p, &strict) {
+        Err(Error::MissingFile {
+            kind: FileKind::Texture,
+            path,
+        }) => assert_eq!(path, dir.join("paint.png")),
+        other => panic!("{other:?}"),
+    }
 }

@@ -242,7 +242,7 @@ fn a_texture_through_an_obj_import() {
         let mut o = Options::new("Q");
         o.texture_format = format;
         let m = import(&p, &o).unwrap();
-        let t = m.texture.as_ref().unwrap();
+        let t = m.texture().unwrap();
         assert_eq!(t.name, "t.png");
         assert_eq!(t.converted.report.format, format);
         assert!(m.files.iter().any(|f| f.ends_with("t.png")));
@@ -252,7 +252,7 @@ fn a_texture_through_an_obj_import() {
     }
     let m = import(&p, &Options::new("Q")).unwrap();
     assert_eq!(
-        m.texture.unwrap().converted.texels,
+        m.texture().unwrap().converted.texels.clone(),
         TexelData::Rgb565(vec![
             0xF800, 0x07E0, 0x001F, 0xFFFF, 0x0000, 0x8410, 0xFC00, 0x0821
         ])

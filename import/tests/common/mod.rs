@@ -2,6 +2,7 @@
 
 #![allow(dead_code)]
 
+pub mod crate_model;
 pub mod render;
 pub mod rocket;
 

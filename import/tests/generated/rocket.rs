@@ -5,6 +5,55 @@
 /// (quantisation step 2^-14 = 0.00006103515625; largest rounding error 2.944e-5).
 pub const ROCKET_FRAC: u8 = 14;
 
+/// The parts of `ROCKET` (in `ROCKET_PARTS`): one, `ROCKET` itself.
+pub const ROCKET_PART_COUNT: usize = 1;
+
+/// The most vertices of a part of `ROCKET`.
+pub const ROCKET_MAX_VERTICES: usize = ROCKET_VERTICES;
+
+/// The most triangles of a part of `ROCKET`.
+pub const ROCKET_MAX_TRIANGLES: usize = ROCKET_TRIANGLE_COUNT;
+
+/// Every part of `ROCKET`: its mesh (positions with `ROCKET_FRAC` fraction bits), its
+/// material (for `fixshade::lighting::Material::new`) and its texture, if any;
+/// a frame draws them all (one `MeshDraw` each, one transform for all).
+#[rustfmt::skip]
+pub static ROCKET_PARTS: [(::fixshade::mesh::Mesh<'static>, ::fixshade::lighting::MaterialDesc, ::core::option::Option<::fixshade::texture::Texture<'static>>); ROCKET_PART_COUNT] = [
+    (ROCKET, ROCKET_MATERIAL, ::core::option::Option::Some(ROCKET_TEXTURE)),
+];
+
+/// `ROCKET`'s vertices: the `NV` of its `MeshBuffers` (`ROCKET_BUFFERS`).
+pub const ROCKET_VERTICES: usize = 687;
+
+/// `ROCKET`'s triangles: for its bins, `fixshade::render::bins_len(ROCKET_TRIANGLE_COUNT, bands)`.
+pub const ROCKET_TRIANGLE_COUNT: usize = 784;
+
+/// The buffers of a `MeshDraw` of `ROCKET` (vertex cache, bins, resume records):
+/// `ROCKET_BUFFERS<V, { bins_len(ROCKET_TRIANGLE_COUNT, BANDS) }, NC>`.
+#[allow(non_camel_case_types)]
+pub type ROCKET_BUFFERS<V, const NB: usize, const NC: usize> =
+    ::fixshade::render::MeshBuffers<V, ROCKET_VERTICES, NB, NC>;
+
+/// `ROCKET`'s material, from material `rocket` of `rocket.obj`, for
+/// `fixshade::lighting::Material::new` (fixshade-import's README states the mapping).
+pub const ROCKET_MATERIAL: ::fixshade::lighting::MaterialDesc =
+    ::fixshade::lighting::MaterialDesc {
+        emission: [0.0, 0.0, 0.0],
+        ambient: [0.1, 0.1, 0.1],
+        diffuse: [1.0, 1.0, 1.0],
+        specular: [0.4, 0.4, 0.4],
+        shininess: 40.0,
+        brilliance: 1,
+        fresnel_f0: 1.0,
+        transmission: [0.0, 0.0, 0.0],
+        transmission_exponent: 1.0,
+        refractive_index: 1.0,
+    };
+
+/// `ROCKET`'s opacity, 1 opaque to 0 invisible (MTL `d` or `1 - Tr`, glTF base colour
+/// alpha): fixshade draws opaque surfaces; this is for the firmware to use or not.
+pub const ROCKET_OPACITY: f32 = 1.0;
+
 /// `rocket.obj`: 687 vertices, 784 triangles; positions with frac = 14 (step 0.00006103515625),
 /// bounds [-0.551540, -1.120000, -0.551540] to [0.551540, 1.200000, 0.551540]; normals: face averages within smoothing groups; texture coordinates and tangents.
 pub static ROCKET: ::fixshade::mesh::Mesh<'static> = {
