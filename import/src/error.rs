@@ -3,7 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
-use fixshade::mesh::MeshError;
+use fixshade::error::MeshError;
 
 /// Which kind of file an [`Error::MissingFile`] or [`Error::Io`] names.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

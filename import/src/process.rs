@@ -35,9 +35,9 @@
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
+use fixshade::error::MeshError;
 use fixshade::mesh::{
-    to_compact, vertex_normals, vertex_tangents, Mesh, MeshError, Weighting, NORMAL_ONE,
-    TEXCOORD_FRAC,
+    to_compact, vertex_normals, vertex_tangents, Mesh, Weighting, NORMAL_ONE, TEXCOORD_FRAC,
 };
 
 use crate::error::Error;

@@ -15,7 +15,7 @@ mod crate_model {
     include!("generated/crate.rs");
 }
 
-use fixshade::camera::Mat4;
+use fixshade::num::Mat4;
 use fixshade::prelude::{Rgb888, RgbColor};
 
 #[test]

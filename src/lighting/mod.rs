@@ -38,6 +38,7 @@
 //!   directions and distances: no channel is ever NaN or infinite.
 
 mod any;
+mod channels;
 pub mod gl;
 mod illuminate;
 mod light;
@@ -46,6 +47,7 @@ mod model;
 mod viewer;
 
 pub use any::{AnyLight, LightDesc, LightKind};
+pub(crate) use channels::ChannelTerms;
 pub use illuminate::{BackFaces, Illuminate, SeparateSpecular};
 pub(crate) use illuminate::{Directional, DirectionalTerms};
 pub use light::{Attenuation, DirectionalLight, LightColors, LightSet, PointLight, SpotLight};

@@ -3,12 +3,12 @@
 
 use super::perpixel::{self, Features, PixelTriangle, Sources};
 use super::{IncrementalPhongShading, Kernel, Linear, Mode, Shader};
-use crate::color::{OutputColor, Rgb};
+use crate::color::OutputColor;
 use crate::lighting::{BlinnPhong, Directional, Lambert, Model, Specular};
-use crate::lighting::{DirectionalTerms, Illuminate};
+use crate::lighting::{ChannelTerms, Illuminate};
 use crate::num::rsqrt::rsqrt_q28_q14;
 use crate::num::wide::{mul_i32, mul_i64_u32, mul_u32};
-use crate::num::{Exponent, Scalar, Vec3, Q14};
+use crate::num::Q14;
 use crate::raster::interp::Varyings;
 
 /// The models [`IncrementalPhongShading`] evaluates: [`Lambert`] and [`BlinnPhong`].
@@ -16,94 +16,7 @@ pub trait IncrementalModel: Model {}
 impl IncrementalModel for Lambert {}
 impl IncrementalModel for BlinnPhong {}
 
-/// The precomputed constants of [`IncrementalPhongShading`] for `K` directional
-/// lights, a viewer at infinity and the [`Lambert`] or [`BlinnPhong`] model in the
-/// `Q14` tier. Per-pixel Phong shading computed incrementally along each span
-/// (the same images as [`PhongShading`](super::PhongShading) up to
-/// the error stated below, at a fraction of the cost on a Cortex-M0):
-///
-/// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
-///   triangle: the rasterizer interpolates them as attributes (`3 + 2K` attributes:
-///   the normal, then `N·L` and `N·H` per light), one addition per light and pixel;
-/// - `|N|²` is quadratic: second-order forward differences, two additions;
-/// - `1/|N|` is refined by one Newton step from the previous pixel's value
-///   (exact at the start of every span; two steps on spans where `|N|` changes
-///   by more than 2^-8 per pixel), three multiplications per step;
-/// - `(N·H)^n` comes from a 65-entry table of the material's power over
-///   `[x0, 1]`, `x0 = 4096^(−1/n)` (below `x0` the power is under 1/4096), linearly
-///   interpolated: one multiplication;
-/// - the colour is accumulated directly in output channel units: one
-///   multiplication per channel and term.
-///
-/// Output is rounded to nearest like [`Linear`] (the shader's encoder is not
-/// used). A span whose interpolated normal gets shorter than ½ or longer than 2
-/// (normals more than ~120° apart across a triangle), or whose `|N|²` changes
-/// by more than 1/8 from one pixel to the next (tiny triangles with very
-/// different vertex normals), falls back to the per-pixel lighting of
-/// [`PhongShading`](super::PhongShading) for that span: the result
-/// stays within the bound, only the speed differs.
-///
-/// Error against the `f64` reference: see the golden tests and `docs/tradeoff.md`.
-#[derive(Clone, Copy, Debug)]
-pub struct IncrementalState<const K: usize> {
-    lights: [LightTerms; K],
-    /// Constant part per channel, in channel units · 2^8, plus ½ for rounding
-    /// (negative for a negative global ambient: pixels clamp at 0).
-    base: [i32; 3],
-    pow: PowTable,
-}
-
-/// One light's constants in the units of the span loop.
-#[derive(Clone, Copy, Debug, Default)]
-struct LightTerms {
-    /// Direction to the light, Q14.
-    l: [i32; 3],
-    /// Halfway vector, Q14.
-    h: [i32; 3],
-    /// `Ld∘Kd` per channel in channel units · 2^8.
-    kd: [i32; 3],
-    /// `Ls∘Ks` per channel in channel units · 2^8.
-    ks: [i32; 3],
-}
-
-/// The specular power table of this kernel and of the incremental
-/// normal-map kernel: Q14.
-pub(super) type PowTable = crate::num::pow::PowTable<14>;
-
-/// A colour's channels (`C::linear_channels`) in channel units · 2^8 (from
-/// their Q14 values: exact for the `Q14` tiers).
-pub(super) fn channel_units<C: OutputColor, S: Scalar>(c: Rgb<S>) -> [i32; 3] {
-    let l = C::linear_channels(c);
-    // the attribute scale is Q26: Q14 = (a + 2^11) >> 12
-    let q14 = |v: S| (v.to_attr() + (1 << 11)) >> 12;
-    // value (Q14, < 2) · max · 2^8 ≤ 2·255·256 < 2^17
-    core::array::from_fn(|i| (q14(l[i]) * C::CHANNEL_MAX[i] as i32 * 256 + 8192) >> 14)
-}
-
-/// A Q14 vector from a tier's unit vector.
-fn q14v<S: Scalar>(v: Vec3<S>) -> [i32; 3] {
-    let q = |c: S| (c.to_attr() + (1 << 11)) >> 12;
-    [q(v.x), q(v.y), q(v.z)]
-}
-
-impl<const K: usize> IncrementalState<K> {
-    /// The constants for the lights `terms` (the lighting's
-    /// prepared terms).
-    fn new<C: OutputColor, S: Scalar>(terms: [DirectionalTerms<S>; K]) -> Self {
-        let first = terms.first();
-        let lights = terms.map(|t| LightTerms {
-            l: q14v(t.dir),
-            h: q14v(t.half.unwrap_or(t.dir)),
-            kd: channel_units::<C, S>(t.diffuse),
-            ks: channel_units::<C, S>(t.specular),
-        });
-        IncrementalState {
-            lights,
-            base: first.map_or([128; 3], |t| channel_units::<C, S>(t.base).map(|v| v + 128)),
-            pow: PowTable::new(first.map_or(Exponent::ZERO, |t| t.shininess)),
-        }
-    }
-
+impl<const K: usize> ChannelTerms<K> {
     /// The values to interpolate at a vertex of unit normal `n` (Q14): the
     /// normal, then `N·L` and `N·H` of every light.
     #[inline(always)]
@@ -130,10 +43,10 @@ impl<const NW: u8, const K: usize, M: IncrementalModel, C: OutputColor>
     Mode<Directional<Q14<NW>, K, M>, C> for IncrementalPhongShading
 {
     const NAME: &'static str = "phong_inc";
-    type State = IncrementalState<K>;
+    type State = ChannelTerms<K>;
 
-    fn state(self, lighting: &Directional<Q14<NW>, K, M>) -> IncrementalState<K> {
-        IncrementalState::new::<C, Q14<NW>>(lighting.directional_terms())
+    fn state(self, lighting: &Directional<Q14<NW>, K, M>) -> ChannelTerms<K> {
+        ChannelTerms::new::<C, Q14<NW>>(lighting.directional_terms())
     }
 }
 
@@ -147,7 +60,7 @@ type Inc<'l, const NW: u8, const K: usize, M, E, C> =
 /// bits); `SPEC`: the Blinn-Phong term.
 #[allow(clippy::too_many_arguments)]
 fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPEC: bool>(
-    st_c: &IncrementalState<K>,
+    st_c: &ChannelTerms<K>,
     lighting: &I,
     x: i32,
     y: i32,
@@ -303,7 +216,7 @@ struct SpanState {
 /// (Q26); `SPEC`: the Blinn-Phong term.
 #[inline(always)]
 fn run<C: OutputColor, const K: usize, const NEWTON: u32, const SPEC: bool>(
-    state: &IncrementalState<K>,
+    state: &ChannelTerms<K>,
     st: SpanState,
     mut dots: [[i32; 4]; K],
     out: &mut [C],
@@ -314,25 +227,17 @@ fn run<C: OutputColor, const K: usize, const NEWTON: u32, const SPEC: bool>(
         dds,
         mut r,
     } = st;
-    let max = C::CHANNEL_MAX.map(|m| m as i32);
     for p in out.iter_mut() {
         // every light term is ≥ 0; the base may be negative (negative ambient)
-        let mut acc = state.base;
+        let mut acc = state.base();
         for (lt, dot) in state.lights.iter().zip(dots.iter_mut()) {
-            // diffuse: N·L/|N| (Q14)
+            // N·L/|N| and N·H/|N| (Q14)
             let d = ((dot[0] >> 12) * r) >> 14;
-            if d > 0 {
-                super::add_term(&mut acc, d.min(16384), &lt.kd);
-                if SPEC {
-                    // specular: (N·H/|N|)^n
-                    let sp = state.pow.get(((dot[2] >> 12) * r) >> 14);
-                    super::add_term(&mut acc, sp, &lt.ks);
-                }
-            }
+            state.add::<SPEC>(&mut acc, lt, d, || ((dot[2] >> 12) * r) >> 14);
             dot[0] += dot[1];
             dot[2] += dot[3];
         }
-        *p = super::from_acc(acc, max);
+        *p = ChannelTerms::<K>::color(acc);
         // next pixel: |N|² by forward differences, then r ← r·(3 − s·r²)/2
         // seeded with this pixel's r
         s += ds;

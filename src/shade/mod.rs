@@ -82,10 +82,36 @@ pub struct GouraudShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PhongShading;
 
-/// Per-pixel Phong shading computed incrementally along each span: the Q14 fast
-/// path for directional lights and a viewer at infinity: the lighting is a
-/// `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>` with `M` an
-/// [`IncrementalModel`].
+/// Per-pixel Phong shading computed incrementally along each span: the Cortex-M0
+/// fast path for `K` (1 to 4) directional lights in an array, a viewer at infinity,
+/// no fog and the [`Lambert`](crate::lighting::Lambert) or
+/// [`BlinnPhong`](crate::lighting::BlinnPhong) model in the `Q14` tiers
+/// (`Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>`, `M` an
+/// [`IncrementalModel`]): the same images as [`PhongShading`] up to the error
+/// stated below, at a fraction of the cost on a Cortex-M0:
+///
+/// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
+///   triangle: the rasterizer interpolates them as attributes (`3 + 2K` attributes:
+///   the normal, then `N·L` and `N·H` per light), one addition per light and pixel;
+/// - `|N|²` is quadratic: second-order forward differences, two additions;
+/// - `1/|N|` is refined by one Newton step from the previous pixel's value
+///   (exact at the start of every span; two steps on spans where `|N|` changes
+///   by more than 2^-8 per pixel), three multiplications per step;
+/// - `(N·H)^n` comes from a 65-entry table of the material's power over
+///   `[x0, 1]`, `x0 = 4096^(−1/n)` (below `x0` the power is under 1/4096), linearly
+///   interpolated: one multiplication;
+/// - the colour is accumulated directly in output channel units: one
+///   multiplication per channel and term.
+///
+/// Output is rounded to nearest like [`Linear`] (the shader's encoder is not
+/// used). A span whose interpolated normal gets shorter than ½ or longer than 2
+/// (normals more than ~120° apart across a triangle), or whose `|N|²` changes
+/// by more than 1/8 from one pixel to the next (tiny triangles with very
+/// different vertex normals), falls back to the per-pixel lighting of
+/// [`PhongShading`] for that span: the result
+/// stays within the bound, only the speed differs.
+///
+/// Error against the `f64` reference: see the golden tests and `docs/tradeoff.md`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct IncrementalPhongShading;
 
@@ -414,27 +440,6 @@ pub(crate) fn pixel565(rb: u32, g: u32) -> u16 {
 pub(crate) const fn normal_range() -> (i32, i32) {
     let two = 1 << (15 + crate::num::ATTR_FRAC);
     (-two, two - 1)
-}
-
-/// `acc += (k·w) ≫ 14` per channel: a light term `k` (Q14) times the
-/// channel weights `w` (Q14 of the encoded channels with 8 fraction bits),
-/// in the fixed-point fast kernels' pixel loops.
-#[inline(always)]
-pub(crate) fn add_term(acc: &mut [i32; 3], k: i32, w: &[i32; 3]) {
-    acc[0] += (k * w[0]) >> 14;
-    acc[1] += (k * w[1]) >> 14;
-    acc[2] += (k * w[2]) >> 14;
-}
-
-/// The colour of the channel sums `acc` (8 fraction bits), each clamped to
-/// `[0, max]`.
-#[inline(always)]
-pub(crate) fn from_acc<C: OutputColor>(acc: [i32; 3], max: [i32; 3]) -> C {
-    C::from_channels([
-        (acc[0] >> 8).max(0).min(max[0]) as u32,
-        (acc[1] >> 8).max(0).min(max[1]) as u32,
-        (acc[2] >> 8).max(0).min(max[2]) as u32,
-    ])
 }
 
 /// The [`Kernel`] items shared by the kernels that interpolate the eye-space

@@ -1,14 +1,14 @@
 //! Normal-mapped Phong shading: per-pixel lighting with the normal of a
 //! [`NormalMap`] in the tangent frame of the surface.
 
-use super::incremental::{channel_units, IncrementalModel, PowTable};
+use super::incremental::IncrementalModel;
 use super::perpixel::{self, per_pixel_kernel, sat16, Features, PixelTriangle, Sources, UV_FRAC};
 use super::VertexIn;
 use super::{unit_q14, Encoder, IncrementalPhongShading, Kernel, Mode, PhongShading, Shader};
 use crate::color::OutputColor;
-use crate::lighting::{Directional, DirectionalTerms, Illuminate};
+use crate::lighting::{ChannelTerms, Directional, Illuminate};
 use crate::num::rsqrt::inv_len_q14;
-use crate::num::{Scalar, Vec3, Q14};
+use crate::num::Q14;
 use crate::texture::{Nearest, NormalMap, Wrap};
 
 /// A per-pixel mode with surface detail from a normal map (made by
@@ -23,7 +23,7 @@ use crate::texture::{Nearest, NormalMap, Wrap};
 ///   [`Encoder`]. The normal and the tangent are interpolated (and the
 ///   position when the lighting needs it); per pixel `N' = T·nx + B·ny + N·nz`
 ///   (`B = w · N × T`) is renormalised with
-///   [`Scalar::normalize_interpolated`] and lit with the full model. A map of
+///   [`Scalar::normalize_interpolated`](crate::num::Scalar::normalize_interpolated) and lit with the full model. A map of
 ///   the flat normal gives exactly [`PhongShading`]'s pixels.
 /// - `IncrementalPhongShading.normal_mapped(map)` (`Q14`, one directional
 ///   light in an array, a viewer at infinity, no fog, Lambert or
@@ -80,19 +80,12 @@ per_pixel_kernel!(['m] NormalMapped<'m, PhongShading>, Features::MAPPED, [i16; 9
 
 // ---- the fast Q14 path ------------------------------------------------------------
 
-/// The fast kernel's constants (see [`NormalMapped`]): the map, the light's
-/// direction and halfway vector (Q14), `Ld∘Kd`, `Ls∘Ks` and the constant
-/// part (+ ½) per channel in channel units · 2^8, the power table.
+/// The incremental kernel's constants (see [`NormalMapped`]): the map and
+/// the lighting's terms in channel units.
 #[derive(Clone, Copy, Debug)]
 pub struct FastNormal<'m> {
     map: NormalMap<'m>,
-    l: [i32; 3],
-    h: [i32; 3],
-    kd: [i32; 3],
-    ks: [i32; 3],
-    base: [i32; 3],
-    pow: PowTable,
-    spec: bool,
+    terms: ChannelTerms<1>,
 }
 
 /// `L` and `H` (Q14) in the tangent frame of Q14 normal `n` (any length),
@@ -174,32 +167,13 @@ fn newton_steps(s0: i64, ds0: i64, dds: i64, n: i64) -> u32 {
 }
 
 impl<'m> FastNormal<'m> {
-    /// The constants for one directional light `t` and `map` (in `f32`: once
-    /// per shader).
-    fn new<C: OutputColor, S: Scalar>(t: &DirectionalTerms<S>, map: NormalMap<'m>) -> Self {
-        let q14 = |v: Vec3<S>| {
-            let q = |c: S| (c.to_attr() + (1 << 11)) >> 12;
-            [q(v.x), q(v.y), q(v.z)]
-        };
-        let ks = channel_units::<C, S>(t.specular);
-        FastNormal {
-            map,
-            l: q14(t.dir),
-            h: q14(t.half.unwrap_or(t.dir)),
-            kd: channel_units::<C, S>(t.diffuse),
-            ks,
-            base: channel_units::<C, S>(t.base).map(|v| v + 128),
-            pow: PowTable::new(t.shininess),
-            spec: ks != [0; 3],
-        }
-    }
-
     /// The payload of vertex `v`: `L` in the tangent frame (Q14), the
     /// texture coordinates (Q12), `H` in the tangent frame, in the places of
     /// the general kernel's normal, coordinates and tangent.
     fn payload(&self, v: &VertexIn) -> [i16; 9] {
         let t = [v.tangent[0], v.tangent[1], v.tangent[2]];
-        let lh = tangent_space(v.normal, t, v.tangent[3], &self.l, &self.h);
+        let [light] = &self.terms.lights;
+        let lh = tangent_space(v.normal, t, v.tangent[3], &light.l, &light.h);
         let uv = v.uv.map(sat16);
         [lh[0], lh[1], lh[2], uv[0], uv[1], lh[3], lh[4], lh[5], 1]
     }
@@ -218,7 +192,7 @@ impl<'m> FastNormal<'m> {
         let n = out.len() as i64;
         let l = length_squared_diffs([lh[0], lh[1], lh[2]], [dlh[0], dlh[1], dlh[2]]);
         let h = length_squared_diffs([lh[3], lh[4], lh[5]], [dlh[3], dlh[4], dlh[5]]);
-        let spec = self.spec;
+        let spec = self.terms.specular();
         let steps = newton_steps(l.0, l.1, l.2, n).max(if spec {
             newton_steps(h.0, h.1, h.2, n)
         } else {
@@ -271,26 +245,21 @@ impl<'m> FastNormal<'m> {
             dds,
         } = st;
         let spec = SPEC;
-        let max = C::CHANNEL_MAX.map(|m| m as i32);
+        let [light] = &self.terms.lights;
         // exact 1/|L|, 1/|H| at the span start (when FAST: refined per pixel)
         let mut r = [inv_len_q14(s[0]), inv_len_q14(s[1])];
         for p in out.iter_mut() {
             let m = map.get::<REPEAT>(uv[0], uv[1]).map(i32::from);
-            let mut acc = self.base;
+            let mut acc = self.terms.base();
             // n·L/|L|: Q14 · (Q24 ≫ 8 = Q16) = Q30, ≫ 14 = Q16; |n·L| ≤ |L|, and
             // (n·L)·(1/|L|) ≤ |n| ≈ 1: the Q30 product fits, rounded to Q14
             let dl = (m[0] * (lh[0] >> 8) + m[1] * (lh[1] >> 8) + m[2] * (lh[2] >> 8)) >> 14;
             let d = (dl * r[0] + (1 << 15)) >> 16;
-            if d > 0 {
-                super::add_term(&mut acc, d.min(16384), &self.kd);
-                if spec {
-                    let dh =
-                        (m[0] * (lh[3] >> 8) + m[1] * (lh[4] >> 8) + m[2] * (lh[5] >> 8)) >> 14;
-                    let sp = self.pow.get((dh * r[1] + (1 << 15)) >> 16);
-                    super::add_term(&mut acc, sp, &self.ks);
-                }
-            }
-            *p = super::from_acc(acc, max);
+            self.terms.add::<SPEC>(&mut acc, light, d, || {
+                let dh = (m[0] * (lh[3] >> 8) + m[1] * (lh[4] >> 8) + m[2] * (lh[5] >> 8)) >> 14;
+                (dh * r[1] + (1 << 15)) >> 16
+            });
+            *p = ChannelTerms::<1>::color(acc);
             // next pixel (the values after the last pixel are not used: wrapping
             // is harmless)
             for (a, d) in lh.iter_mut().zip(dlh) {
@@ -340,8 +309,10 @@ impl<'m, const NW: u8, M: IncrementalModel, C: OutputColor> Mode<Directional<Q14
     type State = FastNormal<'m>;
     fn state(self, lighting: &Directional<Q14<NW>, 1, M>) -> FastNormal<'m> {
         let _ = self.mode;
-        let [t] = lighting.directional_terms();
-        FastNormal::new::<C, Q14<NW>>(&t, self.map)
+        FastNormal {
+            map: self.map,
+            terms: ChannelTerms::new::<C, Q14<NW>>(lighting.directional_terms()),
+        }
     }
 }
 

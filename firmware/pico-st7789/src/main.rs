@@ -64,8 +64,9 @@ use embedded_hal::digital::{OutputPin, StatefulOutputPin};
 use embedded_hal::spi::{SpiBus, MODE_3};
 use embedded_hal_bus::spi::ExclusiveDevice;
 use fixshade::embedded_graphics_core::primitives::Rectangle;
+use fixshade::framebuffer::BandSink;
 use fixshade::prelude::*;
-use fixshade::render::{BandSink, CachedVertex, Carry, DrawOptions, MeshMemory};
+use fixshade::render::{CachedVertex, Carry, DrawOptions, MeshMemory};
 use fixshade::standard;
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
@@ -105,7 +106,7 @@ const NT: usize = standard::COUNTS.1;
 /// of the sphere (twice the triangles crossing one band boundary).
 const CARRY: usize = 64;
 
-type Light = Lighting<Q14, DirectionalLight<Q14>, BlinnPhong>;
+type Light = Viewed<Lighting<Q14, DirectionalLight<Q14>, BlinnPhong>>;
 type Sh = Shader<'static, GouraudShading, Light, Linear, Rgb565>;
 type Vertex = CachedVertex<[u16; 3]>;
 type Sphere<'f> = MeshDraw<'f, Sh>;
@@ -475,20 +476,23 @@ fn main() -> ! {
             bins: &mut bins[..],
             carry: &mut [],
         };
-        let sphere = Sphere::with_lit_vertices(
+        let sphere = Sphere::new(
             LAYOUT,
             mesh,
             &transform,
             shader,
-            DrawOptions::default(),
             memory,
+            DrawOptions {
+                lit: true,
+                ..DrawOptions::default()
+            },
         )
         .unwrap();
 
         // 3. the bands: 0..HALF here, HALF.. on core 1, at the same time
         let lent = ptr::from_ref(&sphere).cast_mut().cast();
         lend(fifo, &PREPARED, lent, DRAW);
-        let mut mine = sphere.share(carry).unwrap();
+        let mut mine = sphere.share(carry);
         let mut display = DmaDisplay { core: 0 };
         bands
             .render_bands(&mut display, Rgb565::BLACK, &mut [&mut mine], 0..HALF)
@@ -526,7 +530,7 @@ fn core1_main(mem: &'static mut CoreMemory) -> ! {
             // own share) until our answer; `Sphere` is `Sync`. The
             // reference is not used after this block.
             let sphere = unsafe { sphere.as_ref() }.expect("a prepared mesh");
-            let mut mine = sphere.share(carry).unwrap();
+            let mut mine = sphere.share(carry);
             bands
                 .render_bands(&mut display, Rgb565::BLACK, &mut [&mut mine], HALF..BANDS)
                 .unwrap();

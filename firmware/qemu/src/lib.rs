@@ -19,11 +19,11 @@
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
+use fixshade::error::RenderError;
+use fixshade::framebuffer::{Bands, DrawBand, Layout};
 use fixshade::prelude::*;
-use fixshade::render::{
-    Bands, CachedVertex, Carry, DrawBand, Layout, MeshDraw, MeshMemory, RenderError,
-};
-use fixshade::shade::{GeneralPhongShading, Kernel};
+use fixshade::render::{CachedVertex, Carry, MeshDraw, MeshMemory};
+use fixshade::shade::Kernel;
 use fixshade::standard;
 
 /// Frame width and height (240).
@@ -119,6 +119,7 @@ where
             bins: b.bins,
             carry: b.carry,
         },
+        DrawOptions::default(),
     )?;
     let needed = draw.carry_needed();
     let mut bands = Bands::new(layout, b.strip, Some(b.depth))?;
@@ -131,7 +132,7 @@ where
 
 /// The lighting of `blinn_phong_inc`: one directional light in an array, as
 /// `IncrementalPhongShading` requires.
-pub fn inc_lighting() -> Result<Lighting<Q14, [Dir; 1], BlinnPhong>, ParamError> {
+pub fn inc_lighting() -> Result<Viewed<Lighting<Q14, [Dir; 1], BlinnPhong>>, ParamError> {
     Ok(
         Lighting::<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>::new(
             [standard::light()?],
@@ -217,15 +218,15 @@ macro_rules! configs {
 type Dir = DirectionalLight<Q14>;
 
 configs! {
-    lambert_gouraud: [u16; 3], Lighting<Q14, Dir, Lambert>
+    lambert_gouraud: [u16; 3], Viewed<Lighting<Q14, Dir, Lambert>>
         = standard::lambert::<Q14>(), GouraudShading;
-    blinn_gouraud: [u16; 3], Lighting<Q14, Dir, BlinnPhong>
+    blinn_gouraud: [u16; 3], Viewed<Lighting<Q14, Dir, BlinnPhong>>
         = standard::blinn::<Q14>(), GouraudShading;
-    blinn_phong: [i16; 3], Lighting<Q14, Dir, BlinnPhong>
-        = standard::blinn::<Q14>(), GeneralPhongShading;
-    blinn_phong_inc: [i16; 3], Lighting<Q14, [Dir; 1], BlinnPhong>
+    blinn_phong: [i16; 3], Viewed<Lighting<Q14, Dir, BlinnPhong>>
+        = standard::blinn::<Q14>(), PhongShading;
+    blinn_phong_inc: [i16; 3], Viewed<Lighting<Q14, [Dir; 1], BlinnPhong>>
         = inc_lighting(), IncrementalPhongShading;
-    flat: [i16; 3], Lighting<Q14, Dir, Lambert>
+    flat: [i16; 3], Viewed<Lighting<Q14, Dir, Lambert>>
         = standard::lambert::<Q14>(), FlatShading;
 }
 
@@ -242,8 +243,9 @@ pub mod model {
 #[cfg(any(feature = "imported", feature = "imported_textured"))]
 pub mod rocket {
     use super::*;
-    use fixshade::camera::{Camera, Mat4, Viewport};
+    use fixshade::camera::{Camera, Viewport};
     use fixshade::mesh::Mesh;
+    use fixshade::num::Mat4;
 
     /// Its vertices (687).
     pub const NV: usize = super::model::ROCKET_POSITIONS.len();
@@ -287,7 +289,7 @@ pub mod rocket {
     /// One directional light, ambient + Lambert diffuse on a white material
     /// (the texture, where there is one, gives the colour), OpenGL's global
     /// ambient light.
-    pub fn lighting() -> Result<Lighting<Q14, DirectionalLight<Q14>, Lambert>, Fail> {
+    pub fn lighting() -> Result<Viewed<Lighting<Q14, DirectionalLight<Q14>, Lambert>>, Fail> {
         let light = DirectionalLight::new(
             [1.0, 0.8, 1.0],
             LightColors::new([1.0; 3], [1.0; 3], [1.0; 3]).map_err(|_| Fail::Lighting)?,
@@ -332,6 +334,7 @@ pub mod rocket {
                 bins: b.bins,
                 carry: b.carry,
             },
+            DrawOptions::default(),
         )?;
         let needed = draw.carry_needed();
         let mut bands = Bands::new(layout, b.strip, Some(b.depth))?;
@@ -357,7 +360,7 @@ macro_rules! imported {
                 /// The vertex cache payload of its shader.
                 pub type Vertex = $v;
                 /// The lighting.
-                pub type Light = Lighting<Q14, Dir, Lambert>;
+                pub type Light = Viewed<Lighting<Q14, Dir, Lambert>>;
                 /// The mesh's vertices.
                 pub const NV: usize = rocket::NV;
                 /// The mesh's triangles.
@@ -422,12 +425,6 @@ imported! {
 /// The textured Gouraud shader's vertex cache payload (16 bytes: 22 per
 /// cache entry).
 #[cfg(feature = "imported_textured")]
-pub type TexVertex = <Shader<
-    'static,
-    fixshade::shade::Textured<'static, GouraudShading>,
-    Lighting<Q14, Dir, Lambert>,
-    Linear,
-    Rgb565,
-> as Kernel>::Vertex;
+pub type TexVertex = fixshade::shade::Payload<fixshade::shade::Textured<'static, GouraudShading>>;
 #[cfg(feature = "imported_textured")]
 use fixshade::texture::Filter;

@@ -3,12 +3,12 @@
 //! directional Blinn-Phong light in perspective, into a `side × side` frame,
 //! as firmware draws it (a `MeshDraw`, one `DirectionalLight` in `Q14<2>`).
 
-use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Viewport};
+use fixshade::camera::{Camera, MeshTransform, Perspective, Viewport};
+use fixshade::framebuffer::{DrawBand, FullFrame, Layout};
 use fixshade::mesh::Mesh;
+use fixshade::num::Mat4;
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
-};
+use fixshade::render::{bins_len, CachedVertex, Carry, MeshDraw, MeshMemory};
 use fixshade::shade::Kernel;
 use fixshade::texture::{Filter, Texture};
 
@@ -104,7 +104,17 @@ where
         bins: vec![0u16; bins_len(mesh.triangle_count(), 1)].leak(),
         carry: vec![Carry::default(); 2 * mesh.triangle_count()].leak(),
     };
-    Box::new(MeshDraw::new(Layout::full(side, side).unwrap(), mesh, t, kernel, memory).unwrap())
+    Box::new(
+        MeshDraw::new(
+            Layout::full(side, side).unwrap(),
+            mesh,
+            t,
+            kernel,
+            memory,
+            DrawOptions::default(),
+        )
+        .unwrap(),
+    )
 }
 
 /// Writes RGB rows as a PNG.

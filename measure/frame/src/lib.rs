@@ -26,10 +26,10 @@ use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{MeshTransform, Orthographic};
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, MeshDraw,
-    MeshMemory, Refine, RefineBuffers, RenderError,
-};
+use fixshade::render::{bins_len, CachedVertex, Carry, DrawOptions, MeshDraw, MeshMemory};
+use fixshade::framebuffer::{Bands, DrawBand, FullFrame, Layout};
+use fixshade::render::refine::{Refine, RefineBuffers};
+use fixshade::error::RenderError;
 use fixshade::shade::Kernel;
 use fixshade::standard;
 
@@ -124,17 +124,11 @@ where
     D: DrawTarget<Color = Rgb565>,
 {
     let layout = Layout::full(W as u32, W as u32)?;
-    let mut draw = MeshDraw::new(
-        layout,
-        SPHERE_MESH,
-        t,
-        kernel,
-        MeshMemory {
+    let mut draw = MeshDraw::new(layout, SPHERE_MESH, t, kernel, MeshMemory {
             vertices: b.cache,
             bins: b.bins,
             carry: b.carry,
-        },
-    )?;
+        }, DrawOptions::default())?;
     let mut frame = FullFrame::new(W as u32, W as u32, b.color, Some(b.depth))?;
     frame.render(Rgb565::BLACK, &mut [&mut draw])?;
     frame.flush(display).map_err(|_| Fail::Render)
@@ -154,17 +148,11 @@ where
     D: DrawTarget<Color = Rgb565>,
 {
     let layout = Layout::banded(W as u32, W as u32, BAND_ROWS as u32)?;
-    let mut draw = MeshDraw::new(
-        layout,
-        SPHERE_MESH,
-        t,
-        kernel,
-        MeshMemory {
+    let mut draw = MeshDraw::new(layout, SPHERE_MESH, t, kernel, MeshMemory {
             vertices: b.cache,
             bins: b.bins,
             carry: b.carry,
-        },
-    )?;
+        }, DrawOptions::default())?;
     let mut bands = Bands::new(layout, b.color, Some(b.depth))?;
     let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
     bands
@@ -187,22 +175,14 @@ where
 {
     let layout = Layout::full(W as u32, W as u32)?;
     let refine = b.refine.ok_or(Fail::Render)?;
-    let mut draw = MeshDraw::with_refinement(
-        layout,
-        SPHERE_MESH,
-        t,
-        kernel,
-        DrawOptions::default(),
-        MeshMemory {
+    let mut draw = MeshDraw::new(layout, SPHERE_MESH, t, kernel, MeshMemory {
             vertices: b.cache,
             bins: b.bins,
             carry: b.carry,
-        },
-        Refine {
+        }, DrawOptions::default().with_refine(Refine {
             memory: refine.memory(),
             threshold: 0,
-        },
-    )?;
+        }))?;
     let mut frame = FullFrame::new(W as u32, W as u32, b.color, Some(b.depth))?;
     frame.render(Rgb565::BLACK, &mut [&mut draw])?;
     frame.flush(display).map_err(|_| Fail::Render)
@@ -222,22 +202,14 @@ where
 {
     let layout = Layout::banded(W as u32, W as u32, BAND_ROWS as u32)?;
     let refine = b.refine.ok_or(Fail::Render)?;
-    let mut draw = MeshDraw::with_refinement(
-        layout,
-        SPHERE_MESH,
-        t,
-        kernel,
-        DrawOptions::default(),
-        MeshMemory {
+    let mut draw = MeshDraw::new(layout, SPHERE_MESH, t, kernel, MeshMemory {
             vertices: b.cache,
             bins: b.bins,
             carry: b.carry,
-        },
-        Refine {
+        }, DrawOptions::default().with_refine(Refine {
             memory: refine.memory(),
             threshold: 0,
-        },
-    )?;
+        }))?;
     let mut bands = Bands::new(layout, b.color, Some(b.depth))?;
     let items: &mut [&mut dyn DrawBand<Rgb565>] = &mut [&mut draw];
     bands
@@ -277,14 +249,7 @@ pub fn prepare_shared<'a, K: Kernel>(
         bins,
         carry: &mut [],
     };
-    Ok(MeshDraw::with_lit_vertices(
-        BANDED,
-        SPHERE_MESH,
-        t,
-        kernel,
-        DrawOptions::default(),
-        memory,
-    )?)
+    Ok(MeshDraw::new(BANDED, SPHERE_MESH, t, kernel, memory, DrawOptions { lit: true, ..DrawOptions::default() })?)
 }
 
 /// One core's bands of the shared mesh (`_2core`): its own records and

@@ -23,18 +23,18 @@ use core::hint::black_box;
 use core::slice;
 
 use embedded_graphics_core::pixelcolor::Rgb565;
-use fixshade::camera::{Camera, Mat4, MeshTransform, Orthographic, Viewport};
+use fixshade::camera::{Camera, MeshTransform, Orthographic, Viewport};
+use fixshade::num::Mat4;
 use fixshade::lighting::{LightSet, Model};
 use fixshade::prelude::*;
 use fixshade::raster::interp::Varyings;
-use fixshade::raster::{Cull, ATTR_FRAC, SUBPIXEL_BITS};
-use fixshade::render::{
-    bins_len, CachedVertex, DrawOptions, FullFrame, Layout, MeshDraw, MeshMemory,
-};
-use fixshade::shade::{
-    FlatShading, GeneralPhongShading, GouraudShading, IncrementalModel, IncrementalPhongShading,
-    Kernel, Linear, QuadraticModel, QuadraticPhongShading, Shader, VertexIn,
-};
+use fixshade::raster::Cull;
+use fixshade::num::ATTR_FRAC;
+use fixshade::camera::SUBPIXEL_BITS;
+use fixshade::render::{bins_len, CachedVertex, DrawOptions, MeshDraw, MeshMemory};
+use fixshade::framebuffer::{FullFrame, Layout};
+use fixshade::shade::{FlatShading, PhongShading, GouraudShading, IncrementalModel, IncrementalPhongShading, Kernel, QuadraticModel, QuadraticPhongShading, Shader, VertexIn};
+use fixshade::color::Linear;
 
 // `out` is handed to the library as `&mut [Rgb565]`: Rgb565 is a newtype of a
 // newtype of the raw 5:6:5 `u16`, so its only possible layout is that `u16`.
@@ -96,10 +96,10 @@ fn spot<S: Scalar>() -> SpotLight<S> {
 /// pixel) and laundered through `black_box`: the per-pixel code reads the light
 /// and material values from memory, as in a program whose scene is data.
 #[inline(never)]
-fn lighting<S: Scalar, L: LightSet<S>, M: Model>(lights: L) -> Lighting<S, L, M> {
+fn lighting<S: Scalar, L: LightSet<S>, M: Model>(lights: L) -> Viewed<Lighting<S, L, M>> {
     // no global ambient light: the measured scene of every row (as before
     // `Lighting::new` took OpenGL's 0.2)
-    black_box(Lighting::<S, L, M>::new(lights, material::<S>()).eye_space().with_global_ambient_f32([0.0; 3]))
+    black_box(Lighting::<S, L, M>::new(lights, material::<S>()).with_global_ambient_f32([0.0; 3]).eye_space())
 }
 
 /// A unit normal in Q14.
@@ -177,11 +177,11 @@ unsafe fn span_gouraud<S: Scalar, L: LightSet<S>, M: Model>(
     span_of(&sh, &a, &b, n, out)
 }
 
-/// The general per-pixel kernel (`GeneralPhongShading`).
+/// The general per-pixel kernel (`PhongShading`).
 #[inline(always)]
 unsafe fn span_phong<S: Scalar, L: LightSet<S>, M: Model>(lights: L, n: u32, out: *mut u16) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    let sh = Shader::<_, _, _, Rgb565>::new(GeneralPhongShading, &lit, Linear);
+    let sh = Shader::<_, _, _, Rgb565>::new(PhongShading, &lit, Linear);
     let [a, b] = span_ends();
     span_of(&sh, &a, &b, n, out)
 }
@@ -262,8 +262,8 @@ unsafe fn draw<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -> u
         bins: &mut bins,
         carry: &mut [],
     };
-    let opts = DrawOptions { cull: Cull::None };
-    let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
+    let opts = DrawOptions { cull: Cull::None, ..DrawOptions::default() };
+    let Ok(mut tri) = MeshDraw::new(layout, mesh, &t, sh, memory, opts) else {
         return 0;
     };
     let _ = frame.render(Rgb565::BLACK, &mut [&mut tri]);
@@ -309,7 +309,7 @@ unsafe fn tri_phong<S: Scalar, L: LightSet<S>, M: Model>(
     out: *mut u16,
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
-    draw(Shader::new(GeneralPhongShading, &lit, Linear), scale, out)
+    draw(Shader::new(PhongShading, &lit, Linear), scale, out)
 }
 
 #[inline(always)]
@@ -440,10 +440,10 @@ kernels! {
 #[inline(always)]
 unsafe fn span_phong_quad<S: Scalar, M: QuadraticModel>(n: u32, out: *mut u16) -> u32
 where
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>:
+    for<'a> Shader<'a, QuadraticPhongShading, Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Linear, Rgb565>:
         Kernel<Color = Rgb565>,
     QuadraticPhongShading:
-        fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
+        fixshade::shade::Mode<Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Rgb565>,
 {
     let lit = lighting::<S, _, M>([dir::<S>()]);
     let sh = Shader::<_, _, _, Rgb565>::new(QuadraticPhongShading, &lit, Linear);
@@ -454,10 +454,10 @@ where
 #[inline(always)]
 unsafe fn tri_phong_quad<S: Scalar, M: QuadraticModel>(scale: u32, out: *mut u16) -> u32
 where
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>:
+    for<'a> Shader<'a, QuadraticPhongShading, Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Linear, Rgb565>:
         Kernel<Color = Rgb565>,
     QuadraticPhongShading:
-        fixshade::shade::ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>,
+        fixshade::shade::Mode<Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Rgb565>,
 {
     let lit = lighting::<S, _, M>([dir::<S>()]);
     draw(Shader::new(QuadraticPhongShading, &lit, Linear), scale, out)
@@ -625,8 +625,8 @@ unsafe fn draw_tex<K: Kernel<Color = Rgb565>, P: fixshade::camera::Projection>(
         bins: &mut bins,
         carry: &mut [],
     };
-    let opts = DrawOptions { cull: Cull::None };
-    let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
+    let opts = DrawOptions { cull: Cull::None, ..DrawOptions::default() };
+    let Ok(mut tri) = MeshDraw::new(layout, mesh, &t, sh, memory, opts) else {
         return 0;
     };
     let _ = frame.render(Rgb565::BLACK, &mut [&mut tri]);
@@ -718,7 +718,7 @@ unsafe fn span_nmap_fast<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u1
 }
 
 /// `span_<tier>_nmap_general_<set>`: the general path
-/// (`GeneralPhongShading.normal_mapped`).
+/// (`PhongShading.normal_mapped`).
 #[inline(always)]
 unsafe fn span_nmap_general<S: Scalar, L: LightSet<S>, M: Model>(
     lights: L,
@@ -727,7 +727,7 @@ unsafe fn span_nmap_general<S: Scalar, L: LightSet<S>, M: Model>(
 ) -> u32 {
     let lit = lighting::<S, L, M>(lights);
     let sh =
-        Shader::<_, _, _, Rgb565>::new(GeneralPhongShading.normal_mapped(nmap()), &lit, Linear);
+        Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(nmap()), &lit, Linear);
     let [a, b] = nm_ends();
     span_of(&sh, &a, &b, n, out)
 }
@@ -786,8 +786,8 @@ unsafe fn draw_nm<K: Kernel<Color = Rgb565>>(sh: K, scale: u32, out: *mut u16) -
         bins: &mut bins,
         carry: &mut [],
     };
-    let opts = DrawOptions { cull: Cull::None };
-    let Ok(mut tri) = MeshDraw::with_options(layout, mesh, &t, sh, opts, memory) else {
+    let opts = DrawOptions { cull: Cull::None, ..DrawOptions::default() };
+    let Ok(mut tri) = MeshDraw::new(layout, mesh, &t, sh, memory, opts) else {
         return 0;
     };
     let _ = frame.render(Rgb565::BLACK, &mut [&mut tri]);
@@ -828,7 +828,7 @@ macro_rules! nmap_general {
             #[export_name = concat!("tri_", stringify!($tier), "_nmap_general_", stringify!($set))]
             pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
                 let lit = lighting::<$S, _, $M>($mk::<$S>());
-                draw_nm(Shader::new(GeneralPhongShading.normal_mapped(nmap()), &lit, Linear), scale, out)
+                draw_nm(Shader::new(PhongShading.normal_mapped(nmap()), &lit, Linear), scale, out)
             }
             #[used]
             static KEEP_NMAP_G: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);
