@@ -6,26 +6,27 @@
 //!
 //! One pipeline draws every triangle; data flows one way, each stage in one
 //! module. Every module imports only from the modules above it in this
-//! table, except that the drawing stage writes into the framebuffer's types
-//! (the framebuffer itself imports nothing of the crate but its errors, from
-//! [`error`]); there are no import cycles:
+//! table (every stage may name the crate's errors, [`error`]; the span and
+//! drawing stages write into the framebuffer's band strips); there are no
+//! import cycles (`python3 measure/layout.py --check` holds CI to it):
 //!
 //! | stage | module | what it does |
 //! |---|---|---|
 //! | numbers | [`num`] | the tiers ([`Q14`](num::Q14), [`Q30`](num::Q30), `f32`, [`F32Fast`](num::F32Fast)), vectors, matrices, and the one copy of each table-driven operation (reciprocal, inverse square root, powers) |
 //! | colour | [`color`] | linear RGB, output pixel formats, encoders (rounding, ordered dithering, gamma tables) |
-//! | lighting | [`lighting`] | what a point reflects: lights, material, reflection model, viewer, fog; OpenGL 1.x parameter sets in [`lighting::gl`] |
+//! | lighting | [`lighting`] | what a point reflects: lights, material, reflection model, viewer, fog, the equation once; lights placed in world coordinates and seen from the eye ([`Viewed`](lighting::Viewed)); OpenGL 1.x parameter sets in [`lighting::gl`] |
 //! | mesh | [`mesh`] | meshes in flash (`i16` positions, Q14 normals, optional Q12 texture coordinates and tangents, `u16` triangles), `const fn` generators |
 //! | texture | [`texture`] | colour textures and normal maps over borrowed texels, and their sampling |
-//! | camera | [`camera`] | projection (a type: [`Orthographic`](camera::Orthographic) or [`Perspective`](camera::Perspective)), view, viewport; [`MeshTransform`](camera::MeshTransform) takes model space to clip space in fixed point |
+//! | camera | [`camera`] | projection (a type: [`Orthographic`](camera::Orthographic) or [`Perspective`](camera::Perspective)), view, viewport; [`MeshTransform`](camera::MeshTransform) takes model space to clip space in fixed point, [`Camera::clip`](camera::Camera::clip) a program's `f32` points |
 //! | clip, set-up, interpolation | [`raster`] | the one clip-space clipper (near plane and set-up window), 32-bit set-up, exact edge walking with a top-left rule, screen-linear or perspective-correct values ([`raster::interp`]) |
-//! | shading | [`shade`] | the modes ([`FlatShading`](shade::FlatShading), [`GouraudShading`](shade::GouraudShading), [`PhongShading`](shade::PhongShading), `.textured(…)`, `.normal_mapped(…)`) and the one trait every span kernel implements, [`Kernel`](shade::Kernel) |
-//! | drawing | [`render`] | [`MeshDraw`](render::MeshDraw): the vertex stage (transform and light each vertex once per frame), bins by band, then per band clip, set-up, depth test and kernel; [`draw_triangle`](render::draw_triangle): the same stages for one triangle a program brings in clip or screen space |
+//! | shading | [`shade`] | the kernels that compute colours, one a file, named by the mode the user writes ([`FlatShading`](shade::FlatShading), [`GouraudShading`](shade::GouraudShading), [`PhongShading`](shade::PhongShading), [`IncrementalPhongShading`](shade::IncrementalPhongShading), [`QuadraticPhongShading`](shade::QuadraticPhongShading), `.textured(…)`, `.normal_mapped(…)`) and the one trait they implement, [`Kernel`](shade::Kernel) |
+//! | spans | `span` (internal) | the row loop, the depth test and the pixel write: a set-up triangle's rows in a band, each run depth-tested and written (the simple colours of [`Fill`](shade::Fill) by the stage's own loops) |
+//! | drawing | [`render`] | [`MeshDraw`](render::MeshDraw): the vertex stage (transform and light each vertex once per frame), bins by band, then per band clip, set-up and spans; [`draw_triangle`](render::draw_triangle) and [`Triangle`](render::Triangle): the same stages for one triangle a program brings |
 //! | framebuffer | [`framebuffer`] | the band strip flushed to any `DrawTarget` or sent by DMA while the next band is drawn ([`Bands`](framebuffer::Bands), [`BandSink`](framebuffer::BandSink)), bands shared out between cores ([`Bands::render_bands`](framebuffer::Bands::render_bands), [`MeshDraw::share`](render::MeshDraw::share)), a whole frame in memory ([`FullFrame`](framebuffer::FullFrame)), a checksum target |
 //!
-//! A mesh and a single triangle take the same clipper, set-up and kernel:
-//! `draw_triangle` gives the mesh renderer's pixels bit for bit. Under a
-//! perspective projection every value a kernel interpolates is
+//! A mesh and a single triangle take the same clipper, set-up, spans and
+//! kernel: `draw_triangle` gives the mesh renderer's pixels bit for bit.
+//! Under a perspective projection every value a kernel interpolates is
 //! perspective-correct; an orthographic scene pays nothing for it (the
 //! projection is a type).
 //!

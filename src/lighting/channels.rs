@@ -82,22 +82,20 @@ impl<const K: usize> ChannelTerms<K> {
         self.base
     }
 
-    /// Adds light `lt`'s terms at a point where `N·L = d` (Q14) to `acc`:
-    /// `kd·min(d, 1)` and (`SPEC`) `ks·(N·H)^n` with `N·H = h()` (Q14), both
-    /// only where `d > 0`.
+    /// Adds light `lt`'s terms at a point where `N·L = d > 0` and `N·H = h`
+    /// (Q14) to `acc`: `kd·min(d, 1)` and (`SPEC`) `ks·h^n` (the caller
+    /// skips a light with `d ≤ 0`: no diffuse and no specular term there).
     #[inline(always)]
     pub(crate) fn add<const SPEC: bool>(
         &self,
         acc: &mut [i32; 3],
         lt: &LightChannels,
         d: i32,
-        h: impl FnOnce() -> i32,
+        h: i32,
     ) {
-        if d > 0 {
-            add_term(acc, d.min(16384), &lt.kd);
-            if SPEC {
-                add_term(acc, self.pow.get(h()), &lt.ks);
-            }
+        add_term(acc, d.min(16384), &lt.kd);
+        if SPEC {
+            add_term(acc, self.pow.get(h), &lt.ks);
         }
     }
 

@@ -9,6 +9,7 @@
 //! [`MeshData`] filled by a `const fn` generator lives in flash: no RAM, no
 //! floating point at run time.
 
+use super::uv::Uv;
 use crate::error::check_len;
 use crate::error::MeshError;
 
@@ -250,41 +251,20 @@ impl<const V: usize, const T: usize> MeshData<V, T> {
             frac,
         };
         let scale = (1u32 << frac) as f64;
-        m.put(0, [0.0, 1.0, 0.0], scale);
-        m.put(V - 1, [0.0, -1.0, 0.0], scale);
-        let mut i = 1;
-        while i < stacks {
-            let (st, ct) = sin_cos(core::f64::consts::PI * i as f64 / stacks as f64);
-            let mut j = 0;
-            while j < slices {
-                let (sp, cp) = sin_cos(2.0 * core::f64::consts::PI * j as f64 / slices as f64);
-                m.put(1 + (i - 1) * slices + j, [st * sp, ct, st * cp], scale);
-                j += 1;
-            }
-            i += 1;
-        }
-        let south = (V - 1) as u16;
+        let uv = Uv {
+            stacks,
+            slices,
+            seam: false,
+        };
         let mut k = 0;
-        let mut j = 0;
-        while j < slices {
-            m.triangles[k] = [0, ring(slices, 1, j), ring(slices, 1, j + 1)];
+        while k < V {
+            m.put(k, uv.point(k, V), scale);
             k += 1;
-            let mut i = 1;
-            while i + 1 < stacks {
-                let (a, b) = (ring(slices, i, j), ring(slices, i, j + 1));
-                let (c, d) = (ring(slices, i + 1, j), ring(slices, i + 1, j + 1));
-                m.triangles[k] = [a, c, d];
-                m.triangles[k + 1] = [a, d, b];
-                k += 2;
-                i += 1;
-            }
-            m.triangles[k] = [
-                south,
-                ring(slices, stacks - 1, j + 1),
-                ring(slices, stacks - 1, j),
-            ];
-            k += 1;
-            j += 1;
+        }
+        let mut t = 0;
+        while t < T {
+            m.triangles[t] = uv.triangle(t, V);
+            t += 1;
         }
         m
     }
@@ -298,11 +278,6 @@ impl<const V: usize, const T: usize> MeshData<V, T> {
             c += 1;
         }
     }
-}
-
-/// Index of vertex `j` (mod `slices`) of ring `i` of a UV sphere.
-const fn ring(slices: usize, i: usize, j: usize) -> u16 {
-    (1 + (i - 1) * slices + j % slices) as u16
 }
 
 /// `round(x)` saturated to `i16` (ties away from zero), usable in `const fn`.

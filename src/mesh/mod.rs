@@ -41,6 +41,7 @@ mod sphere;
 mod tangents;
 mod textured;
 mod torus_knot;
+mod uv;
 
 pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};

@@ -7,8 +7,8 @@
 //! texture seam) and write the exact sphere normal `(p − centre)/radius` per
 //! vertex.
 
+use super::uv::Uv;
 use crate::error::{check_len, finite_or, MeshError};
-use core::f64::consts::PI;
 
 /// The highest subdivision level [`icosphere`] accepts: 4 (2562 vertices, 5120
 /// triangles).
@@ -136,42 +136,23 @@ pub fn uv_sphere(
     let counts = uv_sphere_counts(stacks, slices);
     check_common(centre, radius, counts, positions, normals, tris)?;
     let (nv, nt) = counts;
-    // vertices
-    let mut put = |k: usize, n: [f32; 3]| {
-        normals[k] = n;
-        positions[k] = place(centre, radius, n);
+    let uv = Uv {
+        stacks,
+        slices,
+        seam: false,
     };
-    put(0, [0.0, 1.0, 0.0]);
-    put(nv - 1, [0.0, -1.0, 0.0]);
-    for i in 1..stacks {
-        let theta = PI * i as f64 / stacks as f64;
-        let (st, ct) = (libm::sin(theta), libm::cos(theta));
-        for j in 0..slices {
-            let phi = 2.0 * PI * j as f64 / slices as f64;
-            let n = unit([st * libm::sin(phi), ct, st * libm::cos(phi)]);
-            put(1 + (i - 1) * slices + j, n);
-        }
+    for (k, (p, n)) in positions
+        .iter_mut()
+        .zip(normals.iter_mut())
+        .take(nv)
+        .enumerate()
+    {
+        *n = unit(uv.point(k, nv));
+        *p = place(centre, radius, *n);
     }
-    // triangles; every index < nv ≤ 65536, so the casts are exact
-    let ring = |i: usize, j: usize| (1 + (i - 1) * slices + j % slices) as u16;
-    let south = (nv - 1) as u16;
-    let mut k = 0;
-    for j in 0..slices {
-        // north fan: pole, then the first ring left to right (seen from outside)
-        tris[k] = [0, ring(1, j), ring(1, j + 1)];
-        k += 1;
-        for i in 1..stacks - 1 {
-            // quad a b / c d, a top-left; (a, c, d) and (a, d, b) counter-clockwise
-            let (a, b) = (ring(i, j), ring(i, j + 1));
-            let (c, d) = (ring(i + 1, j), ring(i + 1, j + 1));
-            tris[k] = [a, c, d];
-            tris[k + 1] = [a, d, b];
-            k += 2;
-        }
-        tris[k] = [south, ring(stacks - 1, j + 1), ring(stacks - 1, j)];
-        k += 1;
+    for (t, tri) in tris.iter_mut().take(nt).enumerate() {
+        *tri = uv.triangle(t, nv);
     }
-    debug_assert_eq!(k, nt);
     Ok(counts)
 }
 

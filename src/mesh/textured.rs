@@ -14,8 +14,8 @@
 //! vertex (the bitangent of [`Mesh::with_tangents`] is
 //! `handedness · (normal × tangent)`, i.e. the direction of increasing `v`).
 
-use super::compact::{round_i16, sin_cos, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
-use core::f64::consts::PI;
+use super::compact::{round_i16, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
+use super::uv::Uv;
 
 /// `(vertices, triangles)` of [`TexturedMeshData::uv_sphere`] with `stacks`
 /// bands of latitude and `slices` of longitude:
@@ -169,67 +169,21 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
                 "positions of a unit sphere need frac <= 14",
             ],
         );
-        let ring0 = slices;
-        let cols = slices + 1;
-        let south0 = V - slices;
-        let mut j = 0;
-        while j < slices {
-            let u = (j as f64 + 0.5) / slices as f64;
-            let (sp, cp) = sin_cos(2.0 * PI * u);
-            m.put(j, [0.0, 1.0, 0.0], [u, 0.0], [cp, 0.0, -sp], scale);
-            m.put(
-                south0 + j,
-                [0.0, -1.0, 0.0],
-                [u, 1.0],
-                [cp, 0.0, -sp],
-                scale,
-            );
-            j += 1;
-        }
-        let mut i = 1;
-        while i < stacks {
-            let v = i as f64 / stacks as f64;
-            let (st, ct) = sin_cos(PI * v);
-            let mut j = 0;
-            while j <= slices {
-                let u = j as f64 / slices as f64;
-                // the seam column repeats column 0 exactly
-                let (sp, cp) = if j == slices {
-                    (0.0, 1.0)
-                } else {
-                    sin_cos(2.0 * PI * u)
-                };
-                let k = ring0 + (i - 1) * cols + j;
-                m.put(k, [st * sp, ct, st * cp], [u, v], [cp, 0.0, -sp], scale);
-                j += 1;
-            }
-            i += 1;
-        }
+        let uv = Uv {
+            stacks,
+            slices,
+            seam: true,
+        };
         let mut k = 0;
-        let mut j = 0;
-        while j < slices {
-            m.triangles[k] = [
-                j as u16,
-                ring(ring0, cols, 1, j),
-                ring(ring0, cols, 1, j + 1),
-            ];
+        while k < V {
+            let (c, t) = uv.texel(k, V);
+            m.put(k, uv.point(k, V), c, t, scale);
             k += 1;
-            let mut i = 1;
-            while i + 1 < stacks {
-                let (a, b) = (ring(ring0, cols, i, j), ring(ring0, cols, i, j + 1));
-                let (c, d) = (ring(ring0, cols, i + 1, j), ring(ring0, cols, i + 1, j + 1));
-                m.triangles[k] = [a, c, d];
-                m.triangles[k + 1] = [a, d, b];
-                k += 2;
-                i += 1;
-            }
-            m.triangles[k] = [
-                (south0 + j) as u16,
-                ring(ring0, cols, stacks - 1, j + 1),
-                ring(ring0, cols, stacks - 1, j),
-            ];
-            k += 1;
-            j += 1;
+        }
+        let mut t = 0;
+        while t < T {
+            m.triangles[t] = uv.triangle(t, V);
+            t += 1;
         }
         m
     }
@@ -297,11 +251,6 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
         }
         m
     }
-}
-
-/// Index of column `j` of ring `i` (1-based) of the textured sphere.
-const fn ring(ring0: usize, cols: usize, i: usize, j: usize) -> u16 {
-    (ring0 + (i - 1) * cols + j) as u16
 }
 
 /// Index of grid vertex `(i, j)` of a plane of `nx` columns of quads.

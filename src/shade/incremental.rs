@@ -233,7 +233,10 @@ fn run<C: OutputColor, const K: usize, const NEWTON: u32, const SPEC: bool>(
         for (lt, dot) in state.lights.iter().zip(dots.iter_mut()) {
             // N·L/|N| and N·H/|N| (Q14)
             let d = ((dot[0] >> 12) * r) >> 14;
-            state.add::<SPEC>(&mut acc, lt, d, || ((dot[2] >> 12) * r) >> 14);
+            if d > 0 {
+                let h = if SPEC { ((dot[2] >> 12) * r) >> 14 } else { 0 };
+                state.add::<SPEC>(&mut acc, lt, d, h);
+            }
             dot[0] += dot[1];
             dot[2] += dot[3];
         }

@@ -707,12 +707,13 @@ fn nm_ends() -> [VertexIn; 2] {
     })
 }
 
-/// `span_q14_1_nmap_<set>`: the Q14 fast path (`PhongShading.normal_mapped`
-/// with one directional light), over the reference span.
+/// `span_q14_1_nmap_<set>`: the Q14 fast path
+/// (`IncrementalPhongShading.normal_mapped` with one directional light), over
+/// the reference span.
 #[inline(always)]
 unsafe fn span_nmap_fast<const NW: u8, M: IncrementalModel>(n: u32, out: *mut u16) -> u32 {
-    let lit = lighting::<Q14<NW>, _, M>(dir::<Q14<NW>>());
-    let sh = Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(nmap()), &lit, Linear);
+    let lit = lighting::<Q14<NW>, _, M>([dir::<Q14<NW>>()]);
+    let sh = Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading.normal_mapped(nmap()), &lit, Linear);
     let [a, b] = nm_ends();
     span_of(&sh, &a, &b, n, out)
 }
@@ -804,8 +805,8 @@ macro_rules! nmap_fast {
             }
             #[export_name = concat!("tri_q14_1_nmap_", stringify!($set))]
             pub unsafe extern "C" fn tri(scale: u32, out: *mut u16) -> u32 {
-                let lit = lighting::<Q14<1>, _, $M>(dir::<Q14<1>>());
-                draw_nm(Shader::new(PhongShading.normal_mapped(nmap()), &lit, Linear), scale, out)
+                let lit = lighting::<Q14<1>, _, $M>([dir::<Q14<1>>()]);
+                draw_nm(Shader::new(IncrementalPhongShading.normal_mapped(nmap()), &lit, Linear), scale, out)
             }
             #[used]
             static KEEP_NMAP: crate::Keep<[*const (); 2]> = crate::Keep([span as *const (), tri as *const ()]);

@@ -1,0 +1,123 @@
+//! The UV sphere's layout, once: which unit point each vertex index is, which
+//! vertices each triangle index joins, with or without a texture seam.
+//! [`MeshData::uv_sphere`](super::MeshData::uv_sphere),
+//! [`TexturedMeshData::uv_sphere`](super::TexturedMeshData::uv_sphere) and
+//! [`uv_sphere`](super::uv_sphere) store it in their formats.
+//!
+//! Without a seam the poles are single vertices: vertex 0 the north pole
+//! `(0, 1, 0)`, the last the south pole, between them `stacks − 1` rings of
+//! `slices` vertices. With a seam each pole is `slices` vertices (one per
+//! slice, at the start and the end) and each ring `slices + 1` (column 0
+//! repeated at `u = 1`). Ring `i` (1-based, from the north) lies at polar
+//! angle `θ = π·i/stacks`, column `j` at azimuth `φ = 2π·j/slices`: the point
+//! `(sin θ sin φ, cos θ, sin θ cos φ)`. Per slice, the triangles run from the
+//! north fan through two per band to the south fan, each counter-clockwise
+//! seen from outside.
+
+use super::compact::sin_cos;
+use core::f64::consts::PI;
+
+/// A UV sphere's sizes and seam.
+#[derive(Clone, Copy)]
+pub(crate) struct Uv {
+    pub stacks: usize,
+    pub slices: usize,
+    pub seam: bool,
+}
+
+impl Uv {
+    /// Vertices in the first ring (the north pole's).
+    const fn ring0(self) -> usize {
+        if self.seam {
+            self.slices
+        } else {
+            1
+        }
+    }
+
+    /// Vertices per ring.
+    const fn cols(self) -> usize {
+        self.slices + self.seam as usize
+    }
+
+    /// Ring `i` (0: the north pole, `stacks`: the south pole) and column `j`
+    /// of vertex `k` (of `v` vertices).
+    const fn grid(self, k: usize, v: usize) -> (usize, usize) {
+        let (r0, cols) = (self.ring0(), self.cols());
+        if k < r0 {
+            (0, k)
+        } else if k >= v - r0 {
+            (self.stacks, k - (v - r0))
+        } else {
+            (1 + (k - r0) / cols, (k - r0) % cols)
+        }
+    }
+
+    /// The index of column `j` of ring `i` (`0 < i < stacks`).
+    const fn index(self, i: usize, j: usize) -> u16 {
+        let j = if self.seam { j } else { j % self.slices };
+        (self.ring0() + (i - 1) * self.cols() + j) as u16
+    }
+
+    /// The unit point (and normal) of vertex `k` of `v`.
+    pub const fn point(self, k: usize, v: usize) -> [f64; 3] {
+        let (i, j) = self.grid(k, v);
+        if i == 0 {
+            return [0.0, 1.0, 0.0];
+        }
+        if i == self.stacks {
+            return [0.0, -1.0, 0.0];
+        }
+        let (st, ct) = sin_cos(PI * i as f64 / self.stacks as f64);
+        // the seam column repeats column 0 exactly
+        let (sp, cp) = if j == self.slices {
+            (0.0, 1.0)
+        } else {
+            sin_cos(2.0 * PI * j as f64 / self.slices as f64)
+        };
+        [st * sp, ct, st * cp]
+    }
+
+    /// The texture coordinates and unit tangent (the direction of increasing
+    /// `u`) of vertex `k` of `v` of a sphere with a seam: a pole vertex at
+    /// the middle of its slice.
+    pub const fn texel(self, k: usize, v: usize) -> ([f64; 2], [f64; 3]) {
+        let (i, j) = self.grid(k, v);
+        let pole = i == 0 || i == self.stacks;
+        let u = (j as f64 + if pole { 0.5 } else { 0.0 }) / self.slices as f64;
+        let (sp, cp) = if j == self.slices {
+            (0.0, 1.0)
+        } else {
+            sin_cos(2.0 * PI * u)
+        };
+        ([u, i as f64 / self.stacks as f64], [cp, 0.0, -sp])
+    }
+
+    /// The vertices of triangle `t` of `v` vertices.
+    pub const fn triangle(self, t: usize, v: usize) -> [u16; 3] {
+        let per = 2 * (self.stacks - 1);
+        let (j, r) = (t / per, t % per);
+        if r == 0 {
+            // north fan: the pole, then the first ring left to right
+            let pole = if self.seam { j as u16 } else { 0 };
+            [pole, self.index(1, j), self.index(1, j + 1)]
+        } else if r == per - 1 {
+            let south = (v - self.ring0() + if self.seam { j } else { 0 }) as u16;
+            [
+                south,
+                self.index(self.stacks - 1, j + 1),
+                self.index(self.stacks - 1, j),
+            ]
+        } else {
+            // the quad a b / c d of band i, a top-left: (a, c, d) and (a, d, b)
+            let i = 1 + (r - 1) / 2;
+            let (a, b) = (self.index(i, j), self.index(i, j + 1));
+            let (c, d) = (self.index(i + 1, j), self.index(i + 1, j + 1));
+            if (r - 1) % 2 == 0 {
+                [a, c, d]
+            } else {
+                [a, d, b]
+            }
+        }
+    }
+}
