@@ -42,41 +42,43 @@ use crate::num::recip::{normalise, recip16};
 pub const VARYING_LIMIT: i32 = (1 << 15) - 1;
 
 mod sealed {
-    pub trait Sealed {}
-    impl<const N: usize> Sealed for [i32; N] {}
+    use super::Plane;
+
+    /// The set-up's side of [`Varyings`](super::Varyings): one plane per
+    /// value (implemented for `[i32; N]` only).
+    pub trait Planes {
+        /// One plane per value.
+        type Planes: Copy + core::fmt::Debug + AsRef<[Plane]> + AsMut<[Plane]>;
+        /// The planes `f(0), f(1), …`.
+        fn planes_from_fn(f: impl FnMut(usize) -> Plane) -> Self::Planes;
+    }
+
+    impl<const N: usize> Planes for [i32; N] {
+        type Planes = [Plane; N];
+        #[inline(always)]
+        fn planes_from_fn(f: impl FnMut(usize) -> Plane) -> [Plane; N] {
+            core::array::from_fn(f)
+        }
+    }
 }
 
 /// The values a shading kernel interpolates across a triangle: `[i32; N]`
 /// (sealed; see the [module docs](self) for units and precision).
-pub trait Varyings: Copy + core::fmt::Debug + sealed::Sealed + 'static {
+pub trait Varyings: Copy + core::fmt::Debug + sealed::Planes + 'static {
     /// How many values.
     const LEN: usize;
-    /// One plane per value.
-    #[doc(hidden)]
-    type Planes: Copy + core::fmt::Debug + AsRef<[Plane]> + AsMut<[Plane]>;
     /// The values `f(0), f(1), …`.
-    #[doc(hidden)]
     fn from_fn(f: impl FnMut(usize) -> i32) -> Self;
-    /// The planes `f(0), f(1), …`.
-    #[doc(hidden)]
-    fn planes_from_fn(f: impl FnMut(usize) -> Plane) -> Self::Planes;
     /// The values as a slice.
-    #[doc(hidden)]
     fn values(&self) -> &[i32];
     /// The values as a mutable slice.
-    #[doc(hidden)]
     fn values_mut(&mut self) -> &mut [i32];
 }
 
 impl<const N: usize> Varyings for [i32; N] {
     const LEN: usize = N;
-    type Planes = [Plane; N];
     #[inline(always)]
     fn from_fn(f: impl FnMut(usize) -> i32) -> Self {
-        core::array::from_fn(f)
-    }
-    #[inline(always)]
-    fn planes_from_fn(f: impl FnMut(usize) -> Plane) -> [Plane; N] {
         core::array::from_fn(f)
     }
     #[inline(always)]

@@ -45,8 +45,7 @@ pub(crate) mod setup;
 pub(crate) use crate::num::ATTR_FRAC;
 pub(crate) use edge::Walker;
 pub(crate) use setup::ClampTo;
-#[doc(hidden)]
-pub use setup::{Plane, Setup};
+pub(crate) use setup::{Plane, Setup};
 
 pub(crate) use crate::camera::SUBPIXEL_BITS;
 
