@@ -47,7 +47,7 @@ pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
 pub use displace::{displace, to_compact};
 pub use normals::{face_normals, vertex_normals, Weighting};
-pub use sphere::{icosphere, icosphere_counts, uv_sphere, uv_sphere_counts};
+pub use sphere::{icosphere, icosphere_counts, uv_sphere_counts};
 pub use tangents::vertex_tangents;
 pub use textured::{plane_counts, textured_sphere_counts, TexturedMeshData};
 pub use torus_knot::TorusKnot;

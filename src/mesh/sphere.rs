@@ -1,20 +1,19 @@
-//! Sphere generators into caller-owned arrays: a UV (latitude/longitude) sphere
-//! and an icosphere.
+//! The icosphere generator into caller-owned arrays, and the UV sphere's
+//! counts (its layout: `uv.rs`).
 //!
-//! Both wind every triangle counter-clockwise seen from outside (geometric normal
+//! It winds every triangle counter-clockwise seen from outside (geometric normal
 //! `(b − a) × (c − a)` pointing away from the centre), share every vertex between
 //! its triangles (a closed mesh: every edge belongs to exactly two triangles, no
 //! texture seam) and write the exact sphere normal `(p − centre)/radius` per
 //! vertex.
 
-use super::uv::Uv;
 use crate::error::{check_len, finite_or, MeshError};
 
 /// The highest subdivision level [`icosphere`] accepts: 4 (2562 vertices, 5120
 /// triangles).
 pub(crate) const MAX_ICOSPHERE_LEVEL: u32 = 4;
 
-/// `(vertices, triangles)` of [`uv_sphere`] with `stacks` bands of latitude and
+/// `(vertices, triangles)` of [`MeshData::uv_sphere`](super::MeshData::uv_sphere) with `stacks` bands of latitude and
 /// `slices` of longitude: `(2 + (stacks − 1)·slices, 2·slices·(stacks − 1))`
 /// (saturating). Invalid sizes (`stacks < 2` or `slices < 3`) give `(0, 0)`.
 ///
@@ -90,70 +89,6 @@ fn unit(v: [f64; 3]) -> [f32; 3] {
         (v[1] / len) as f32,
         (v[2] / len) as f32,
     ]
-}
-
-/// Writes a UV sphere: `stacks` bands from pole to pole (≥ 2), `slices` around
-/// (≥ 3). Returns `(vertices, triangles)`, equal to [`uv_sphere_counts`].
-///
-/// The poles are single vertices on the y axis: vertex 0 is the north pole
-/// `centre + (0, r, 0)`, the last vertex the south pole. In between come
-/// `stacks − 1` rings of `slices` vertices, ring `i` (1-based, from the north) at
-/// polar angle `θ = π·i/stacks`, vertex `j` at azimuth `φ = 2π·j/slices`:
-/// `n = (sin θ sin φ, cos θ, sin θ cos φ)`, `p = centre + r·n`. The poles are
-/// closed by triangle fans, each band by two triangles per slice.
-///
-/// # Errors
-///
-/// [`MeshError::OutOfRange`] for `stacks < 2`, `slices < 3` or `radius ≤ 0`;
-/// [`MeshError::NotFinite`] for a NaN or infinite centre or radius;
-/// [`MeshError::TooManyVertices`] beyond 65536 vertices;
-/// [`MeshError::BufferTooSmall`] when an output is shorter than the counts.
-/// Nothing is written on error.
-///
-/// ```
-/// use fixshade::mesh::{uv_sphere, uv_sphere_counts};
-/// const N: (usize, usize) = uv_sphere_counts(6, 12);
-/// let (mut p, mut n, mut t) = ([[0.0f32; 3]; N.0], [[0.0f32; 3]; N.0], [[0u16; 3]; N.1]);
-/// assert_eq!(uv_sphere(6, 12, [0.0, 0.0, -5.0], 2.0, &mut p, &mut n, &mut t), Ok(N));
-/// assert_eq!(p[0], [0.0, 2.0, -5.0]); // north pole
-/// assert_eq!(n[N.0 - 1], [0.0, -1.0, 0.0]); // south pole
-/// ```
-pub fn uv_sphere(
-    stacks: usize,
-    slices: usize,
-    centre: [f32; 3],
-    radius: f32,
-    positions: &mut [[f32; 3]],
-    normals: &mut [[f32; 3]],
-    tris: &mut [[u16; 3]],
-) -> Result<(usize, usize), MeshError> {
-    if stacks < 2 {
-        return Err(MeshError::OutOfRange("stacks"));
-    }
-    if slices < 3 {
-        return Err(MeshError::OutOfRange("slices"));
-    }
-    let counts = uv_sphere_counts(stacks, slices);
-    check_common(centre, radius, counts, positions, normals, tris)?;
-    let (nv, nt) = counts;
-    let uv = Uv {
-        stacks,
-        slices,
-        seam: false,
-    };
-    for (k, (p, n)) in positions
-        .iter_mut()
-        .zip(normals.iter_mut())
-        .take(nv)
-        .enumerate()
-    {
-        *n = unit(uv.point(k, nv));
-        *p = place(centre, radius, *n);
-    }
-    for (t, tri) in tris.iter_mut().take(nt).enumerate() {
-        *tri = uv.triangle(t, nv);
-    }
-    Ok(counts)
 }
 
 /// The golden ratio, for the icosahedron's vertices `(0, ±1, ±φ)` and cyclic
@@ -303,42 +238,6 @@ mod tests {
         let mut t = [[0u16; 3]; 128];
         let e = |r| Err::<(usize, usize), _>(r);
         assert_eq!(
-            uv_sphere(1, 8, [0.0; 3], 1.0, &mut p, &mut n, &mut t),
-            e(MeshError::OutOfRange("stacks"))
-        );
-        assert_eq!(
-            uv_sphere(4, 2, [0.0; 3], 1.0, &mut p, &mut n, &mut t),
-            e(MeshError::OutOfRange("slices"))
-        );
-        assert_eq!(
-            uv_sphere(4, 4, [0.0; 3], 0.0, &mut p, &mut n, &mut t),
-            e(MeshError::OutOfRange("radius"))
-        );
-        assert_eq!(
-            uv_sphere(4, 4, [0.0; 3], f32::NAN, &mut p, &mut n, &mut t),
-            e(MeshError::NotFinite("radius"))
-        );
-        assert_eq!(
-            uv_sphere(4, 4, [f32::INFINITY, 0.0, 0.0], 1.0, &mut p, &mut n, &mut t),
-            e(MeshError::NotFinite("centre"))
-        );
-        assert_eq!(
-            uv_sphere(300, 300, [0.0; 3], 1.0, &mut p, &mut n, &mut t),
-            e(MeshError::TooManyVertices { needed: 89_702 })
-        );
-        assert_eq!(
-            uv_sphere(
-                usize::MAX,
-                usize::MAX,
-                [0.0; 3],
-                1.0,
-                &mut p,
-                &mut n,
-                &mut t
-            ),
-            e(MeshError::TooManyVertices { needed: usize::MAX })
-        );
-        assert_eq!(
             icosphere(5, [0.0; 3], 1.0, &mut p, &mut n, &mut t),
             e(MeshError::OutOfRange("level"))
         );
@@ -359,10 +258,6 @@ mod tests {
             })
         );
         assert_eq!(p, [[0.0; 3]; 64], "nothing written on error");
-        assert_eq!(
-            uv_sphere(8, 8, [0.0; 3], 1.0, &mut p, &mut n, &mut t),
-            Ok((58, 112))
-        );
         assert_eq!(
             icosphere(1, [0.0; 3], 1.0, &mut p, &mut n, &mut t),
             Ok((42, 80))

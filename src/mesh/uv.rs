@@ -1,8 +1,8 @@
 //! The UV sphere's layout, once: which unit point each vertex index is, which
 //! vertices each triangle index joins, with or without a texture seam.
-//! [`MeshData::uv_sphere`](super::MeshData::uv_sphere),
-//! [`TexturedMeshData::uv_sphere`](super::TexturedMeshData::uv_sphere) and
-//! [`uv_sphere`](super::uv_sphere) store it in their formats.
+//! [`MeshData::uv_sphere`](super::MeshData::uv_sphere) and
+//! [`TexturedMeshData::uv_sphere`](super::TexturedMeshData::uv_sphere)
+//! store it in their formats.
 //!
 //! Without a seam the poles are single vertices: vertex 0 the north pole
 //! `(0, 1, 0)`, the last the south pole, between them `stacks − 1` rings of
@@ -117,6 +117,56 @@ impl Uv {
                 [a, c, d]
             } else {
                 [a, d, b]
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Uv;
+    use crate::mesh::{textured_sphere_counts, uv_sphere_counts};
+    use crate::num::{cross3, dot3, sub3};
+    use std::collections::HashMap;
+
+    /// Every point unit length, every triangle non-degenerate and facing
+    /// out, every vertex used; without a seam every edge shared by exactly
+    /// two triangles in opposite directions (a closed mesh), with one every
+    /// edge at most twice (the seam's columns are twins).
+    #[test]
+    fn every_layout_is_a_closed_outward_sphere() {
+        for (stacks, slices) in [(2, 3), (2, 4), (3, 3), (5, 7), (16, 24), (40, 3), (3, 64)] {
+            for seam in [false, true] {
+                let uv = Uv { stacks, slices, seam };
+                let (v, t) = if seam {
+                    textured_sphere_counts(stacks, slices)
+                } else {
+                    uv_sphere_counts(stacks, slices)
+                };
+                let p: std::vec::Vec<[f64; 3]> = (0..v).map(|k| uv.point(k, v)).collect();
+                for q in &p {
+                    assert!((dot3(*q, *q).sqrt() - 1.0).abs() < 1e-12);
+                }
+                let mut edges = HashMap::new();
+                let mut used = std::vec![false; v];
+                for k in 0..t {
+                    let tri = uv.triangle(k, v).map(usize::from);
+                    let [a, b, c] = tri.map(|i| p[i]);
+                    let n = cross3(sub3(b, a), sub3(c, a));
+                    let centre = [0, 1, 2].map(|i| (a[i] + b[i] + c[i]) / 3.0);
+                    assert!(dot3(n, centre) > 0.0, "{stacks}x{slices} {seam}: {k} faces in");
+                    for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+                        *edges.entry((tri[i], tri[j])).or_insert(0) += 1;
+                        used[tri[i]] = true;
+                    }
+                }
+                assert!(used.iter().all(|&u| u), "{stacks}x{slices} {seam}: a vertex unused");
+                for (&(a, b), &n) in &edges {
+                    assert_eq!(n, 1, "{stacks}x{slices}: edge {a}-{b} twice one way");
+                    if !seam {
+                        assert_eq!(edges.get(&(b, a)), Some(&1), "{stacks}x{slices}: open edge");
+                    }
+                }
             }
         }
     }

@@ -30,7 +30,7 @@ mod normal_map;
 mod rgb565;
 
 pub(crate) use normal_map::Nearest;
-pub use normal_map::{bump_to_normals, normal_texel, normalize_texels, NormalMap};
+pub use normal_map::NormalMap;
 pub(crate) use rgb565::{modulate_run, Pieces};
 
 use crate::error::TextureError;

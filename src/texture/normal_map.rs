@@ -8,7 +8,7 @@
 //! the flat normal is `[0, 0, 16384]`).
 //!
 //! **Format and quantisation.** Six bytes a texel (a 64 × 64 map is 24 KiB of
-//! flash). [`normal_texel`] rounds each component of a unit vector to the
+//! flash). [`NormalMap::unit_texel`] rounds each component of a unit vector to the
 //! nearest Q14 step: a component is within `2^-15` of exact, so the length is
 //! within `1 ± 2^-15·√3` (< 6·10⁻⁵) and the angle within 0.006°. That is why
 //! the fast path of [`NormalMapped`](crate::shade::NormalMapped) can use
@@ -17,30 +17,30 @@
 //!
 //! **Validation.** [`NormalMap::new`] checks that every texel is such a unit
 //! normal (`|x² + y² + z² − 2^28| ≤ 2^15`, a length within
-//! `1 ± 6.1·10⁻⁵`; every texel of [`normal_texel`] and [`bump_to_normals`]
+//! `1 ± 6.1·10⁻⁵`; every texel of [`NormalMap::unit_texel`] and [`NormalMap::from_bump`]
 //! passes) and returns [`TextureError::NotUnit`] naming the first one that
 //! is not. So a map from flash is checked once, at start-up, and the per-pixel
 //! kernels can rely on it: a texel such as `[i16::MAX; 3]` (length 3.46)
 //! would overflow the fast path's 32-bit dot products and light 3.5 times too
 //! brightly. Texels from another source (an 8-bit map scaled up, a tool that
-//! truncates) are made unit in place by [`normalize_texels`].
+//! truncates) are made unit in place by [`NormalMap::normalize_texels`].
 //!
 //! **Sampling.** Nearest texel ([`NormalMap::sample`], [`TexCoord`] in Q16, the
 //! texel containing the point, as [`crate::texture`]); [`Wrap::Repeat`] takes
 //! coordinates modulo the map, [`Wrap::Clamp`] clamps to the edge texels.
 //!
-//! **Bump maps.** [`bump_to_normals`] turns a height map (`u8` heights and a
+//! **Bump maps.** [`NormalMap::from_bump`] turns a height map (`u8` heights and a
 //! scale) into a normal map by central differences (Blinn's bump mapping in
 //! tangent space: `n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1)`) into a caller-owned
 //! buffer, once at load time.
 //!
 //! ```
-//! use fixshade::texture::{bump_to_normals, NormalMap, Wrap};
+//! use fixshade::texture::{NormalMap, Wrap};
 //! use fixshade::texture::TexCoord;
 //! // a 4 × 4 height ramp rising along u, converted into a normal map
 //! let heights: [u8; 16] = core::array::from_fn(|i| (i % 4) as u8 * 10);
 //! let mut texels = [[0i16; 3]; 16];
-//! bump_to_normals(&heights, 2, 2, Wrap::Clamp, 0.1, &mut texels)?;
+//! NormalMap::from_bump(&heights, 2, 2, Wrap::Clamp, 0.1, &mut texels)?;
 //! let map = NormalMap::new(&texels, 2, 2, Wrap::Clamp)?;
 //! // ∂h/∂u = 10 per texel, scale 0.1: n = normalize(−1, 0, 1)
 //! let n = map.sample(TexCoord::from_f32(0.4, 0.6));
@@ -57,7 +57,7 @@ const FLAT_NORMAL: [i16; 3] = NormalMap::FLAT;
 /// The largest `|x² + y² + z² − 2^28|` of a texel [`NormalMap::new`] accepts
 /// (`2^15`: a length within `1 ± 6.1·10⁻⁵`). Rounding each component of a
 /// unit vector to the nearest Q14 step moves the squared length by at most
-/// `2^14·√3 + ¾ < 28 379`, so every texel of [`normal_texel`] is accepted.
+/// `2^14·√3 + ¾ < 28 379`, so every texel of [`NormalMap::unit_texel`] is accepted.
 const UNIT_TOLERANCE: u32 = 1 << 15;
 
 /// Whether `t` is a unit normal within [`UNIT_TOLERANCE`] (exact, in 64-bit
@@ -100,7 +100,7 @@ impl<'a> NormalMap<'a> {
     /// (`v = 0`) texel. Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], fewer texels
     /// than the size (extra texels are ignored), a texel that is not a unit
     /// normal (`x² + y² + z²` within `2^28 ± 2^15`: [`TextureError::NotUnit`],
-    /// the first one; [`normalize_texels`] repairs a map). Checking the
+    /// the first one; [`NormalMap::normalize_texels`] repairs a map). Checking the
     /// texels costs one pass over them (three 32-bit squares each), once.
     ///
     /// ```
@@ -242,127 +242,129 @@ impl Nearest<'_> {
     }
 }
 
-/// The Q14 texel of the unit vector along `n` (normalised here, each component
-/// rounded to nearest). Errors: a non-finite component, a zero vector.
-///
-/// ```
-/// use fixshade::texture::normal_texel;
-/// assert_eq!(normal_texel([0.0, 0.0, 2.0]), Ok([0, 0, 16384]));
-/// assert_eq!(normal_texel([1.0, 0.0, 1.0]), Ok([11585, 0, 11585]));
-/// ```
-pub fn normal_texel(n: [f32; 3]) -> Result<[i16; 3], TextureError> {
-    if n.iter().any(|v| !v.is_finite()) {
-        return Err(TextureError::NotFinite("normal"));
-    }
-    let d = n.map(f64::from);
-    let len = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    if !(len > 0.0) || !len.is_finite() {
-        return Err(TextureError::Degenerate("normal"));
-    }
-    Ok(d.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16))
-}
-
-/// Makes every texel of `texels` a unit normal in place: each is replaced by
-/// [`normal_texel`] of its direction (so the result passes
-/// [`NormalMap::new`]); unit texels are kept as they are. For maps from
-/// another source, e.g. an 8-bit map scaled to Q14 (`(c − 128)·16384/127`),
-/// once at load time, in `f64`.
-///
-/// Errors: a zero texel ([`TextureError::Degenerate`]`("texel")`, which has
-/// no direction); nothing is written then.
-///
-/// ```
-/// use fixshade::texture::{normalize_texels, NormalMap, Wrap};
-/// // an 8-bit normal map's texels scaled up: 0.7 % too short
-/// let mut texels = [[0i16, 0, 16256], [11494, 0, 11494]];
-/// assert!(NormalMap::new(&texels, 1, 0, Wrap::Repeat).is_err());
-/// normalize_texels(&mut texels)?;
-/// assert_eq!(texels, [[0, 0, 16384], [11585, 0, 11585]]);
-/// assert!(NormalMap::new(&texels, 1, 0, Wrap::Repeat).is_ok());
-/// # Ok::<(), fixshade::error::TextureError>(())
-/// ```
-pub fn normalize_texels(texels: &mut [[i16; 3]]) -> Result<(), TextureError> {
-    if texels.contains(&[0; 3]) {
-        return Err(TextureError::Degenerate("texel"));
-    }
-    for t in texels.iter_mut().filter(|t| !is_unit_texel(**t)) {
-        *t = normal_texel(t.map(f32::from))?;
-    }
-    Ok(())
-}
-
-/// Converts a height map into a normal map (bump mapping, once at load time).
-///
-/// `heights` holds `2^w_log2 × 2^h_log2` heights row by row (`v` down);
-/// `scale` is the height change, in texels, of one height step (so `∂h/∂u`
-/// is measured in texel widths). Texel `(x, y)` of `out` gets
-/// `normalize(−scale·∂h/∂u, −scale·∂h/∂v, 1)` with central differences
-/// `(h[x+1] − h[x−1]) / 2`; at the edges of a [`Wrap::Clamp`] map one-sided
-/// differences `h[x+1] − h[x]`, `h[x] − h[x−1]` are used (so a linear ramp
-/// gives its exact slope everywhere), a [`Wrap::Repeat`] map wraps around.
-/// A constant map gives the flat normal `[0, 0, 16384]` exactly.
-///
-/// Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], `heights` or `out` too short, a
-/// non-finite `scale`. Nothing is written on error.
-///
-/// ```
-/// use fixshade::texture::{bump_to_normals, NormalMap, Wrap};
-/// let heights = [77u8; 64];
-/// let mut out = [[0i16; 3]; 64];
-/// bump_to_normals(&heights, 3, 3, Wrap::Repeat, 4.0, &mut out)?;
-/// assert!(out.iter().all(|&t| t == NormalMap::FLAT));
-/// # Ok::<(), fixshade::error::TextureError>(())
-/// ```
-pub fn bump_to_normals(
-    heights: &[u8],
-    w_log2: u8,
-    h_log2: u8,
-    wrap: Wrap,
-    scale: f32,
-    out: &mut [[i16; 3]],
-) -> Result<(), TextureError> {
-    let needed = texel_count(w_log2, h_log2)?;
-    for got in [heights.len(), out.len()] {
-        if got < needed {
-            return Err(TextureError::BufferTooSmall {
-                which: "heights or out",
-                needed,
-                got,
-            });
+impl NormalMap<'_> {
+    /// The Q14 texel of the unit vector along `n` (normalised here, each component
+    /// rounded to nearest). Errors: a non-finite component, a zero vector.
+    ///
+    /// ```
+    /// use fixshade::texture::NormalMap;
+    /// assert_eq!(NormalMap::unit_texel([0.0, 0.0, 2.0]), Ok([0, 0, 16384]));
+    /// assert_eq!(NormalMap::unit_texel([1.0, 0.0, 1.0]), Ok([11585, 0, 11585]));
+    /// ```
+    pub fn unit_texel(n: [f32; 3]) -> Result<[i16; 3], TextureError> {
+        if n.iter().any(|v| !v.is_finite()) {
+            return Err(TextureError::NotFinite("normal"));
         }
-    }
-    if !scale.is_finite() {
-        return Err(TextureError::NotFinite("scale"));
-    }
-    let (w, h) = (1i32 << w_log2, 1i32 << h_log2);
-    let height = |x: i32, y: i32| -> f64 {
-        let i = ((y & (h - 1)) * w + (x & (w - 1))) as usize;
-        heights.get(i).copied().map_or(0.0, f64::from)
-    };
-    // the difference quotient along one axis: neighbours `a`, `b` of texel `c`
-    // (`len` texels along the axis)
-    let slope = |c: i32, len: i32, at: &dyn Fn(i32) -> f64| -> f64 {
-        if len == 1 {
-            return 0.0;
+        let d = n.map(f64::from);
+        let len = libm::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if !(len > 0.0) || !len.is_finite() {
+            return Err(TextureError::Degenerate("normal"));
         }
-        match wrap {
-            Wrap::Repeat => (at(c + 1) - at(c - 1)) / 2.0,
-            Wrap::Clamp => {
-                let (lo, hi) = ((c - 1).max(0), (c + 1).min(len - 1));
-                (at(hi) - at(lo)) / f64::from(hi - lo)
+        Ok(d.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16))
+    }
+
+    /// Makes every texel of `texels` a unit normal in place: each is replaced by
+    /// [`NormalMap::unit_texel`] of its direction (so the result passes
+    /// [`NormalMap::new`]); unit texels are kept as they are. For maps from
+    /// another source, e.g. an 8-bit map scaled to Q14 (`(c − 128)·16384/127`),
+    /// once at load time, in `f64`.
+    ///
+    /// Errors: a zero texel ([`TextureError::Degenerate`]`("texel")`, which has
+    /// no direction); nothing is written then.
+    ///
+    /// ```
+    /// use fixshade::texture::{NormalMap, Wrap};
+    /// // an 8-bit normal map's texels scaled up: 0.7 % too short
+    /// let mut texels = [[0i16, 0, 16256], [11494, 0, 11494]];
+    /// assert!(NormalMap::new(&texels, 1, 0, Wrap::Repeat).is_err());
+    /// NormalMap::normalize_texels(&mut texels)?;
+    /// assert_eq!(texels, [[0, 0, 16384], [11585, 0, 11585]]);
+    /// assert!(NormalMap::new(&texels, 1, 0, Wrap::Repeat).is_ok());
+    /// # Ok::<(), fixshade::error::TextureError>(())
+    /// ```
+    pub fn normalize_texels(texels: &mut [[i16; 3]]) -> Result<(), TextureError> {
+        if texels.contains(&[0; 3]) {
+            return Err(TextureError::Degenerate("texel"));
+        }
+        for t in texels.iter_mut().filter(|t| !is_unit_texel(**t)) {
+            *t = NormalMap::unit_texel(t.map(f32::from))?;
+        }
+        Ok(())
+    }
+
+    /// Converts a height map into a normal map (bump mapping, once at load time).
+    ///
+    /// `heights` holds `2^w_log2 × 2^h_log2` heights row by row (`v` down);
+    /// `scale` is the height change, in texels, of one height step (so `∂h/∂u`
+    /// is measured in texel widths). Texel `(x, y)` of `out` gets
+    /// `normalize(−scale·∂h/∂u, −scale·∂h/∂v, 1)` with central differences
+    /// `(h[x+1] − h[x−1]) / 2`; at the edges of a [`Wrap::Clamp`] map one-sided
+    /// differences `h[x+1] − h[x]`, `h[x] − h[x−1]` are used (so a linear ramp
+    /// gives its exact slope everywhere), a [`Wrap::Repeat`] map wraps around.
+    /// A constant map gives the flat normal `[0, 0, 16384]` exactly.
+    ///
+    /// Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], `heights` or `out` too short, a
+    /// non-finite `scale`. Nothing is written on error.
+    ///
+    /// ```
+    /// use fixshade::texture::{NormalMap, Wrap};
+    /// let heights = [77u8; 64];
+    /// let mut out = [[0i16; 3]; 64];
+    /// NormalMap::from_bump(&heights, 3, 3, Wrap::Repeat, 4.0, &mut out)?;
+    /// assert!(out.iter().all(|&t| t == NormalMap::FLAT));
+    /// # Ok::<(), fixshade::error::TextureError>(())
+    /// ```
+    pub fn from_bump(
+        heights: &[u8],
+        w_log2: u8,
+        h_log2: u8,
+        wrap: Wrap,
+        scale: f32,
+        out: &mut [[i16; 3]],
+    ) -> Result<(), TextureError> {
+        let needed = texel_count(w_log2, h_log2)?;
+        for got in [heights.len(), out.len()] {
+            if got < needed {
+                return Err(TextureError::BufferTooSmall {
+                    which: "heights or out",
+                    needed,
+                    got,
+                });
             }
         }
-    };
-    let s = f64::from(scale);
-    for (i, t) in out.iter_mut().take(needed).enumerate() {
-        let (x, y) = (i as i32 & (w - 1), i as i32 >> w_log2);
-        let du = slope(x, w, &|xx| height(xx, y));
-        let dv = slope(y, h, &|yy| height(x, yy));
-        let n = [-s * du, -s * dv, 1.0];
-        let len = libm::sqrt(n[0] * n[0] + n[1] * n[1] + 1.0);
-        *t = n.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16);
+        if !scale.is_finite() {
+            return Err(TextureError::NotFinite("scale"));
+        }
+        let (w, h) = (1i32 << w_log2, 1i32 << h_log2);
+        let height = |x: i32, y: i32| -> f64 {
+            let i = ((y & (h - 1)) * w + (x & (w - 1))) as usize;
+            heights.get(i).copied().map_or(0.0, f64::from)
+        };
+        // the difference quotient along one axis: neighbours `a`, `b` of texel `c`
+        // (`len` texels along the axis)
+        let slope = |c: i32, len: i32, at: &dyn Fn(i32) -> f64| -> f64 {
+            if len == 1 {
+                return 0.0;
+            }
+            match wrap {
+                Wrap::Repeat => (at(c + 1) - at(c - 1)) / 2.0,
+                Wrap::Clamp => {
+                    let (lo, hi) = ((c - 1).max(0), (c + 1).min(len - 1));
+                    (at(hi) - at(lo)) / f64::from(hi - lo)
+                }
+            }
+        };
+        let s = f64::from(scale);
+        for (i, t) in out.iter_mut().take(needed).enumerate() {
+            let (x, y) = (i as i32 & (w - 1), i as i32 >> w_log2);
+            let du = slope(x, w, &|xx| height(xx, y));
+            let dv = slope(y, h, &|yy| height(x, yy));
+            let n = [-s * du, -s * dv, 1.0];
+            let len = libm::sqrt(n[0] * n[0] + n[1] * n[1] + 1.0);
+            *t = n.map(|c| libm::round(c / len * 16384.0).clamp(-16384.0, 16384.0) as i16);
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 #[cfg(test)]
@@ -387,11 +389,11 @@ mod tests {
         );
         let mut out = [[0i16; 3]; 4];
         assert_eq!(
-            bump_to_normals(&[0; 4], 1, 1, Wrap::Repeat, f32::NAN, &mut out),
+            NormalMap::from_bump(&[0; 4], 1, 1, Wrap::Repeat, f32::NAN, &mut out),
             Err(TextureError::NotFinite("scale"))
         );
         assert_eq!(
-            bump_to_normals(&[0; 3], 1, 1, Wrap::Repeat, 1.0, &mut out),
+            NormalMap::from_bump(&[0; 3], 1, 1, Wrap::Repeat, 1.0, &mut out),
             Err(TextureError::BufferTooSmall {
                 which: "heights or out",
                 needed: 4,
@@ -399,11 +401,11 @@ mod tests {
             })
         );
         assert_eq!(
-            normal_texel([0.0; 3]),
+            NormalMap::unit_texel([0.0; 3]),
             Err(TextureError::Degenerate("normal"))
         );
         assert_eq!(
-            normal_texel([f32::INFINITY, 0.0, 1.0]),
+            NormalMap::unit_texel([f32::INFINITY, 0.0, 1.0]),
             Err(TextureError::NotFinite("normal"))
         );
     }
@@ -445,7 +447,7 @@ mod tests {
                 let phi = a as f32 * 0.0314159;
                 let z = b as f32 / 49.0;
                 let r = libm::sqrtf(1.0 - z * z);
-                let t = normal_texel([r * libm::cosf(phi), r * libm::sinf(phi), z]).unwrap();
+                let t = NormalMap::unit_texel([r * libm::cosf(phi), r * libm::sinf(phi), z]).unwrap();
                 let u = unit(t);
                 let len = libm::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
                 worst = worst.max((len - 1.0).abs());
@@ -485,12 +487,12 @@ mod tests {
         assert!(NormalMap::new(&t, 1, 0, Wrap::Clamp).is_ok());
         // every i16 texel but zero can be made unit
         let mut t = [[i16::MAX; 3], [i16::MIN, 5, -7], [1, 0, 0], [0, -3, 0]];
-        normalize_texels(&mut t).unwrap();
+        NormalMap::normalize_texels(&mut t).unwrap();
         assert!(t.iter().all(|&t| is_unit_texel(t)), "{t:?}");
         assert_eq!(t[2..], [[16384, 0, 0], [0, -16384, 0]]);
         let mut z = [FLAT_NORMAL, [0; 3], [9, 9, 9]];
         assert_eq!(
-            normalize_texels(&mut z),
+            NormalMap::normalize_texels(&mut z),
             Err(TextureError::Degenerate("texel"))
         );
         assert_eq!(z[2], [9, 9, 9], "nothing written on error");
@@ -502,7 +504,7 @@ mod tests {
         let heights: [u8; 64] = core::array::from_fn(|i| (3 * (i % 8) + 5 * (i / 8)) as u8);
         let mut out = [[0i16; 3]; 64];
         let s = 0.25f64;
-        bump_to_normals(&heights, 3, 3, Wrap::Clamp, s as f32, &mut out).unwrap();
+        NormalMap::from_bump(&heights, 3, 3, Wrap::Clamp, s as f32, &mut out).unwrap();
         let n = [-s * 3.0, -s * 5.0, 1.0];
         let l = libm::sqrt(n[0] * n[0] + n[1] * n[1] + 1.0);
         for t in out {
@@ -513,7 +515,7 @@ mod tests {
         // a repeating ramp along v only (wrap seam excluded): tilt in y only
         let heights: [u8; 16] = core::array::from_fn(|i| (10 * (i / 4)) as u8);
         let mut out = [[0i16; 3]; 16];
-        bump_to_normals(&heights, 2, 2, Wrap::Repeat, 0.1, &mut out).unwrap();
+        NormalMap::from_bump(&heights, 2, 2, Wrap::Repeat, 0.1, &mut out).unwrap();
         for (i, t) in out.iter().enumerate() {
             let y = i / 4;
             if y == 1 || y == 2 {
@@ -530,11 +532,11 @@ mod tests {
     fn constant_heights_give_the_flat_normal() {
         for wrap in [Wrap::Repeat, Wrap::Clamp] {
             let mut out = [[1i16; 3]; 32];
-            bump_to_normals(&[200; 32], 3, 2, wrap, 100.0, &mut out).unwrap();
+            NormalMap::from_bump(&[200; 32], 3, 2, wrap, 100.0, &mut out).unwrap();
             assert!(out.iter().all(|&t| t == FLAT_NORMAL));
             // 1-texel sides have no slope
             let mut one = [[1i16; 3]; 1];
-            bump_to_normals(&[9], 0, 0, wrap, 1.0, &mut one).unwrap();
+            NormalMap::from_bump(&[9], 0, 0, wrap, 1.0, &mut one).unwrap();
             assert_eq!(one[0], FLAT_NORMAL);
         }
     }
