@@ -27,10 +27,9 @@ static SEED_Q14: [u16; 64] = {
     t
 };
 
-/// `1/√s` seeds in Q15 for `s` in `[2^28, 2^31)` (`|N|` in `[½, √2)`, `s` in
-/// Q30), one per `2^22`, taken at the bin centre (relative error ≤ 0.4 %): the
-/// seeds of [`rsqrt_q15`]. (Not [`SEED_Q14`] read finer: these bins are centred
-/// on odd multiples of `2^21`, and the kernels' pixels depend on the seeds.)
+/// The seeds of [`rsqrt_q15`]: `1/√s` in Q15 at the centres of `2^22`-wide
+/// bins over `[2^28, 2^31)` (relative error ≤ 0.4 %); not [`SEED_Q14`] read
+/// finer (other bin centres, and the kernels' pixels depend on the seeds).
 static SEED_Q15: [u16; 448] = {
     let mut t = [0u16; 448];
     let mut i = 0;
