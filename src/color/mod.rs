@@ -148,7 +148,7 @@ impl<S: Scalar> Rgb<S> {
     }
 
     /// 5-6-5 bits with 4×4 ordered dithering at pixel (`x`, `y`), as
-    /// [`Dithered`](crate::color::Dithered) encodes.
+    /// [`Dithered`] encodes.
     #[inline]
     pub fn to_rgb565_dithered(self, x: i32, y: i32) -> Rgb565 {
         let t = BAYER4[(y & 3) as usize][(x & 3) as usize] as u32;
