@@ -224,7 +224,9 @@ impl<const V: usize, const T: usize> MeshData<V, T> {
     /// The UV sphere of radius 1 around the origin with `stacks` bands of
     /// latitude and `slices` of longitude, positions with `frac` fraction bits
     /// (14 for a unit sphere: coordinates up to ±2): vertex 0 the north pole
-    /// `(0, 1, 0)`, then the rings from the north, the south pole last;
+    /// `(0, 1, 0)`, then `stacks − 1` rings of `slices` vertices from the north
+    /// (ring `i` at `θ = π·i/stacks`, column `j` at `φ = 2π·j/slices`: the
+    /// point `(sin θ sin φ, cos θ, sin θ cos φ)`), the south pole last;
     /// counter-clockwise seen from outside.
     ///
     /// `V` and `T` must equal [`uv_sphere_counts`](super::uv_sphere_counts)
