@@ -351,9 +351,9 @@ impl<'a, C: PixelColor> Bands<'a, C> {
         })
     }
 
-    /// This renderer with a second colour strip (as long as the first): a
-    /// band is drawn into one strip while a sink that does not block
-    /// ([`BandSink::start`] returning `None`, e.g. DMA) sends the other.
+    /// This renderer with a second colour strip (as long as the first), drawn
+    /// into while a non-blocking sink ([`BandSink::start`] returning `None`,
+    /// e.g. DMA) sends the other.
     ///
     /// # Errors
     ///

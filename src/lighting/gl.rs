@@ -1,7 +1,6 @@
 //! OpenGL 1.x fixed-function lighting (`glLightfv`, `glMaterialfv`,
-//! `glLightModelfv`, `glColorMaterial`), with OpenGL's defaults, converted to
-//! fixshade lights, materials and lightings: a scene written for the classic
-//! pipeline gives the same colours (checked against Mesa by `conformance/`).
+//! `glLightModelfv`, `glColorMaterial`) with its defaults, converted to
+//! fixshade's: the same colours (checked against Mesa by `conformance/`).
 //!
 //! [`GlScene::lighting`] builds a tier's lighting from the GL state in one call;
 //! the caller chooses the light set (a [`DirectionalLight`] array for the fast

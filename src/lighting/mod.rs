@@ -12,10 +12,8 @@
 //! fog:  the Σ part becomes  f·Σ + (1 − f)·fog_colour,  f = clamp((end − d)/(end − start))
 //! ```
 //!
-//! Which terms exist is decided by types: the [`Model`] (specular kind, brilliance,
-//! Fresnel, transmission), the light set (directional lights have no attenuation or
-//! cone), the [`Viewer`] (at infinity: V constant) and the [`FogModel`]. A term that
-//! a type leaves out is not evaluated and its code is not generated.
+//! Types decide which terms exist (the [`Model`], the light set, the [`Viewer`],
+//! the [`FogModel`]): a term a type leaves out generates no code.
 //!
 //! # Extremes
 //! - `N·L ≤ 0`: no diffuse and no specular from that light (nothing leaks behind the
@@ -241,8 +239,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
 }
 
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting<S, L, M, V, F> {
-    /// Every part at once (the lights in world coordinates, as
-    /// [`Lighting::new`]).
+    /// Every part at once (world lights, as [`Lighting::new`]).
     pub fn with_parts(
         lights: L,
         material: Material<S>,

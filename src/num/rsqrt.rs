@@ -2,15 +2,11 @@
 //! (the fixed tiers, and the shading kernels' `1/|N|`), a bit-trick seed and
 //! Newton steps in `f32`.
 //!
-//! A positive integer `s` is written as `s = s′ · 2^(W − k)` with `s′ ∈ [¼, 1)` and
-//! `k` even (W = 32 or 64 bits). Then `1/√s = y · 2^((k − W)/2)` with
-//! `y = 1/√s′ ∈ (1, 2]`, which is what the mantissa functions return (`y` in
-//! fixed point together with `k`).
-//!
-//! Error of `y` (relative, measured by the unit tests below):
-//! seed alone ≤ 1.6·10⁻², one Newton step ≤ 4·10⁻⁴, two steps at the resolution of
-//! the output format. The shading kernels' [`rsqrt_q15`] (for `|N|²` near 1, no
-//! split) has its own, finer seeds: ≤ 7·10⁻⁵ after one step.
+//! With `s = s′ · 2^(W − k)`, `s′ ∈ [¼, 1)`, `k` even (W = 32 or 64), the
+//! mantissa functions return `y = 1/√s′ ∈ (1, 2]` and `k`:
+//! `1/√s = y · 2^((k − W)/2)`. Relative error of `y` (unit tests below): seed
+//! ≤ 1.6·10⁻², one Newton step ≤ 4·10⁻⁴, two at the output's resolution;
+//! [`rsqrt_q15`] (`|N|²` near 1, no split), finer seeds: ≤ 7·10⁻⁵ after one.
 
 /// Seed `1/√s′` in Q14 for `s′ ∈ [i/64, (i+1)/64)`, taken at the bin centre:
 /// `2^14 / √((i + ½)/64) = √(2^35 / (2i + 1))`. Only `i = 16..64` is reached for a

@@ -329,24 +329,17 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     ///
     /// ```
     /// use fixshade::prelude::*;
-    /// use fixshade::render::refine::RefineBuffers;
-    /// use fixshade::render::DrawOptions;
-    /// const N: (usize, usize) = uv_sphere_counts(8, 12);
-    /// static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(8, 12, 14);
-    /// let cam = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, Viewport::new(0, 0, 64, 64)?)?
-    ///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
-    /// let t = cam.mesh_transform(&Mat4::rotate_x(0.3), SPHERE.frac)?;
-    /// let lighting = fixshade::standard::lambert::<Q14>()?;
+    /// use fixshade::render::{refine::RefineBuffers, DrawOptions};
+    /// use fixshade::standard::{lambert, transform, SPHERE};
+    /// let (t, lighting) = (transform()?, lambert::<Q14>()?);
     /// let shader = Shader::new(GouraudShading, &lighting, Linear);
-    /// let mut mem: MeshBuffers<[u16; 3], { N.0 }, { bins_len(N.1 + 256, 1) }, 0> = MeshBuffers::new();
-    /// let mut refine: RefineBuffers<[u16; 3], { N.0 }, 64, 256> = RefineBuffers::new();
+    /// let mut mem: MeshBuffers<[u16; 3], 362, { bins_len(720 + 256, 1) }, 0> = MeshBuffers::new();
+    /// let mut refine: RefineBuffers<[u16; 3], 362, 64, 256> = RefineBuffers::new();
     /// let options = DrawOptions::default().with_refine(refine.refine(0));
-    /// let layout = Layout::full(64, 64)?;
-    /// let mut draw = MeshDraw::new(layout, SPHERE.mesh(), &t, shader, mem.memory(), options)?;
+    /// let mut draw = MeshDraw::new(Layout::full(240, 240)?, SPHERE.mesh(), &t, shader, mem.memory(), options)?;
     /// assert!(draw.refine_stats().vertices > 0);
-    /// let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
-    /// let mut frame = FullFrame::new(64, 64, &mut color, Some(&mut depth))?;
-    /// frame.render(Rgb565::BLACK, &mut [&mut draw])?;
+    /// let (mut color, mut depth) = (vec![Rgb565::BLACK; 240 * 240], vec![0u16; 240 * 240]);
+    /// FullFrame::new(240, 240, &mut color, Some(&mut depth))?.render(Rgb565::BLACK, &mut [&mut draw])?;
     /// # Ok::<(), fixshade::error::Error>(())
     /// ```
     ///
