@@ -70,26 +70,22 @@ pub struct GouraudShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PhongShading;
 
-/// Per-pixel Phong shading computed incrementally along each span: the Cortex-M0
-/// fast path for `K` (1 to 4) directional lights in an array, a viewer at infinity,
-/// no fog and the [`Lambert`](crate::lighting::Lambert) or
-/// [`BlinnPhong`](crate::lighting::BlinnPhong) model in the `Q14` tiers
-/// (`Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>`, `M` an
-/// [`IncrementalModel`]): the same images as [`PhongShading`] up to the error
-/// stated below, at a fraction of the cost on a Cortex-M0:
+/// Per-pixel Phong shading computed incrementally along each span, the
+/// Cortex-M0 fast path: `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>`
+/// (`K` 1 to 4, a viewer at infinity, no fog, `M` an [`IncrementalModel`]:
+/// Lambert or Blinn-Phong), the same images as [`PhongShading`] up to the
+/// error stated below, for a fraction of the cost:
 ///
-/// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
-///   triangle: the rasterizer interpolates them as attributes (`3 + 2K` attributes:
-///   the normal, then `N·L` and `N·H` per light), one addition per light and pixel;
-/// - `|N|²` is quadratic: second-order forward differences, two additions;
-/// - `1/|N|` is refined by one Newton step from the previous pixel's value
-///   (exact at the start of every span; two steps on spans where `|N|` changes
-///   by more than 2^-8 per pixel), three multiplications per step;
-/// - `(N·H)^n` comes from a 65-entry table of the material's power over
-///   `[x0, 1]`, `x0 = 4096^(−1/n)` (below `x0` the power is under 1/4096), linearly
-///   interpolated: one multiplication;
-/// - the colour is accumulated directly in output channel units: one
-///   multiplication per channel and term.
+/// - `N·L` and `N·H` of the *unnormalised* normal are affine: interpolated as
+///   attributes (`3 + 2K`: the normal, then both per light), one addition each;
+/// - `|N|²` by second-order forward differences, two additions;
+/// - `1/|N|` by one Newton step (three multiplications) from the previous
+///   pixel's (exact at each span start; two where `|N|` changes by over 2^-8
+///   per pixel);
+/// - `(N·H)^n` from a 65-entry table over `[x0, 1]`, `x0 = 4096^(−1/n)`,
+///   linearly interpolated: one multiplication;
+/// - the colour accumulated in output channel units, one multiplication per
+///   channel and term.
 ///
 /// Output is rounded to nearest like [`Linear`] (the shader's encoder is not
 /// used). A span whose interpolated normal gets shorter than ½ or longer than 2
