@@ -112,11 +112,10 @@ pub enum ParamError {
     GammaOutOfRange,
     /// The fog end distance is not beyond its start.
     FogRange,
-    /// A value the scene needs lies beyond the range of the number tier: the named
-    /// term (a light colour times a material colour, with the attenuation's `1/a`
-    /// folded in, or a bound of the per-channel sum) must stay below `limit` in
-    /// magnitude in tier `tier` ([`Scalar::NAME`](crate::num::Scalar::NAME)). Use a
-    /// wider tier (`f32`) for such scenes.
+    /// A term beyond the tier's range ([`Lighting::checked`](crate::lighting::Lighting::checked)):
+    /// the named product or sum must stay below `limit` in magnitude in tier
+    /// `tier` ([`Scalar::NAME`](crate::num::Scalar::NAME)); use a wider tier
+    /// (`f32`) for such scenes.
     TierRange {
         /// The term.
         param: &'static str,
@@ -220,10 +219,9 @@ pub(crate) fn non_negative3(name: &'static str, v: [f32; 3]) -> Result<[f32; 3],
     ])
 }
 
-/// Checks that a direction is finite and has a usable length; returns it normalised
-/// in `f32` (relative error ≈ 10⁻⁷, below every tier's resolution but Q30's 2⁻³⁰,
-/// where it stays under 1 LSB of 8-bit output). `f32`, not `f64`: a firmware that
-/// builds a light would otherwise link soft double-precision arithmetic.
+/// Checks that a direction is finite and has a usable length; returns it
+/// normalised in `f32`, not `f64` (no soft double arithmetic linked): relative
+/// error ≈ 10⁻⁷, under 1 LSB of 8-bit output even in Q30.
 pub(crate) fn direction(name: &'static str, v: [f32; 3]) -> Result<[f32; 3], ParamError> {
     for c in v {
         finite(name, c)?;

@@ -79,10 +79,9 @@ pub fn light<S: Scalar>() -> Result<DirectionalLight<S>, ParamError> {
 }
 
 /// The lighting with Blinn-Phong specular (no global ambient light: the
-/// scene's ambient comes from its light). Its light is in eye coordinates
-/// ([`Lighting::eye_space`]): the camera's view is a translation, which
-/// leaves a directional light's direction as it is, so the frame needs no
-/// per-frame `Lighting::viewed`.
+/// scene's ambient comes from its light), in eye coordinates
+/// ([`Lighting::eye_space`]): the view, a translation, leaves a directional
+/// light's direction as it is.
 pub fn blinn<S: Scalar>() -> Result<Viewed<Lighting<S, DirectionalLight<S>, BlinnPhong>>, ParamError>
 {
     lighting()

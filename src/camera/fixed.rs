@@ -1,11 +1,7 @@
-//! The per-frame transform in integers, for cores without an FPU: a
-//! [`FixedCamera`] is converted from a [`Camera`] once (at start-up, in `f32`);
-//! every frame, [`FixedCamera::mesh_transform`] combines it with a [`Pose`]
-//! (rotation, uniform scale, translation, built from integer angles) into the
-//! same [`MeshTransform`] that [`Camera::mesh_transform`] builds from `f32`,
-//! using only 32-bit multiplications (exact 64-bit products from four
-//! 16 × 16-bit ones, [`crate::num::wide`]): no soft float, no
-//! `__aeabi_lmul`, no division.
+//! The per-frame transform in integers, for cores without an FPU:
+//! [`FixedCamera::mesh_transform`] combines a [`FixedCamera`] with a [`Pose`]
+//! into the [`MeshTransform`] that [`Camera::mesh_transform`] builds from
+//! `f32` (64-bit products from 16 × 16-bit ones, [`crate::num::wide`]).
 
 use super::SUBPIXEL_BITS;
 use super::{Camera, ClipSpace, EyeRows, MeshTransform, NormalRows, Projection, Row};

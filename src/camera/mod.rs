@@ -2,13 +2,12 @@
 //! code), view and viewport, and the per-mesh fixed-point transform the vertex
 //! stage applies once per vertex per frame.
 //!
-//! A [`Camera`] is built in `f32` (once per frame on an FPU core; on a Cortex-M0
-//! the few hundred soft-float operations of one matrix product are a fixed
-//! cost per frame). [`Camera::mesh_transform`] converts the product
-//! `viewport · projection · view · model` to rows of `i32` elements with a
-//! block exponent per row: a vertex position (`i16`) is transformed with two
-//! 16 × 16-bit products per element (one `MULS` each on a Cortex-M0), no
-//! 64-bit multiply and no floating point.
+//! A [`Camera`] is built in `f32` (on a Cortex-M0 a few hundred soft-float
+//! operations per matrix product, per frame). [`Camera::mesh_transform`]
+//! converts `viewport · projection · view · model` to rows of `i32` with a
+//! block exponent per row: an `i16` vertex position is transformed with two
+//! 16 × 16-bit products per element (one `MULS` each), no 64-bit multiply, no
+//! floating point.
 
 mod fixed;
 
@@ -190,21 +189,17 @@ impl<P: Projection> Camera<P> {
         frac
     }
 
-    /// The clip coordinates of world point `position` seen through this
-    /// camera (view, projection, viewport), in [`Camera::clip_space`]: the
-    /// one conversion from a program's `f32` geometry to what
-    /// [`draw_triangle`](crate::render::draw_triangle) takes. Orthographic:
-    /// the screen position in sub-pixels and the depth; perspective:
-    /// `(8W·x_c, −8H·y_c, z_c, w_c)` scaled by a power of two fixed per
-    /// camera ([`Camera::clip_space`]'s near plane carries the same scale).
+    /// The clip coordinates of world point `position` in [`Camera::clip_space`]:
+    /// what [`draw_triangle`](crate::render::draw_triangle) takes. Orthographic:
+    /// sub-pixel screen position and depth; perspective: `(8W·x_c, −8H·y_c, z_c,
+    /// w_c)` times a power of two fixed per camera (as is the near plane).
     ///
     /// # Errors
     ///
     /// [`ParamError::NotFinite`] for a non-finite position;
-    /// [`ParamError::OutOfRange`] for a point so far outside the view that its
-    /// coordinates leave `i32` (beyond about 2^30 sub-pixels, or behind the
-    /// far plane by more than the camera's depth range under a perspective
-    /// projection).
+    /// [`ParamError::OutOfRange`] for coordinates leaving `i32` (beyond about
+    /// 2^30 sub-pixels, or in perspective behind the far plane by more than the
+    /// camera's depth range).
     pub fn clip(&self, position: [f32; 3]) -> Result<Clip, ParamError> {
         for c in position {
             crate::error::finite("position", c)?;
@@ -555,13 +550,12 @@ pub struct Clip {
 /// Where clip coordinates land on the screen: the screen centre, the near
 /// plane and whether `w` varies.
 ///
-/// Under a perspective projection a point `(x, y, z, w)` with `w` at least
-/// the near plane is drawn at `centre + (x/w, y/w)` sub-pixels with depth
-/// `round((z/w + 1)/2·65535)` (saturated: no far-plane clipping); any common
-/// positive factor of the four coordinates gives the same point. Under an
-/// orthographic one ([`ClipSpace::SCREEN`]) `x`, `y` are the sub-pixel
-/// position, `z` the depth and `w = 1`: a program that computes screen
-/// positions itself uses this space.
+/// Perspective: a point `(x, y, z, w)` with `w` at least the near plane is
+/// drawn at `centre + (x/w, y/w)` sub-pixels with depth
+/// `round((z/w + 1)/2·65535)` (saturated: no far-plane clipping), the same for
+/// any common positive factor. Orthographic ([`ClipSpace::SCREEN`], for a
+/// program computing screen positions itself): `x`, `y` the sub-pixel position,
+/// `z` the depth, `w = 1`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ClipSpace {
     centre: [i32; 2],
@@ -659,10 +653,8 @@ fn div_round(n: i64, d: i64) -> i64 {
 }
 
 impl<P: Projection> MeshTransform<P> {
-    /// The clip coordinates of a raw position (see [`Clip`] and
-    /// [`MeshTransform::clip_space`]): for a perspective transform `(x, y, z,
-    /// w)` in one unit, for an orthographic one the screen position in
-    /// sub-pixels, the depth and `w = 1`.
+    /// The clip coordinates of a raw position ([`Clip`], in
+    /// [`MeshTransform::clip_space`]).
     #[inline]
     pub fn clip(&self, p: [i16; 3]) -> Clip {
         if P::PERSPECTIVE {

@@ -152,10 +152,9 @@ impl<C: OutputColor> Encoder<C> for Dithered {
     }
 }
 
-/// A gamma table is an encoder (by reference: `Shader::new(mode, &lighting,
-/// &table)`): the linear channel indexes the table (8-bit encoded output), then
-/// is rounded to the channel's bits. Gouraud shading interpolates linear values
-/// and looks the table up per pixel.
+/// A gamma table is an encoder by reference (`Shader::new(mode, &lighting,
+/// &table)`): the 8-bit encoded output is rounded to the channel's bits;
+/// Gouraud shading interpolates linear values and looks up per pixel.
 impl<C: OutputColor, const N: usize> Encoder<C> for &GammaTable<N> {
     const POSITIONAL: bool = false;
     #[inline(always)]

@@ -147,9 +147,8 @@ impl<S: Scalar> Rgb<S> {
         )
     }
 
-    /// 5-6-5 bits with 4×4 ordered (Bayer) dithering at pixel (`x`, `y`): each
-    /// channel becomes `floor(v·(2^bits − 1) + threshold(x, y))`, which turns the
-    /// banding of smooth gradients into a fine pattern. No gamma.
+    /// 5-6-5 bits with 4×4 ordered dithering at pixel (`x`, `y`), as
+    /// [`Dithered`] encodes.
     #[inline]
     pub fn to_rgb565_dithered(self, x: i32, y: i32) -> Rgb565 {
         let t = BAYER4[(y & 3) as usize][(x & 3) as usize] as u32;
@@ -178,12 +177,9 @@ impl<S: Scalar> Rgb<S> {
 /// The 4×4 Bayer threshold matrix (values 0..16).
 const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
 
-/// An embedded-graphics colour that linear RGB converts to.
-///
-/// A colour has up to three integer channels with maxima [`OutputColor::CHANNEL_MAX`]
-/// (a grey colour uses only the first, holding the luminance); shading stages
-/// quantise into these channels and build the colour with
-/// [`OutputColor::from_channels`].
+/// An embedded-graphics colour that linear RGB converts to: up to three integer
+/// channels with maxima [`OutputColor::CHANNEL_MAX`] (grey: the first, the
+/// luminance), built by [`OutputColor::from_channels`].
 pub trait OutputColor: embedded_graphics_core::pixelcolor::PixelColor {
     /// The largest value of each channel (0 for an unused channel).
     const CHANNEL_MAX: [u32; 3];
@@ -323,14 +319,11 @@ const REGIONS: [u32; 6] = [0, 16, 256, 4096, 16384, 65536];
 /// # Layout
 ///
 /// The 16-bit input range is split into five regions, `[0, 16)`, `[16, 256)`,
-/// `[256, 4096)`, `[4096, 16384)` and `[16384, 65536)`, and each region into cells
-/// of `2^s` inputs (`s` per region). [`GammaTable::new`] chooses the five `s` for the
-/// transfer function so that the largest change of the curve within one cell is as
-/// small as the `N` bytes allow, and stores for each cell the encoded value at the
-/// middle of its range (rounded): the error of a cell is at most half its change
-/// plus half an LSB. A lookup is two or three comparisons (which region), one
-/// shift, one addition and one load: a few instructions more than a uniform table,
-/// no multiplication or division.
+/// `[256, 4096)`, `[4096, 16384)` and `[16384, 65536)`, each into cells of `2^s`
+/// inputs; [`GammaTable::new`] chooses the five `s` so that the curve's largest
+/// change within a cell is as small as `N` bytes allow, and stores each cell's
+/// rounded mid-range value (error at most half the change plus half an LSB). A
+/// lookup is two or three comparisons, a shift, an addition and a load.
 ///
 /// # Error
 ///
@@ -344,15 +337,12 @@ const REGIONS: [u32; 6] = [0, 16, 256, 4096, 16384, 65536];
 /// | **1024** (recommended) | **0.74** | **0.71** | **0.73** | **0.73** | **0.78** | **0.87** |
 /// | 4096 | 0.55 | 0.56 | 0.56 | 0.55 | 0.56 | 0.58 |
 ///
-/// With 1024 bytes every transfer of the accepted range is within 1 LSB of the
-/// exact curve for every input (0.5 is the floor of any 8-bit output); the uniform
-/// 1024-entry table this layout replaces was up to 2.04 LSB off for sRGB and 7.97
-/// for a pure 2.2 power (at its darkest step, over the same 65 536 inputs). Tables
-/// of 2 and 4 bytes use uniform cells (the layout needs one cell per region).
-///
-/// [`GammaTable::apply`] quantises a tier value to 16 bits first (to nearest): for
-/// inputs between two 16-bit steps near black, the curve's change over that half
-/// step (up to 2.8 LSB below 1/65535 for a 2.6 power) adds to the error above.
+/// With 1024 bytes every accepted transfer is within 1 LSB for every input (0.5
+/// is any 8-bit output's floor; a uniform 1024-entry table is up to 2.04 LSB off
+/// for sRGB, 7.97 for a 2.2 power). Tables of 2 and 4 bytes use uniform cells.
+/// [`GammaTable::apply`] first rounds a tier value to 16 bits, which near black
+/// adds the curve's change over half a step (up to 2.8 LSB below 1/65535 for a
+/// 2.6 power).
 ///
 /// ```
 /// use fixshade::color::{GammaTable, Transfer};

@@ -9,13 +9,11 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
-/// A [`DrawTarget`] that keeps no pixels, only a checksum of the raw pixel
-/// values in the order they arrive (and their number): two frames sent in the
-/// same order have the same checksum exactly when their pixels are equal (up
-/// to collisions). Fletcher's two running sums, `s1 += raw`, `s2 += s1`, kept
-/// modulo 2^32 (two additions per pixel: cheap enough to stand in for a
-/// display on a Cortex-M0). For firmware tests on emulators and boards
-/// without a display.
+/// A [`DrawTarget`] that keeps only a checksum of the raw pixel values in
+/// arrival order, and their number, for firmware tests without a display:
+/// Fletcher's sums `s1 += raw`, `s2 += s1` modulo 2^32 (two additions per
+/// pixel), equal for two frames sent alike exactly when their pixels are (up
+/// to collisions).
 ///
 /// ```
 /// use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};

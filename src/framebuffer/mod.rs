@@ -3,14 +3,11 @@
 //! in caller-owned memory; [`Checksum`], a display that only checksums what
 //! it receives (firmware tests).
 //!
-//! A frame is drawn band by band: [`Bands::render`] (or [`FullFrame::render`],
-//! one band) clears the band's strip and depth strip, hands a [`BandView`] to
-//! every item ([`DrawBand`], implemented by the meshes of
-//! [`crate::render`]) and hands the band to a [`BandSink`]: any display
-//! (`DrawTarget`, one `fill_contiguous`, what display drivers accelerate), or
-//! a DMA transfer that sends it while the next band is drawn into a second
-//! strip. Several renderers (one per core) can draw the bands of one frame
-//! between them ([`Bands::render_bands`]).
+//! Per band, [`Bands::render`] (or [`FullFrame::render`], one band) clears the
+//! strip and depth strip, lets every item ([`DrawBand`]: the meshes of
+//! [`crate::render`]) draw into a [`BandView`], and hands the band to a
+//! [`BandSink`] (see there). Several renderers (one per core) can share a
+//! frame's bands ([`Bands::render_bands`]).
 
 mod checksum;
 
@@ -45,8 +42,8 @@ impl Layout {
     /// [`RenderError::Size`] unless `1 ≤ width, height ≤ 1024` and
     /// `band_rows ≥ 1`.
     ///
-    /// A `const fn`: a layout known at compile time sizes the buffers of a
-    /// firmware's statics (a bad layout is then a compile-time error):
+    /// A `const fn`: a compile-time layout sizes a firmware's static buffers
+    /// (a bad one is then a compile error):
     ///
     /// ```
     /// use fixshade::render::bins_len;
@@ -161,16 +158,14 @@ pub trait DrawBand<C> {
     /// per frame.
     fn draw_band(&mut self, band: &mut BandView<'_, C>);
 
-    /// Whether the item can be drawn in frames of `layout`, checked by
-    /// [`Bands::render`] and [`FullFrame::render`] before anything is
-    /// drawn. A mesh's bins are built for one layout
-    /// ([`RenderError::LayoutMismatch`] for another), and it needs its
-    /// resume records ([`RenderError::BufferTooSmall`]). The default: any
-    /// layout.
+    /// Whether the item can be drawn in frames of `layout`, checked before
+    /// anything is drawn; the default: any layout.
     ///
     /// # Errors
     ///
-    /// Why the item cannot be drawn in `layout`.
+    /// Why not: a mesh binned for another layout
+    /// ([`RenderError::LayoutMismatch`]) or short of resume records
+    /// ([`RenderError::BufferTooSmall`]).
     fn check(&self, layout: Layout) -> Result<(), RenderError> {
         let _ = layout;
         Ok(())
@@ -248,16 +243,13 @@ impl<'a, C: Copy> Buffers<'a, C> {
     }
 }
 
-/// Where finished bands go: a display driver sending each band as it comes
-/// (every embedded-graphics [`DrawTarget`] is one, through
-/// `fill_contiguous`), or one that starts a transfer (DMA) and lets the next
-/// band be drawn meanwhile ([`Bands::with_second_strip`]).
-///
-/// A sink that keeps the strip while its transfer runs owns it until
-/// [`finish`](BandSink::finish) gives it back: with `'a = 'static` (strips
-/// in `static`s, e.g. through `static_cell::ConstStaticCell`), a DMA
-/// transfer can take it as its read buffer without `unsafe`. One transfer
-/// runs at a time: [`Bands`] calls `finish` before the next `start`.
+/// Where finished bands go: a display sending each band as it comes (every
+/// embedded-graphics [`DrawTarget`], through one `fill_contiguous`), or one
+/// that starts a transfer (DMA) while the next band is drawn
+/// ([`Bands::with_second_strip`]). Such a sink owns the strip until
+/// [`finish`](BandSink::finish) gives it back: with `'a = 'static` (e.g.
+/// `static_cell::ConstStaticCell`) DMA can read it without `unsafe`. One
+/// transfer at a time: [`Bands`] calls `finish` before the next `start`.
 ///
 /// ```
 /// use core::convert::Infallible;
@@ -328,18 +320,11 @@ impl<'a, C: PixelColor, D: DrawTarget<Color = C>> BandSink<'a, C> for D {
 }
 
 /// A frame drawn in horizontal bands through a caller-owned strip, each band
-/// sent to a [`BandSink`]: any [`DrawTarget`] (a display driver, the
-/// simulator), or a DMA transfer that runs while the next band is drawn into
-/// a second strip ([`Bands::with_second_strip`]).
+/// sent to a [`BandSink`].
 ///
 /// RAM: `width · band_rows` colours (twice with a second strip) and (with
 /// depth testing) as many `u16`s: 7.5 KiB for a 240 × 240 `Rgb565` frame in
 /// 8-row bands, 11.25 KiB with a second strip.
-///
-/// Several band renderers can draw one frame, each its own bands, each with
-/// its own `Bands` and its own view of every mesh
-/// ([`MeshDraw::share`](crate::render::MeshDraw::share)): for example one
-/// per core of an RP2040 ([`Bands::render_bands`]).
 #[derive(Debug)]
 pub struct Bands<'a, C> {
     buf: Buffers<'a, C>,
@@ -366,9 +351,9 @@ impl<'a, C: PixelColor> Bands<'a, C> {
         })
     }
 
-    /// This renderer with a second colour strip (as long as the first): a
-    /// band is drawn into one strip while a sink that does not block
-    /// ([`BandSink::start`] returning `None`, e.g. DMA) sends the other.
+    /// This renderer with a second colour strip (as long as the first), drawn
+    /// into while a non-blocking sink ([`BandSink::start`] returning `None`,
+    /// e.g. DMA) sends the other.
     ///
     /// # Errors
     ///
@@ -407,25 +392,22 @@ impl<'a, C: PixelColor> Bands<'a, C> {
         self.render_bands(sink, clear, items, 0..bands)
     }
 
-    /// Renders the bands `bands` (indices in increasing order; those beyond
-    /// the layout are skipped): for each, clears the strip to `clear` and
-    /// the depth strip to `u16::MAX`, lets every item draw, and hands the
-    /// band to `sink`. With a second strip and a sink that does not block,
-    /// the next band is drawn while the last one is sent; the last transfer
-    /// has ended when this returns.
-    ///
-    /// The other bands are another renderer's: with each item's view
-    /// [`MeshDraw::share`](crate::render::MeshDraw::share)d, renderers on
-    /// other cores draw them at the same time, into their own strips, and
-    /// the frame is the one [`Bands::render`] draws alone, bit for bit.
+    /// Renders the bands `bands` (increasing indices; those beyond the layout
+    /// skipped): for each, clears the strip to `clear` and the depth strip to
+    /// `u16::MAX`, lets every item draw, and hands the band to `sink` (with a
+    /// second strip and a non-blocking sink, the next band is drawn meanwhile;
+    /// the last transfer has ended on return). The other bands are other
+    /// renderers', e.g. on other cores with each item
+    /// [`MeshDraw::share`](crate::render::MeshDraw::share)d: together bit for
+    /// bit the frame of [`Bands::render`].
     ///
     /// # Errors
     ///
     /// An item's error from [`DrawBand::check`] (nothing drawn: a mesh
     /// prepared for another layout, or without resume records);
-    /// [`RenderError::Display`] with the sink's first error (drawing stops there; a strip the sink kept is
-    /// not given back); [`RenderError::BufferTooSmall`] when a sink gave
-    /// back a shorter strip than it took.
+    /// [`RenderError::Display`] with the sink's first error (drawing stops; a
+    /// strip the sink kept is not given back); [`RenderError::BufferTooSmall`]
+    /// when a sink gave back a shorter strip than it took.
     pub fn render_bands<S: BandSink<'a, C>>(
         &mut self,
         sink: &mut S,

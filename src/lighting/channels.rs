@@ -1,8 +1,7 @@
 //! The lighting equation of directional lights and a viewer at infinity
-//! (Lambert, Blinn-Phong) in an output's channel units: the form the
-//! per-pixel kernels for directional lights evaluate from cosines
-//! ([`IncrementalPhongShading`](crate::shade::IncrementalPhongShading) and its
-//! normal-mapped form). Its terms are the lighting's prepared terms
+//! (Lambert, Blinn-Phong) in output channel units, evaluated from cosines by
+//! [`IncrementalPhongShading`](crate::shade::IncrementalPhongShading) and its
+//! normal-mapped form; its terms are the lighting's
 //! ([`Directional::directional_terms`](super::Directional)), converted once.
 
 use super::DirectionalTerms;

@@ -1,12 +1,10 @@
 //! OpenGL 1.x fixed-function lighting (`glLightfv`, `glMaterialfv`,
-//! `glLightModelfv`, `glColorMaterial`), with OpenGL's defaults, converted to
-//! fixshade lights, materials and lightings: a scene written for the classic
-//! pipeline gives the same colours (checked against Mesa by `conformance/`).
+//! `glLightModelfv`, `glColorMaterial`) with its defaults, converted to
+//! fixshade's: the same colours (checked against Mesa by `conformance/`).
 //!
-//! One call builds the lighting of a tier from the GL state, [`GlScene::lighting`];
-//! the light set, the reflection model and the viewer are types the caller
-//! chooses (a [`DirectionalLight`] array for the fast kernels, `AnyLight` for
-//! anything), checked against the GL state:
+//! [`GlScene::lighting`] builds a tier's lighting from the GL state in one call;
+//! the caller chooses the light set (a [`DirectionalLight`] array for the fast
+//! kernels, `AnyLight` for anything), model and viewer types, checked against it:
 //!
 //! ```
 //! use fixshade::lighting::gl::{GlLight, GlLightModel, GlMaterial, GlScene};
@@ -109,11 +107,9 @@ impl GlLight {
         }
     }
 
-    /// The light as `glLightfv` stores it when `modelview` is the current matrix:
-    /// `GL_POSITION` transformed by the whole matrix (any `w`), `GL_SPOT_DIRECTION`
-    /// by its upper-left 3×3. Give lights in world coordinates and the view matrix
-    /// to get eye coordinates, as a GL program that sets its lights after the
-    /// camera does.
+    /// The light as `glLightfv` stores it when `modelview` is the current matrix
+    /// (`GL_POSITION` by the whole matrix, `GL_SPOT_DIRECTION` by its upper-left
+    /// 3×3): world lights and the view matrix give eye coordinates.
     ///
     /// ```
     /// use fixshade::lighting::gl::GlLight;
@@ -215,25 +211,18 @@ impl GlLight {
     }
 }
 
-/// The light types an OpenGL light converts to (see [`GlLight::to_light`]) and
-/// the light sets [`GlScene::lighting`] builds: sealed, not re-exported
-/// (issue 18).
+/// The light types an OpenGL light converts to ([`GlLight::to_light`]) and the
+/// light sets [`GlScene::lighting`] builds: sealed, not re-exported.
 mod from_gl {
     use super::{GlLight, LightSet, ParamError, Scalar};
 
-    /// A light type that an OpenGL light converts to: `DirectionalLight`
-    /// (`w = 0`), `PointLight` (`w ≠ 0`, cutoff 180), `SpotLight` (`w ≠ 0`,
-    /// cutoff 0..=90), or `AnyLight` (any). A light of another kind is a
-    /// `ParamError::LightKind`.
+    /// A light type that an OpenGL light converts to (`GlLight::to_light`).
     pub trait FromGlLight: Sized {
         /// The light of `light`'s parameters.
         fn from_gl_light(light: &GlLight) -> Result<Self, ParamError>;
     }
 
-    /// A light set built from the enabled OpenGL lights: one light type
-    /// (`DirectionalLight`, `PointLight`, `SpotLight` or `AnyLight`, see
-    /// `GlLight::to_light`) for exactly one light, `[L; K]` for exactly `K`
-    /// lights, `heapless::Vec<L, K>` for up to `K` (OpenGL guarantees 8).
+    /// A light set built from the enabled OpenGL lights (`GlScene::lighting`).
     pub trait GlLightSet<S: Scalar>: LightSet<S> + Sized {
         /// The set of `lights`; `ParamError::LightCount` when their number does
         /// not fit, `ParamError::LightKind` when a light is of another kind.
@@ -413,10 +402,8 @@ impl GlMaterial {
         Material::signed(&self.to_desc()?)
     }
 
-    /// The alpha OpenGL's lighting gives this face: the diffuse colour's alpha. The
-    /// pixel formats fixshade writes (embedded-graphics' `Rgb565`, `Rgb888`,
-    /// `Gray8`) have no alpha channel, so the lighting does not carry it; a program
-    /// that blends reads it here.
+    /// The alpha OpenGL's lighting gives this face (the diffuse colour's), for a
+    /// program that blends: fixshade's pixel formats have no alpha channel.
     pub fn alpha(&self) -> f32 {
         self.diffuse[3]
     }
@@ -522,19 +509,17 @@ impl<'a> GlScene<'a> {
         }
     }
 
-    /// The lighting of the front faces in tier `S`: the light set `L`,
-    /// reflection model `M` (OpenGL's is
+    /// The lighting of the front faces in tier `S`, built from the GL state and
+    /// [checked](Lighting::checked): model `M` (OpenGL's is
     /// [`BlinnPhong`](crate::lighting::BlinnPhong)) and viewer `V` of the
-    /// caller's choosing, built from the GL state and
-    /// [checked](Lighting::checked) against the tier. `L` is one light type ([`DirectionalLight`], [`PointLight`],
-    /// [`SpotLight`] or [`AnyLight`], see [`GlLight::to_light`]) for exactly one
-    /// enabled light, `[L; K]` for exactly `K`, `heapless::Vec<L, K>` for up to
-    /// `K` (OpenGL guarantees 8).
+    /// caller's choosing; `L` is one light type ([`GlLight::to_light`]) for
+    /// exactly one enabled light, `[L; K]` for exactly `K`,
+    /// `heapless::Vec<L, K>` for up to `K` (OpenGL guarantees 8).
     ///
-    /// Errors: invalid GL parameters (as `GL_INVALID_VALUE`), lights that `L`
-    /// cannot hold ([`ParamError::LightCount`], [`ParamError::LightKind`]), a viewer type that does not match
-    /// `GL_LIGHT_MODEL_LOCAL_VIEWER` ([`GlViewer`]), and terms beyond the tier's
-    /// range ([`ParamError::TierRange`]).
+    /// Errors: invalid GL parameters (as `GL_INVALID_VALUE`), lights `L` cannot
+    /// hold ([`ParamError::LightCount`], [`ParamError::LightKind`]), a viewer
+    /// not matching `GL_LIGHT_MODEL_LOCAL_VIEWER` ([`GlViewer`]), terms beyond
+    /// the tier's range ([`ParamError::TierRange`]).
     ///
     /// ```
     /// use fixshade::heapless;
@@ -566,10 +551,8 @@ impl<'a> GlScene<'a> {
 
     /// The lighting of the back faces with `GL_LIGHT_MODEL_TWO_SIDE`: the back
     /// material, the normal negated ([`BackFaces`]). Draw the back faces with it
-    /// (`Cull::Front`) and the front faces with [`GlScene::lighting`]
-    /// (`Cull::Back`). Without two-sided lighting OpenGL lights back faces like
-    /// front faces: draw every face with [`GlScene::lighting`].
-    // the type the removed `GlBackLighting` alias named (issue 18)
+    /// (`Cull::Front`), the front faces with [`GlScene::lighting`] (`Cull::Back`);
+    /// without two-sided lighting, every face with [`GlScene::lighting`].
     #[allow(clippy::type_complexity)]
     pub fn back_lighting<S, L, M, V>(
         &self,
@@ -639,11 +622,9 @@ pub enum GlNormals {
 impl GlNormals {
     /// The eye-space normal OpenGL lights for object-space normal `n` under
     /// `modelview`: `M⁻ᵀ·n` (upper-left 3×3), then normalised or rescaled as `self`
-    /// says. A singular matrix gives the zero vector. In the fixed tiers a normal
-    /// component beyond ±2 saturates; the mesh renderer always normalises (it lights
-    /// as `GL_NORMALIZE` does), and so does the per-triangle front
-    /// ([`VertexIn::normal`](crate::shade::VertexIn::normal) is normalised by
-    /// every mode).
+    /// says; a singular matrix gives zero; a fixed tier saturates a component
+    /// beyond ±2. The renderer always lights as `GL_NORMALIZE` does (every mode
+    /// normalises [`VertexIn::normal`](crate::shade::VertexIn::normal)).
     ///
     /// ```
     /// use fixshade::lighting::gl::GlNormals;

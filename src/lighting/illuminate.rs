@@ -9,15 +9,11 @@ use super::{Specular, Viewed, Viewer};
 use crate::color::Rgb;
 use crate::num::{Exponent, Point3, Scalar, Vec3};
 
-/// What the shading stage lights with: anything that gives the colour of a
-/// surface point in eye coordinates (the eye at the origin looking down −z,
-/// where the renderer hands points and normals). Implemented by every
-/// [`Lighting`] configuration seen from the eye ([`Viewed`]: made by
-/// [`Lighting::viewed`] or [`Lighting::eye_space`]) and by [`BackFaces`] and
-/// [`SeparateSpecular`] around one; the shading modes take one type
-/// parameter for it instead of the five of [`Lighting`]. A lighting of your
-/// own implements `shade` (and `shade_parts` if it has a specular part to
-/// keep apart), its points and normals in eye coordinates.
+/// What the shading stage lights with: the colour of a surface point in eye
+/// coordinates. Implemented by every [`Viewed`] [`Lighting`] and by
+/// [`BackFaces`] and [`SeparateSpecular`] around one (one type parameter for
+/// the shading modes instead of five). A lighting of your own implements
+/// `shade` (and `shade_parts` if it keeps a specular part apart).
 #[diagnostic::on_unimplemented(
     message = "`{Self}` does not light a shader: it is not a lighting in eye coordinates",
     label = "not a lighting seen from the eye",
@@ -115,10 +111,9 @@ pub(crate) struct DirectionalTerms<S> {
 }
 
 /// Two-sided lighting (`GL_LIGHT_MODEL_TWO_SIDE`): lights back faces with the
-/// normal negated. Wrap a lighting built with the back material (`GL_BACK`) and
-/// draw the back faces with it (`Cull::Front`), the front faces with the front
-/// lighting (`Cull::Back`): each face is lit as OpenGL lights it, and a scene
-/// without two-sided lighting pays nothing.
+/// normal negated. Wrap a lighting of the back material and draw the back
+/// faces with it (`Cull::Front`), the front faces with the front lighting
+/// (`Cull::Back`); a scene without two-sided lighting pays nothing.
 ///
 /// ```
 /// use fixshade::prelude::*;
@@ -172,12 +167,9 @@ wrapper_illuminate!(
 );
 
 /// `GL_SEPARATE_SPECULAR_COLOR` per point: [`Illuminate::shade`] is
-/// [`LitColor::separate`] (the primary and secondary colours clamped apart, then
-/// added). Per-pixel shading ([`PhongShading`](crate::shade::PhongShading)) then
-/// matches OpenGL; with Gouraud shading OpenGL interpolates the two clamped
-/// colours separately, which a textured Gouraud shader does
-/// ([`Textured`](crate::shade::Textured): with a white texture, exactly
-/// that).
+/// [`LitColor::separate`]. Per-pixel shading then matches OpenGL; for Gouraud,
+/// OpenGL interpolates the two clamped colours apart, as a
+/// [`Textured`](crate::shade::Textured) Gouraud shader (white texture) does.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SeparateSpecular<I>(pub I);
 

@@ -15,11 +15,10 @@ use core::marker::PhantomData;
 /// The colours a light emits into each term (OpenGL's `GL_AMBIENT`, `GL_DIFFUSE`,
 /// `GL_SPECULAR` light parameters), linear RGB.
 ///
-/// Kept as `f32`, as given: a light colour is multiplied with the material's colour
-/// (and the attenuation's `1/a`) when a [`Lighting`](crate::lighting::Lighting) is
-/// built, and only that product must fit the tier — a `GL_DIFFUSE` of 2.5 on a
-/// material of 0.3 is exact in `Q14`. [`LightColors::new`] takes non-negative
-/// colours; [`LightColors::signed`] also negative ones (OpenGL's "negative light").
+/// Kept as `f32`: only the product with the material's colour (and `1/a`),
+/// formed when a [`Lighting`](crate::lighting::Lighting) is built, must fit the
+/// tier (a `GL_DIFFUSE` of 2.5 on a material of 0.3 is exact in `Q14`).
+/// [`LightColors::signed`] also takes negative colours (OpenGL's "negative light").
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LightColors<S> {
     /// Added to the ambient term (`Ia`), scaled by the material's ambient colour.
@@ -86,10 +85,9 @@ impl<S: Scalar> LightColors<S> {
     }
 }
 
-/// A light's colour terms for one material, in `f32`, before they are converted to
-/// the tier: the light's colours times the material's, with a constant factor
-/// (the attenuation's `1/a`) folded in. [`Lighting::checked`](crate::lighting::Lighting::checked)
-/// tests them against the tier's range.
+/// A light's colours times the material's, with the attenuation's `1/a` folded
+/// in, in `f32` (what [`Lighting::checked`](crate::lighting::Lighting::checked)
+/// tests against the tier's range).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ColorTerms {
     /// `La ∘ ka / a`.
@@ -104,9 +102,7 @@ pub struct ColorTerms {
     /// distance attenuation `1/(1 + b'·d + c'·d²)` or a spot cone); the ambient
     /// term then varies per point as well.
     pub varying: bool,
-    /// Whether that factor is unbounded: an attenuation without a constant term
-    /// (`1/(b·d + c·d²)`, see [`Attenuation::is_unbounded`]), which grows without
-    /// limit near the light.
+    /// Whether that factor is unbounded ([`Attenuation::is_unbounded`]).
     pub unbounded: bool,
 }
 
@@ -139,10 +135,9 @@ pub struct Prepared<S> {
     pub specular: Rgb<S>,
     /// `Ls ∘ kst` (transmission).
     pub transmission: Rgb<S>,
-    /// The halfway vector `H = (L + V)/|L + V|` when both L and V are constant
-    /// (directional light, viewer at infinity), the tier's vector nearest to unit
-    /// length within a step of that direction ([`Scalar::normalize_nearest_unit`]):
-    /// the incremental kernels use it as a unit vector.
+    /// The halfway vector `H = (L + V)/|L + V|` when both are constant
+    /// (directional light, viewer at infinity), by
+    /// [`Scalar::normalize_nearest_unit`]: the incremental kernels take it as unit.
     pub half: Option<Vec3<S>>,
 }
 
@@ -172,10 +167,9 @@ pub struct Incident<'a, S> {
     /// `att · spot`, the factor on the whole contribution of this light; `None`
     /// means exactly 1 (no multiplication is done).
     pub scale: Option<S>,
-    /// The factor is `scale · 2^scale_exp`: 0 but near a light whose attenuation
-    /// has no constant term, where the factor exceeds the tier's range
-    /// ([`Scalar::geo_inv_quadratic_exp`]); the light's terms are multiplied by
-    /// `scale`, then by `2^scale_exp` with saturation.
+    /// The factor is `scale · 2^scale_exp` ([`Scalar::geo_inv_quadratic_exp`]:
+    /// `scale_exp` is 0 but near an unbounded attenuation); the terms are
+    /// multiplied by `scale`, then by `2^scale_exp` with saturation.
     pub scale_exp: u32,
     /// Whether this light's ambient term is added per point. `false` for lights
     /// whose ambient is constant: it is folded into the scene's base colour.
@@ -202,17 +196,14 @@ pub trait LightSource<S: Scalar> {
         let _ = material;
         None
     }
-    /// Moves the light by `m` (world to eye coordinates: the camera's view), as
-    /// OpenGL transforms `GL_POSITION` and `GL_SPOT_DIRECTION` by the model-view
-    /// matrix: a position by the whole matrix, a direction by its upper-left
-    /// 3×3 and normalised again. Call [`LightSource::prepare`] afterwards (as
-    /// [`Lighting::viewed`](crate::lighting::Lighting::viewed) does).
+    /// Moves the light by `m` (world to eye coordinates) as
+    /// [`Lighting::viewed`](crate::lighting::Lighting::viewed) describes; call
+    /// [`LightSource::prepare`] afterwards.
     ///
     /// # Errors
     ///
     /// [`ParamError::ZeroDirection`] when `m` maps a direction to zero,
-    /// [`ParamError::NotFinite`] for a non-finite result (the light is then
-    /// unchanged).
+    /// [`ParamError::NotFinite`] for a non-finite result (the light unchanged).
     fn transform(&mut self, m: &Mat4) -> Result<(), ParamError>;
 }
 
@@ -272,10 +263,9 @@ pub trait LightSet<S: Scalar> {
     /// Hands each light's colour terms for `material`, in `f32`, to `f`
     /// (construction time only).
     fn for_each_color_terms(&self, material: &Material<S>, f: &mut dyn FnMut(ColorTerms));
-    /// Moves every light by `m` (world to eye coordinates: the camera's view),
-    /// as OpenGL transforms `GL_POSITION` and `GL_SPOT_DIRECTION` by the
-    /// model-view matrix; on an error, the lights before the failing one are
-    /// moved. [`Lighting::viewed`](crate::lighting::Lighting::viewed) calls it.
+    /// Moves every light by `m` as
+    /// [`Lighting::viewed`](crate::lighting::Lighting::viewed) describes; on an
+    /// error, the lights before the failing one are moved.
     fn transform(&mut self, m: &Mat4) -> Result<(), ParamError>;
 }
 
@@ -442,39 +432,31 @@ impl<S: Scalar> LightSource<S> for DirectionalLight<S> {
 ///
 /// # Representation
 ///
-/// The coefficients keep the relative precision of the `f32` they are given as, in
-/// the form the geometry type stores them: `f32` for
-/// the float tiers; for the fixed tiers (Q16.16 distances) the exact 24-bit
-/// mantissa and exponent of each (a 16-bit mantissa for `Q14`), multiplied with the
-/// normalised distance in 32-bit (`Q14`) or 64-bit (`Q30`) integer arithmetic. So
-/// `c = 10⁻⁶` at `d = 300` counts (it was 0 in Q16.16), for every legal coefficient
-/// and every distance of the geometry range (see [`Scalar::geo_inv_quadratic`] for
-/// the error: far below 1 LSB of 8-bit output).
+/// The coefficients keep their `f32` relative precision: `f32` in the float
+/// tiers; in the fixed tiers the exact 24-bit mantissa and exponent of each (a
+/// 16-bit mantissa for `Q14`), multiplied with the normalised distance in 32-bit
+/// (`Q14`) or 64-bit (`Q30`) integers. So `c = 10⁻⁶` at `d = 300` counts, for
+/// every legal coefficient and distance (error: [`Scalar::geo_inv_quadratic`],
+/// far below 1 LSB of 8-bit output).
 ///
 /// # Folding `1/a`
 ///
-/// A light does not evaluate `1/(a + b·d + c·d²)` itself: it folds the constant
-/// `1/a` into its colours once (when a [`Lighting`](crate::lighting::Lighting) is
-/// built, in `f32`) and evaluates `1/(1 + (b/a)·d + (c/a)·d²)`, a factor in [0, 1].
-/// So `GL_CONSTANT_ATTENUATION` 0.25 (a light four times brighter than its colour)
-/// is exact in the fixed tiers wherever the brightened colour terms fit the tier
-/// (see [`Lighting::checked`](crate::lighting::Lighting::checked)).
+/// A light folds the constant `1/a` into its colours once (in `f32`, when a
+/// [`Lighting`](crate::lighting::Lighting) is built) and evaluates the factor
+/// `1/(1 + (b/a)·d + (c/a)·d²)` in [0, 1]. So `GL_CONSTANT_ATTENUATION` 0.25 is
+/// exact in the fixed tiers wherever the brightened colour terms fit
+/// ([`Lighting::checked`](crate::lighting::Lighting::checked)).
 ///
 /// # Extremes
 ///
 /// - `a = 0` (pure `1/d²`) cannot be folded: the factor grows without bound near
-///   the light ([`Attenuation::is_unbounded`]). The fixed tiers carry it beyond
-///   their range as `m·2^e` (`m` in `[1, 2)`, [`Scalar::geo_inv_quadratic_exp`])
-///   and saturate the light's contribution only after it is formed (colours ×
-///   cosines × `m`, then `× 2^e`, saturated at ±2): the colour is right wherever
-///   that product is within the range, and where it is beyond, the output
-///   clamps to 1 as the reference does. (Before, the factor itself saturated at
-///   2: `GL_LINEAR_ATTENUATION` 10⁻³⁰ with `a = 0` gave 97 instead of 255.) What
-///   could pull a saturated contribution back below 1 is refused by
-///   [`Lighting::checked`](crate::lighting::Lighting::checked) with
-///   [`ParamError::TierRange`]: a negative colour on such a light, negative terms
-///   summing to `1 − max` or below, fog. The float tiers cap the factor at 10⁹
-///   (where `b·d + c·d² < 10⁻⁹`: every product with it above 10⁻⁹ saturates).
+///   the light ([`Attenuation::is_unbounded`]). The fixed tiers carry it as
+///   `m·2^e` ([`Scalar::geo_inv_quadratic_exp`]) and saturate the contribution
+///   only once formed (colours × cosines × `m`, then `× 2^e`): right wherever
+///   it fits the range, else clamped to 1 as the reference's (so
+///   `GL_LINEAR_ATTENUATION` 10⁻³⁰ with `a = 0` gives 255).
+///   [`Lighting::checked`](crate::lighting::Lighting::checked) refuses what
+///   could pull it back below 1. The float tiers cap the factor at 10⁹.
 ///   [`Attenuation::factor`] saturates at the tier's maximum (below 2 for the
 ///   fixed tiers, for any `a < ½`).
 /// - Very far lights give factors that round to 0; lengths beyond the geometry range
@@ -506,9 +488,8 @@ impl<G: GeoScalar> Attenuation<G> {
         let (inv_a, bn, cn) = (1.0 / a, b / a, c / a);
         let constant = b == 0.0 && c == 0.0;
         // a constant 1/a is folded even where it overflows f32 (a < 2^-128):
-        // the colour terms are then infinite, which `Lighting::checked` reports
-        // and the conversion to a tier saturates (it was dropped: the light
-        // shone with its plain colours)
+        // the infinite colour terms `Lighting::checked` reports and the tier
+        // conversion saturates
         let folded =
             a > 0.0 && (constant || (inv_a.is_finite() && bn.is_finite() && cn.is_finite()));
         let (kn, inv_a) = if folded {
@@ -555,9 +536,8 @@ impl<G: GeoScalar> Attenuation<G> {
     }
 
     /// Whether the per-point factor is unbounded: no constant term to fold
-    /// (`a = 0`, or `b/a`, `c/a` beyond `f32`) and `b` or `c` non-zero, so
-    /// `1/(b·d + c·d²)` grows without limit near the light (see the type's
-    /// docs, *Extremes*).
+    /// (`a = 0`, or `b/a`, `c/a` beyond `f32`) and `b` or `c` non-zero (see
+    /// the type's docs, *Extremes*).
     pub fn is_unbounded(&self) -> bool {
         self.unbounded
     }
@@ -688,10 +668,9 @@ pub struct SpotLight<S: Scalar> {
 }
 
 impl<S: Scalar> SpotLight<S> {
-    /// A spot light at `position` pointing along `axis`, with `exponent` (a real
-    /// number in 0..=65535; OpenGL's `GL_SPOT_EXPONENT` 2.5 is 2.5) and `cutoff_deg`
-    /// in 0..=90 degrees (OpenGL's
-    /// `GL_SPOT_CUTOFF`; 180 means no cone: use a [`PointLight`] instead).
+    /// A spot light at `position` pointing along `axis`, with a real `exponent`
+    /// in 0..=65535 (`GL_SPOT_EXPONENT`) and `cutoff_deg` in 0..=90
+    /// (`GL_SPOT_CUTOFF`; for 180, no cone, use a [`PointLight`]).
     ///
     /// Errors: non-finite position, zero or non-finite axis, exponent negative or
     /// above 65535, cutoff outside 0..=90.

@@ -96,9 +96,8 @@ impl MaterialDesc {
 
 /// A validated material in tier `S`.
 ///
-/// The colours stay `f32` as given: they are multiplied with the lights' colours
-/// (and the attenuation's `1/a`) once, when a [`Lighting`](crate::lighting::Lighting)
-/// is built, so only those products must fit the tier's range — a material
+/// The colours stay `f32`: only their products with the lights' colours must
+/// fit the tier ([`LightColors`](crate::lighting::LightColors)); a material
 /// colour of 3 under a light of 0.5 is exact in every tier.
 ///
 /// ```
@@ -144,9 +143,9 @@ impl<S: Scalar> Material<S> {
         Self::validate(d, false)
     }
 
-    /// [`Material::new`] accepting negative emission, ambient, diffuse and specular
-    /// colours, as OpenGL does (they subtract light; the output still clamps to
-    /// [0, 1] per channel). The transmission coefficient stays non-negative.
+    /// [`Material::new`] accepting negative emission, ambient, diffuse and
+    /// specular colours as OpenGL does (they subtract light; the output clamps
+    /// to [0, 1]); transmission stays non-negative.
     pub fn signed(d: &MaterialDesc) -> Result<Self, ParamError> {
         Self::validate(d, true)
     }

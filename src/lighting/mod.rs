@@ -12,10 +12,8 @@
 //! fog:  the Σ part becomes  f·Σ + (1 − f)·fog_colour,  f = clamp((end − d)/(end − start))
 //! ```
 //!
-//! Which terms exist is decided by types: the [`Model`] (specular kind, brilliance,
-//! Fresnel, transmission), the light set (directional lights have no attenuation or
-//! cone), the [`Viewer`] (at infinity: V constant) and the [`FogModel`]. A term that
-//! a type leaves out is not evaluated and its code is not generated.
+//! Types decide which terms exist (the [`Model`], the light set, the [`Viewer`],
+//! the [`FogModel`]): a term a type leaves out generates no code.
 //!
 //! # Extremes
 //! - `N·L ≤ 0`: no diffuse and no specular from that light (nothing leaks behind the
@@ -24,18 +22,14 @@
 //!   power is clamped to [0, 1] first, so powers never exceed 1.
 //! - The sum may exceed 1 (bright lights, several lights): it saturates at the tier's
 //!   maximum while summed and is clamped to [0, 1] when converted to an output colour.
-//! - Normals are expected unit length; [`Lighting::shade`] takes them as they are,
-//!   [`Lighting::shade_normalizing`] normalises first (a zero normal gives the ambient
-//!   and emission terms only). A unit vector rounded to a fixed tier is up to
-//!   5·10⁻⁵ too long or short, which the powers amplify (n·5·10⁻⁵ at the top of a
-//!   highlight): every cosine that a power raises ([`Scalar::cos_normal`],
-//!   [`Scalar::reflect_dot`]) corrects the lengths of `N`, `L`, `V` and `H` to
-//!   first order in `Q14` when they are within 2⁻⁵ of unit length, and Phong's
-//!   `R = 2(N·L)N − L` is exact at the mirror direction (where `2(N·L)` is 2,
-//!   beyond the fixed tiers' range).
-//! - A float tier's normal with an infinite or NaN component (only a `Vec3` built
-//!   directly holds one) lights nothing; infinite or NaN positions give zero light
-//!   directions and distances: no channel is ever NaN or infinite.
+//! - Normals are expected unit length; [`Lighting::shade_normalizing`] normalises
+//!   first (a zero normal gives ambient and emission only). A fixed tier's rounded
+//!   unit vector is up to 5·10⁻⁵ off unit length, which a power `n` amplifies
+//!   n-fold: every cosine a power raises ([`Scalar::cos_normal`],
+//!   [`Scalar::reflect_dot`]) corrects the lengths to first order in `Q14`, and
+//!   Phong's `R = 2(N·L)N − L` is exact at the mirror direction (where `2(N·L)`
+//!   is 2, beyond the fixed tiers' range).
+//! - No channel is ever NaN or infinite: see [`Lighting::shade`].
 
 mod any;
 mod channels;
@@ -69,11 +63,10 @@ use core::marker::PhantomData;
 /// `GL_COLOR_MATERIAL`: which material colour a per-vertex colour replaces
 /// (`glColorMaterial`'s mode), for [`Lighting::shade_parts`] with a colour.
 ///
-/// The replaced material colour counts as white in the lighting's prepared terms,
-/// and the sums it multiplies are multiplied by the vertex colour per point: one
-/// product per channel and point, no per-light work. [`Lighting::shade`] (no
-/// colour) is the lighting under a white vertex colour, as OpenGL's default
-/// current colour (1, 1, 1, 1).
+/// The replaced colour counts as white in the prepared terms, and the sums it
+/// multiplies are multiplied by the vertex colour per point (one product per
+/// channel, no per-light work). [`Lighting::shade`] is the lighting under a white
+/// vertex colour, OpenGL's default current colour.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ColorMaterial {
     /// `glDisable(GL_COLOR_MATERIAL)`: vertex colours are ignored.
@@ -145,15 +138,13 @@ impl<S: Scalar> LitColor<S> {
 ///
 /// # Building
 ///
-/// The lights' colours are multiplied with the material's (and with the
-/// attenuation's `1/a`) in `f32` when the lighting is built; every product is
-/// rounded to the tier once. [`Lighting::new`] and the `with_*` builders are
-/// infallible: a product beyond the tier's range (±2 for `Q14`/`Q30`) saturates
-/// there. [`Lighting::checked`] returns a [`ParamError::TierRange`] naming the term
-/// instead: a lighting that passes it gives, in every tier, the colours of the
-/// `f64` reference up to the tier's documented bound (`GL_DIFFUSE` 2.5,
-/// `GL_CONSTANT_ATTENUATION` 0.25 and negative colours included), because no
-/// intermediate sum saturates where that would change the clamped output.
+/// The lights' colours are multiplied with the material's (and the attenuation's
+/// `1/a`) in `f32` when built, each product rounded to the tier once. [`Lighting::new`]
+/// and the `with_*` builders are infallible: a product beyond the tier's range (±2
+/// for `Q14`/`Q30`) saturates. [`Lighting::checked`] rejects such a lighting
+/// instead; one that passes gives the `f64` reference's colours up to the tier's
+/// bound (`GL_DIFFUSE` 2.5, `GL_CONSTANT_ATTENUATION` 0.25 and negative colours
+/// included).
 ///
 /// ```
 /// use fixshade::prelude::*;
@@ -188,11 +179,10 @@ where
 }
 
 /// A lighting whose lights are in eye coordinates (the eye at the origin,
-/// looking down −z), where the renderer hands points and normals: the only
-/// form of a [`Lighting`] a shader takes. Made by [`Lighting::viewed`]
-/// (lights placed in the world, seen through the camera) or
-/// [`Lighting::eye_space`] (lights given in eye coordinates); the lights'
-/// space is part of the type, so that no kernel can draw world lights.
+/// looking down −z), where the renderer hands points and normals: the only form
+/// of a [`Lighting`] a shader takes, so that no kernel draws world lights. Made
+/// by [`Lighting::viewed`] (world lights seen through the camera) or
+/// [`Lighting::eye_space`] (lights given in eye coordinates).
 ///
 /// ```
 /// use fixshade::prelude::*;
@@ -220,17 +210,12 @@ const GL_GLOBAL_AMBIENT: [f32; 3] = [0.2; 3];
 impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
     /// Lights and a material with OpenGL's defaults for the rest: the viewer
     /// at infinity on +z (`GL_LIGHT_MODEL_LOCAL_VIEWER` false), no fog, and a
-    /// global ambient light of 0.2 (`GL_LIGHT_MODEL_AMBIENT`), multiplied
-    /// with the material's ambient colour; [`Lighting::with_global_ambient_f32`]
-    /// changes it (`[0.0; 3]`: none).
+    /// global ambient light of 0.2 (`GL_LIGHT_MODEL_AMBIENT`) times the
+    /// material's ambient ([`Lighting::with_global_ambient_f32`] changes it).
     ///
-    /// The lights are in **world coordinates**: a shader takes the lighting
-    /// seen through the camera, [`Lighting::viewed`] (once per frame for a
-    /// moving camera), a [`Viewed`] lighting; drawing with world lights does
-    /// not compile, rather than light the scene from the wrong side. Lights
-    /// given in eye coordinates (OpenGL's `GL_POSITION` after the camera's
-    /// matrix, a lamp that moves with the camera) say so with
-    /// [`Lighting::eye_space`]; [`GlScene::lighting`] does.
+    /// The lights are in **world coordinates**: a shader takes a [`Viewed`]
+    /// lighting ([`Lighting::viewed`] or [`Lighting::eye_space`], as
+    /// [`GlScene::lighting`] does); drawing with world lights does not compile.
     ///
     /// ```compile_fail,E0277
     /// use fixshade::prelude::*;
@@ -254,8 +239,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model> Lighting<S, L, M> {
 }
 
 impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting<S, L, M, V, F> {
-    /// Every part at once (the lights in world coordinates, as
-    /// [`Lighting::new`]).
+    /// Every part at once (world lights, as [`Lighting::new`]).
     pub fn with_parts(
         lights: L,
         material: Material<S>,
@@ -329,9 +313,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     }
 
     /// The same lighting with its lights taken as given, in eye coordinates
-    /// (the eye at the origin looking down −z): OpenGL's `GL_POSITION` set
-    /// after the camera's matrix, or a lamp that moves with the camera. See
-    /// [`Lighting::new`].
+    /// ([`Viewed`]): OpenGL's `GL_POSITION` set after the camera's matrix, or a
+    /// lamp that moves with the camera.
     pub fn eye_space(self) -> Viewed<Self> {
         Viewed(self)
     }
@@ -349,20 +332,16 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         self.rebuilt()
     }
 
-    /// The same configuration with its lights, given in world coordinates,
-    /// seen through `view` (the camera's view matrix, world to eye
-    /// coordinates: [`Camera::view`](crate::camera::Camera::view)). The
-    /// lighting equation works in eye coordinates (the eye at the origin,
-    /// looking down −z), as OpenGL's does; a camera that moves calls this once
-    /// per frame, and a lamp placed in the world stays there. Positions move by
-    /// the whole matrix, directions (a directional light's, a spot's axis) by
-    /// its upper-left 3×3, normalised again — what OpenGL does to `GL_POSITION`
-    /// and `GL_SPOT_DIRECTION` when they are set after the camera's matrix
-    /// (`gl::GlLight::transformed` for parameter sets). Without it, lights are
-    /// taken as given ([`Lighting::eye_space`]). Directions and positions move in
-    /// the tier's precision (a Q14 direction within one unit of the
-    /// `f64` result); costs a few hundred `f32` operations per light (soft float
-    /// on a core without an FPU) and prepares the lights again.
+    /// The same configuration with its world lights seen through `view` (the
+    /// camera's view matrix, [`Camera::view`](crate::camera::Camera::view)): a
+    /// moving camera calls this once per frame. Positions move by the whole
+    /// matrix, directions (a directional light's, a spot's axis) by its upper-left
+    /// 3×3, normalised again, as OpenGL does to `GL_POSITION` and
+    /// `GL_SPOT_DIRECTION` set after the camera's matrix
+    /// (`gl::GlLight::transformed` for parameter sets). In the tier's precision (a
+    /// Q14 direction within one unit of the `f64` result); a few hundred `f32`
+    /// operations per light (soft float without an FPU), then the lights are
+    /// prepared again.
     ///
     /// ```
     /// use fixshade::prelude::*;
@@ -428,24 +407,19 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
     /// The lighting if the tier holds every term of its equation, else the term
     /// that does not fit: [`ParamError::TierRange`] with the tier's limit.
     ///
-    /// The test, per channel, on the products formed in `f32` (light colour ×
-    /// material colour × `1/a`):
-    /// - each product is below the tier's maximum in magnitude;
-    /// - with a negative colour anywhere, or fog: the sum of all positive terms
-    ///   (emission and global ambient included) and the sum of all negative ones.
+    /// Tested per channel on the `f32` products (light colour × material colour ×
+    /// `1/a`), each of which must be below the tier's maximum in magnitude; with a
+    /// negative colour anywhere, or fog, so must the sum of all positive terms
+    /// (emission and global ambient included) and that of all negative ones. A
+    /// light whose attenuation has no constant term
+    /// ([`Attenuation::is_unbounded`]: it saturates near the light) allows no
+    /// negative term on that light, no fog, and negative terms summing to more
+    /// than `1 − max` per channel, so that the saturated output stays 1 as the
+    /// reference's.
     ///
-    /// - with a light whose attenuation has no constant term
-    ///   ([`Attenuation::is_unbounded`]:
-    ///   its factor grows without limit near the light, and its contribution
-    ///   saturates there): no negative term on that light, the negative terms of
-    ///   every channel summing to more than `1 − max`, no fog; so a saturated
-    ///   contribution keeps the output at 1, as the reference's.
-    ///
-    /// Where it passes, no intermediate value saturates unless the true sum is
-    /// beyond the tier's maximum with every term non-negative (or with negative
-    /// terms too small to pull it below 1), where the output clamps to 1 either
-    /// way. The float tiers (maximum 10⁹) pass every finite scene but the three
-    /// combinations of an unbounded attenuation above.
+    /// Where it passes, an intermediate value saturates only where the output
+    /// clamps to 1 either way. The float tiers (maximum 10⁹) pass every finite
+    /// scene but those three unbounded-attenuation cases.
     ///
     /// ```
     /// use fixshade::prelude::*;
@@ -573,10 +547,10 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The colour of surface point `p` with unit normal `n`, linear RGB.
     ///
-    /// Never NaN or infinite, whatever a float tier's `Vec3` holds: a normal with an
-    /// infinite or NaN component lights nothing (only the ambient and emission terms
-    /// remain), infinite or NaN positions give zero light directions and distances
-    /// (and full fog for a NaN viewing distance).
+    /// Never NaN or infinite, whatever a float tier's `Vec3` holds: a normal with
+    /// an infinite or NaN component lights nothing (ambient and emission remain);
+    /// infinite or NaN positions give zero light directions and distances (full
+    /// fog for a NaN viewing distance).
     #[inline(always)]
     pub fn shade(&self, p: &Point3<S>, n: Vec3<S>) -> Rgb<S> {
         let (sum, dist) = self.sum_lights::<false>(p, n, self.base);
@@ -589,14 +563,11 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         self.shade(p, n.normalize())
     }
 
-    /// The colour of `p` with normal `n` in OpenGL's two parts ([`LitColor`]), with
-    /// `GL_COLOR_MATERIAL`: `color` (a vertex colour) replaces the material colour
-    /// of the lighting's [`ColorMaterial`] mode (ignored when it is `Off`; `None` is
-    /// white). `shade_parts(p, n, None).sum()` is [`Lighting::shade`] up to
-    /// rounding.
-    ///
-    /// Fog fades the diffuse part towards the fog colour and the secondary colour
-    /// towards zero.
+    /// The colour of `p` with normal `n` in OpenGL's two parts ([`LitColor`]):
+    /// `color` (a vertex colour; `None` is white) replaces the material colour of
+    /// the [`ColorMaterial`] mode. `shade_parts(p, n, None).sum()` is
+    /// [`Lighting::shade`] up to rounding. Fog fades the diffuse part towards the
+    /// fog colour and the secondary colour towards zero.
     #[inline(always)]
     pub fn shade_parts(&self, p: &Point3<S>, n: Vec3<S>, color: Option<Rgb<S>>) -> LitColor<S> {
         let (sum, dist) = self.sum_lights::<true>(p, n, self.ambient_base);
@@ -673,10 +644,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         };
         let mut direct = Rgb::BLACK;
         let mut specular = Rgb::BLACK;
-        // A float tier's normal with an infinite component (only a `Vec3` built directly
-        // holds one) makes N·L infinite or NaN: outside (0, MAX] and [−MAX, 0) it
-        // lights nothing, so no channel becomes infinite or NaN. (Free for the fixed
-        // tiers, whose values never exceed MAX.)
+        // an infinite or NaN N·L (a float tier's directly built `Vec3`) lights
+        // nothing; free for the fixed tiers, which never exceed MAX
         if nl > S::ZERO && nl <= S::MAX {
             // diffuse: kd·Id·(N·L)^b
             let d = if M::BRILLIANCE {

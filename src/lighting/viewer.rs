@@ -128,17 +128,15 @@ impl<S: Scalar> FogModel<S> for NoFog {
 ///
 /// # Representation and extremes
 ///
-/// The ramp is stored per tier ([`Scalar::ramp`]) so that any finite `start < end`
-/// works: ranges of `f32::MAX` and more (`start = −f32::MAX, end = f32::MAX` is
-/// half fog near 0), ends far beyond the geometry range (`0…200 000` fades over the
-/// whole range of the fixed tiers' distances), ranges down to one `f32` step (a step
-/// at `end`). The fixed tiers hold the slope `1/(end − start)` as a mantissa and an
-/// exponent rather than in Q16.16, and evaluate it from the point of the geometry
-/// range nearest to `end`; `f` is within 2⁻¹³ (`Q14`) or 10⁻⁶ (the others) of the
-/// exact ramp at the tier's distance `d`. What remains is the distance's own
-/// rounding (2⁻¹⁶ units for the fixed tiers, 2⁻²⁴ relative for `f32`), which the
-/// ramp scales by `1/(end − start)`. A NaN distance (only from non-finite positions
-/// given directly as `Vec3`) is full fog.
+/// The ramp is stored per tier ([`Scalar::ramp`]), so any finite `start < end`
+/// works: ranges of `f32::MAX` and more (`−f32::MAX…f32::MAX` is half fog near
+/// 0), ends beyond the geometry range (`0…200 000` fades over the fixed tiers'
+/// whole range), ranges down to one `f32` step (a step at `end`). The fixed tiers
+/// hold the slope as mantissa and exponent, evaluated from the point of the
+/// geometry range nearest to `end`; `f` is within 2⁻¹³ (`Q14`) or 10⁻⁶ (the
+/// others) of the exact ramp at the tier's distance, plus the distance's own
+/// rounding (2⁻¹⁶ units fixed, 2⁻²⁴ relative `f32`) times `1/(end − start)`. A
+/// NaN distance (non-finite positions) is full fog.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LinearFog<S: Scalar> {
     ramp: S::Ramp,

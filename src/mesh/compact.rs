@@ -1,13 +1,5 @@
-//! The compact mesh format the renderer reads from flash, and `const`
-//! generators that build meshes at compile time.
-//!
-//! A [`Mesh`] is three borrowed slices: positions as `i16` triples with a
-//! shared number of fraction bits, unit normals in Q14 (`16384` is 1), and
-//! triangles as `u16` vertex indices (counter-clockwise seen from the side the
-//! surface faces). 6 + 6 bytes per vertex and 6 per triangle: the 24 × 16 UV
-//! sphere (362 vertices, 720 triangles) takes 8 664 bytes. A `static` of
-//! [`MeshData`] filled by a `const fn` generator lives in flash: no RAM, no
-//! floating point at run time.
+//! The compact mesh format the renderer reads from flash ([`Mesh`]), and
+//! `const` generators that build meshes at compile time ([`MeshData`]).
 
 use super::uv::Uv;
 use crate::error::check_len;
@@ -21,9 +13,12 @@ pub const NORMAL_ONE: i16 = 1 << 14;
 /// mesh in each direction).
 pub const TEXCOORD_FRAC: u32 = 12;
 
-/// A triangle mesh in the renderer's compact format: `i16` positions with
-/// `frac` fraction bits, Q14 unit normals, `u16` triangles. The constructor checks that the slices agree and every index is in
-/// range, so the renderer can rely on it.
+/// A triangle mesh in the renderer's compact format, three borrowed slices:
+/// `i16` positions with `frac` fraction bits, Q14 unit normals (`16384` is 1),
+/// `u16` triangles (counter-clockwise seen from the side the surface faces).
+/// 6 + 6 bytes per vertex and 6 per triangle: the 24 × 16 UV sphere (362
+/// vertices, 720 triangles) takes 8 664 bytes. The constructor checks that the
+/// slices agree and every index is in range, so the renderer can rely on it.
 ///
 /// ```
 /// use fixshade::mesh::{Mesh, NORMAL_ONE};
@@ -105,8 +100,7 @@ impl<'a> Mesh<'a> {
 
     /// The mesh with per-vertex tangents: a Q14 unit vector along increasing
     /// `u` in the surface, and in `[3]` the handedness (`±NORMAL_ONE`: the
-    /// bitangent is `handedness · (normal × tangent)`), one per vertex; see
-    /// the tangent helper in this module.
+    /// bitangent is `handedness · (normal × tangent)`), one per vertex.
     ///
     /// # Errors
     ///
@@ -193,8 +187,8 @@ impl<'a> Mesh<'a> {
 }
 
 /// Mesh arrays owned by value, sized by const generics: `V` vertices and `T`
-/// triangles. Filled by a `const fn` generator into a `static`, they are
-/// placed in flash.
+/// triangles. A `static` filled by a `const fn` generator lives in flash: no
+/// RAM, no floating point at run time.
 ///
 /// ```
 /// use fixshade::mesh::{uv_sphere_counts, MeshData};
@@ -219,21 +213,21 @@ pub struct MeshData<const V: usize, const T: usize> {
 
 impl<const V: usize, const T: usize> MeshData<V, T> {
     /// The mesh view of these arrays, checked by [`Mesh::checked`]: in a
-    /// `static` or `const` (`static M: Mesh = DATA.mesh();`) the check runs at
-    /// compile time and leaves no code in the image; called at run time it
-    /// checks every index again and panics if the (public) fields were made
-    /// invalid, so firmware that must be free of panic paths keeps the view in a
-    /// `static` (as `measure/frame` does), or uses [`Mesh::new`].
+    /// `static` or `const` (`static M: Mesh = DATA.mesh();`) at compile time,
+    /// leaving no code; at run time it checks every index again and panics if
+    /// the public fields were made invalid, so panic-free firmware keeps the
+    /// view in a `static` (as `measure/frame` does) or uses [`Mesh::new`].
     pub const fn mesh(&self) -> Mesh<'_> {
         Mesh::checked(&self.positions, &self.normals, &self.triangles, self.frac)
     }
 
     /// The UV sphere of radius 1 around the origin with `stacks` bands of
     /// latitude and `slices` of longitude, positions with `frac` fraction bits
-    /// (14 for a unit sphere: coordinates up to ±2), laid out like
-    /// the sphere of [`MeshData::uv_sphere`]'s layout: vertex 0 the north pole `(0, 1, 0)`,
-    /// then the rings from the north, the south pole last; counter-clockwise
-    /// seen from outside.
+    /// (14 for a unit sphere: coordinates up to ±2): vertex 0 the north pole
+    /// `(0, 1, 0)`, then `stacks − 1` rings of `slices` vertices from the north
+    /// (ring `i` at `θ = π·i/stacks`, column `j` at `φ = 2π·j/slices`: the
+    /// point `(sin θ sin φ, cos θ, sin θ cos φ)`), the south pole last;
+    /// counter-clockwise seen from outside.
     ///
     /// `V` and `T` must equal [`uv_sphere_counts`](super::uv_sphere_counts)
     /// (a compile-time error in a `static`), and `frac` at most 14.

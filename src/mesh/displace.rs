@@ -1,28 +1,6 @@
 //! Displacement mapping at load time: every vertex moved along its normal by
 //! a height read from a texture at the vertex's texture coordinates, normals
 //! recomputed, the result converted back to the compact [`Mesh`] format.
-//!
-//! ```
-//! use fixshade::mesh::*;
-//! use fixshade::texture::{Texels, Texture, Wrap};
-//! const N: (usize, usize) = textured_sphere_counts(8, 12);
-//! static SPHERE: TexturedMeshData<{ N.0 }, { N.1 }> = TexturedMeshData::uv_sphere(8, 12, 13);
-//! // a height map: a bump along the equator (v = ½)
-//! let mut h = [0u8; 16 * 16];
-//! for (i, t) in h.iter_mut().enumerate() {
-//!     *t = if (6..10).contains(&(i / 16)) { 255 } else { 0 };
-//! }
-//! let tex = Texture::new(Texels::Gray8(&h), 4, 4, Wrap::Repeat).unwrap();
-//! let (mut weld, mut scratch) = ([0u16; N.0], [[0.0f32; 3]; N.0]);
-//! let (mut p, mut n) = ([[0.0f32; 3]; N.0], [[0.0f32; 3]; N.0]);
-//! displace(&SPHERE.mesh(), &tex, 0.1, &mut weld, &mut scratch, &mut p, &mut n)?;
-//! // back to the compact format, for the renderer
-//! let (mut pc, mut nc) = ([[0i16; 3]; N.0], [[0i16; 3]; N.0]);
-//! to_compact(&p, &n, 13, &mut pc, &mut nc)?;
-//! let bumpy = Mesh::new(&pc, &nc, &SPHERE.triangles, 13)?.with_texcoords(&SPHERE.texcoords)?;
-//! assert_eq!(bumpy.triangle_count(), N.1);
-//! # Ok::<(), fixshade::error::MeshError>(())
-//! ```
 
 use super::compact::{round_i16, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
 use super::normals::{vertex_normals_welded, Weighting};
@@ -90,18 +68,15 @@ fn normalize(v: [f32; 3]) -> [f32; 3] {
 /// `normals`. Returns the number of vertices.
 ///
 /// **Seams.** Vertices with the same raw position (a texture seam, a pole
-/// fan) are welded (for every vertex the lowest index with its position, into the caller's `weld`): they all
-/// take the height, normal and displacement of their representative (the
-/// lowest such index), so they move identically and no crack opens, and
-/// their normals are computed over the faces of all of them together.
+/// fan) are welded (into `weld`, each vertex's representative: the lowest
+/// index with its position): they take the representative's height, normal
+/// and displacement, so no crack opens, and their normals are computed over
+/// the faces of all of them together.
 ///
-/// **Normals.** The area-weighted face average of the displaced mesh
-/// (welded, see [`vertex_normals`](super::vertex_normals)) minus that of the
-/// undisplaced mesh is added to the mesh's own normal, and the sum normalised:
-/// `n'_i = normalize(n_i + avg(displaced)_i − avg(base)_i)`. The displacement
-/// thus changes a normal exactly as much as it changes the face average, and a
-/// zero displacement gives back the mesh's (analytic) normals rather than the
-/// face averages. `scratch` holds the base averages.
+/// **Normals.** `n'_i = normalize(n_i + avg(displaced)_i − avg(base)_i)`, the
+/// averages area-weighted and welded ([`vertex_normals`](super::vertex_normals);
+/// `scratch` holds the base's): a normal changes as much as its face average,
+/// and a zero displacement gives back the mesh's (analytic) normals.
 ///
 /// # Errors
 ///
@@ -110,6 +85,28 @@ fn normalize(v: [f32; 3]) -> [f32; 3] {
 /// [`MeshError::BufferTooSmall`] when `weld`, `scratch`, `positions` or
 /// `normals` is shorter than the mesh's vertices. The outputs are not written
 /// then.
+///
+/// ```
+/// use fixshade::mesh::*;
+/// use fixshade::texture::{Texels, Texture, Wrap};
+/// const N: (usize, usize) = textured_sphere_counts(8, 12);
+/// static SPHERE: TexturedMeshData<{ N.0 }, { N.1 }> = TexturedMeshData::uv_sphere(8, 12, 13);
+/// // a height map: a bump along the equator (v = ½)
+/// let mut h = [0u8; 16 * 16];
+/// for (i, t) in h.iter_mut().enumerate() {
+///     *t = if (6..10).contains(&(i / 16)) { 255 } else { 0 };
+/// }
+/// let tex = Texture::new(Texels::Gray8(&h), 4, 4, Wrap::Repeat).unwrap();
+/// let (mut weld, mut scratch) = ([0u16; N.0], [[0.0f32; 3]; N.0]);
+/// let (mut p, mut n) = ([[0.0f32; 3]; N.0], [[0.0f32; 3]; N.0]);
+/// displace(&SPHERE.mesh(), &tex, 0.1, &mut weld, &mut scratch, &mut p, &mut n)?;
+/// // back to the compact format, for the renderer
+/// let (mut pc, mut nc) = ([[0i16; 3]; N.0], [[0i16; 3]; N.0]);
+/// to_compact(&p, &n, 13, &mut pc, &mut nc)?;
+/// let bumpy = Mesh::new(&pc, &nc, &SPHERE.triangles, 13)?.with_texcoords(&SPHERE.texcoords)?;
+/// assert_eq!(bumpy.triangle_count(), N.1);
+/// # Ok::<(), fixshade::error::MeshError>(())
+/// ```
 pub fn displace(
     mesh: &Mesh<'_>,
     heights: &Texture<'_>,
@@ -165,10 +162,9 @@ pub fn displace(
 /// positions `round(p · 2^frac)` as `i16`, normals in Q14; returns the number
 /// of vertices.
 ///
-/// Choosing `frac`: the largest value for which every coordinate fits,
-/// `max|p| · 2^frac < 32767.5`, keeps the most precision (a step of `2^−frac`
-/// model units): `frac = 14` for a model within ±2, `12` within ±8. The model
-/// importer (`import/`) chooses it from the bounds the same way.
+/// Choose the largest `frac` with `max|p| · 2^frac < 32767.5` (a step of
+/// `2^−frac` model units): 14 for a model within ±2, 12 within ±8, as the
+/// importer (`import/`) does.
 ///
 /// # Errors
 ///

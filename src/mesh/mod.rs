@@ -5,22 +5,19 @@
 //! vertex normals by face averaging, tangents, displacement mapping
 //! ([`displace`]) and conversion to the compact format ([`to_compact`]).
 //!
-//! Everything writes into caller-owned arrays (no allocation) and reports bad
-//! sizes, indices and parameters as a [`MeshError`](crate::error::MeshError) instead of panicking.
+//! Everything writes into caller-owned arrays and reports bad sizes, indices
+//! and parameters as a [`MeshError`](crate::error::MeshError), never panicking.
 //!
 //! # Conventions
 //!
 //! - **Space**: right-handed; the eye looks down −z with +y up (OpenGL), as in
 //!   [`crate::lighting::gl`] and the lighting core.
-//! - **Winding**: a triangle `[a, b, c]` is front-facing when `a → b → c` runs
-//!   counter-clockwise as seen from the side its normal points to, i.e. its
-//!   geometric normal is `(b − a) × (c − a)`. Generated meshes wind
-//!   counter-clockwise seen from outside; on the screen (y down) front faces
-//!   are counter-clockwise, which is what [`crate::raster::Cull::Back`] keeps.
+//! - **Winding**: `[a, b, c]` faces the side from which `a → b → c` is
+//!   counter-clockwise (normal `(b − a) × (c − a)`); generated meshes face
+//!   outwards, and [`crate::raster::Cull::Back`] keeps front faces.
 //! - **Load time vs frame time**: normals, tangents and generated meshes are
-//!   computed once, in `f32` (and `f64` where it buys robustness), or at
-//!   compile time by `const fn`s; the per-frame work is the vertex stage of
-//!   [`crate::render`].
+//!   computed once in `f32` (`f64` where it buys robustness) or at compile
+//!   time; the per-frame work is [`crate::render`]'s vertex stage.
 //!
 //! ```
 //! use fixshade::mesh::*;

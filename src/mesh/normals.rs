@@ -96,15 +96,12 @@ pub fn face_normals(
 /// faces around it (see [`Weighting`]), into `out[..positions.len()]`; returns
 /// `positions.len()`.
 ///
-/// Vertices used by no triangle, and vertices whose weighted sum vanishes
-/// (degenerate faces only, or faces cancelling each other as on a two-sided
-/// sheet), get the **zero vector**. Faces with non-finite positions are skipped.
-/// With [`Weighting::Area`] the cross products are scaled by the largest one
-/// before summing in `f32`, so faces smaller than about 10⁻³⁰ of the largest
-/// face count as degenerate.
-///
-/// Triangles are expected counter-clockwise seen from outside (see
-/// [`face_normals`]); reversed triangles pull normals inwards.
+/// Unused vertices and those whose sum vanishes (degenerate faces only, or
+/// faces cancelling as on a two-sided sheet) get the **zero vector**; faces
+/// with non-finite positions are skipped. [`Weighting::Area`] scales the
+/// cross products by the largest before summing in `f32`: faces below about
+/// 10⁻³⁰ of it count as degenerate. Triangles are expected counter-clockwise
+/// seen from outside ([`face_normals`]); reversed ones pull normals inwards.
 ///
 /// # Errors
 ///

@@ -1,11 +1,5 @@
 //! The icosphere generator into caller-owned arrays, and the UV sphere's
 //! counts (its layout: `uv.rs`).
-//!
-//! It winds every triangle counter-clockwise seen from outside (geometric normal
-//! `(b − a) × (c − a)` pointing away from the centre), share every vertex between
-//! its triangles (a closed mesh: every edge belongs to exactly two triangles, no
-//! texture seam) and write the exact sphere normal `(p − centre)/radius` per
-//! vertex.
 
 use crate::error::{check_len, finite_or, MeshError};
 
@@ -136,16 +130,14 @@ const ICO_FACES: [[u16; 3]; 20] = [
 ];
 
 /// Writes an icosphere: the icosahedron with every triangle split into four
-/// `level` times (0..=4), new vertices pushed out to the
-/// sphere. Returns `(vertices, triangles)`, equal to [`icosphere_counts`].
-///
-/// Each edge midpoint is created once and shared by the two triangles of the
-/// edge. The deduplication needs no extra memory: while subdividing, `normals`
-/// holds for each new vertex the edge `(a, b)` it splits, and a new midpoint is
-/// looked up by a linear search over this level's new vertices (about 4·10⁶
-/// integer comparisons at level 4). The edge tags are replaced by the exact
-/// normals at the end. Triangle `t` of level `k − 1` becomes triangle `t`
-/// (the centre) and `F + 3t .. F + 3t + 3` (the corners) of level `k`.
+/// `level` times (0..=4), new vertices pushed out to the sphere. Returns
+/// `(vertices, triangles)`, equal to [`icosphere_counts`]. A closed mesh
+/// (every vertex shared, no seam), counter-clockwise seen from outside, with
+/// the exact normals `(p − centre)/radius`. Triangle `t` of level `k − 1`
+/// becomes triangle `t` (the centre) and `F + 3t .. F + 3t + 3` (the corners)
+/// of level `k`. No extra memory: during subdivision `normals` tags each new
+/// vertex with the edge it splits, found again by a linear search (about
+/// 4·10⁶ integer comparisons at level 4).
 ///
 /// # Errors
 ///

@@ -8,15 +8,12 @@ use crate::num::{cross3, dot3};
 /// [`Mesh::with_tangents`](super::Mesh::with_tangents): `[tx, ty, tz, w]`, one
 /// per vertex, the unit tangent rounded to Q14 and the handedness `w = ±16384`.
 ///
-/// Per triangle, `dP/du` and `dP/dv` (the edge vectors solved against the
-/// texture-coordinate edges) are accumulated at its three vertices (weighted
-/// by the triangle's area, as the unnormalised solution is). Per vertex the
-/// accumulated `dP/du` is made orthogonal to the normal (Gram–Schmidt) and
-/// normalised into `t`; the handedness `w = ±1` is the sign of
-/// `(N × T)·dP/dv`, so that the bitangent is `B = w · N × T` (`w = −1` where
-/// the texture is mirrored; ±1 is stored as ±16384). Triangles whose texture coordinates have zero
-/// area are skipped; a vertex no triangle references gets an arbitrary unit
-/// tangent orthogonal to its normal with `w = 1`.
+/// Each triangle's `dP/du` and `dP/dv` (edges solved against the texture
+/// edges, area-weighted) are summed at its vertices; per vertex `dP/du` is
+/// made orthogonal to the normal (Gram–Schmidt) and normalised, and
+/// `w = sign((N × T)·dP/dv)`, so that `B = w · N × T` (`w = −1` where the
+/// texture is mirrored). Triangles of zero texture area are skipped; an
+/// unreferenced vertex gets some unit tangent orthogonal to its normal, `w = 1`.
 ///
 /// Errors (nothing is written): `normals`, `uvs` or `out` shorter than
 /// `positions`; a triangle index beyond the positions

@@ -1,18 +1,5 @@
-//! Textured meshes built at compile time: a UV sphere with a texture seam and
-//! a plane grid, each with texture coordinates and analytic tangents.
-//!
-//! Both fill a [`TexturedMeshData`] (arrays sized by const generics) in a
-//! `const fn`, so a `static` of it lives in flash, and
-//! [`TexturedMeshData::mesh`] gives the [`Mesh`] view with
-//! [`Mesh::with_texcoords`] and [`Mesh::with_tangents`] set.
-//!
-//! Conventions (shared by both generators, so a normal map made for one suits
-//! the other): `u` runs across the texture, `v` down it, both with
-//! [`TEXCOORD_FRAC`] fraction bits; the tangent is the unit direction of
-//! increasing `u` on the surface (Q14), and the direction of increasing `v`
-//! is `−(normal × tangent)`, so the handedness `[3]` is `−NORMAL_ONE` at every
-//! vertex (the bitangent of [`Mesh::with_tangents`] is
-//! `handedness · (normal × tangent)`, i.e. the direction of increasing `v`).
+//! Textured meshes built at compile time ([`TexturedMeshData`]): a UV sphere
+//! with a texture seam and a plane grid.
 
 use super::compact::{round_i16, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
 use super::uv::Uv;
@@ -61,8 +48,11 @@ pub const fn plane_counts(nx: usize, ny: usize) -> (usize, usize) {
 
 /// Textured mesh arrays owned by value: `V` vertices, `T` triangles; the
 /// counterpart of [`MeshData`](super::MeshData) with texture coordinates
-/// (Q12, [`TEXCOORD_FRAC`]) and tangents (Q14 unit tangent and handedness,
-/// the [`Mesh::with_tangents`] format).
+/// (Q12, [`TEXCOORD_FRAC`]: `u` across the texture, `v` down it) and analytic
+/// tangents ([`Mesh::with_tangents`]' format: the unit direction of increasing
+/// `u`, Q14). Both generators give increasing `v` along
+/// `−(normal × tangent)`, handedness `−NORMAL_ONE` at every vertex, so a
+/// normal map made for one suits the other.
 ///
 /// ```
 /// use fixshade::mesh::{textured_sphere_counts, Mesh, TexturedMeshData, NORMAL_ONE};
@@ -155,8 +145,8 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
     /// `u = j/slices`, `v = i/stacks` (columns 0 and `slices` share a position
     /// and normal: the seam); the south pole last, like the north one with
     /// `v = 1`. Position = normal `(sin θ sin φ, cos θ, sin θ cos φ)`; tangent
-    /// `∂p/∂φ / |∂p/∂φ| = (cos φ, 0, −sin φ)` (at a pole vertex: at its `u`),
-    /// handedness `−NORMAL_ONE`. Counter-clockwise seen from outside.
+    /// `∂p/∂φ / |∂p/∂φ| = (cos φ, 0, −sin φ)` (at a pole vertex: at its `u`).
+    /// Counter-clockwise seen from outside.
     ///
     /// `V` and `T` must equal [`textured_sphere_counts`] (a compile-time error
     /// in a `static`).
@@ -193,7 +183,7 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
     /// (≤ 14) fraction bits. Vertex `(i, j)` (row `i` from the top, column
     /// `j` from the left) is index `i·(nx + 1) + j` at
     /// `(−1 + 2j/nx, 1 − 2i/ny, 0)` with `u = j/nx`, `v = i/ny`; normal
-    /// `(0, 0, 1)`, tangent `(1, 0, 0)`, handedness `−NORMAL_ONE`.
+    /// `(0, 0, 1)`, tangent `(1, 0, 0)`.
     ///
     /// `V` and `T` must equal [`plane_counts`].
     ///

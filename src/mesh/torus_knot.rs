@@ -84,14 +84,11 @@ impl<const V: usize, const T: usize> MeshData<V, T> {
     /// The torus knot `shape` as a closed tube with `tubular` segments along
     /// the curve and `radial` around it, positions with `frac` fraction bits.
     ///
-    /// Vertex `i·radial + j` is ring `i` (curve parameter `t = 2πi/tubular`),
-    /// angle `θ = 2πj/radial` around the tube:
-    /// `C(t) + tube·(cos θ·N + sin θ·B)`, where `T = C'/|C'|`,
-    /// `B = T × C / |T × C|` and `N = B × T`. Its normal is exactly
-    /// `cos θ·N + sin θ·B` (the unit offset from the curve is the normal of a
-    /// tube of constant radius). The frame depends on `t` alone, so the last
-    /// ring joins the first: the mesh is closed (every edge in two triangles),
-    /// every triangle counter-clockwise seen from outside.
+    /// Vertex `i·radial + j` is ring `i` (`t = 2πi/tubular`), angle
+    /// `θ = 2πj/radial`: `C(t) + tube·(cos θ·N + sin θ·B)` with `T = C'/|C'|`,
+    /// `B = T × C / |T × C|`, `N = B × T`; its normal is exactly
+    /// `cos θ·N + sin θ·B`. The frame depends on `t` alone, so the mesh is
+    /// closed; counter-clockwise seen from outside.
     ///
     /// `V` and `T` must equal [`TorusKnot::counts`] (at most 65 536
     /// vertices), `p` and `q` at least 1, the radii positive with

@@ -4,15 +4,8 @@
 //! [`TexturedMeshData::uv_sphere`](super::TexturedMeshData::uv_sphere)
 //! store it in their formats.
 //!
-//! Without a seam the poles are single vertices: vertex 0 the north pole
-//! `(0, 1, 0)`, the last the south pole, between them `stacks − 1` rings of
-//! `slices` vertices. With a seam each pole is `slices` vertices (one per
-//! slice, at the start and the end) and each ring `slices + 1` (column 0
-//! repeated at `u = 1`). Ring `i` (1-based, from the north) lies at polar
-//! angle `θ = π·i/stacks`, column `j` at azimuth `φ = 2π·j/slices`: the point
-//! `(sin θ sin φ, cos θ, sin θ cos φ)`. Per slice, the triangles run from the
-//! north fan through two per band to the south fan, each counter-clockwise
-//! seen from outside.
+//! The layouts are documented on those two functions. Per slice, the
+//! triangles run from the north fan through two per band to the south fan.
 
 use super::compact::sin_cos;
 use core::f64::consts::PI;

@@ -67,11 +67,10 @@ fn inv_quadratic(k: &[f32; 3], d: f32) -> Option<f32> {
 /// that the products of the lighting equation (at most four factors) stay finite.
 pub(crate) const F32_LIMIT: f32 = 1.0e9;
 
-/// The float tier with a fast inverse square root for normalisation and light
-/// directions: micromath's bit-trick seed (about 3.4 % off on its own) refined by
-/// `NEWTON` Newton steps `y ← y·(1.5 − ½·x·y²)`: about 1.8·10⁻³ relative error with
-/// one step, 4.7·10⁻⁶ with two. Everything else is plain `f32`. It avoids
-/// `libm::sqrtf` and a division, which are software on a Cortex-M4F.
+/// The float tier with a fast inverse square root (no `libm::sqrtf` or
+/// division, software on a Cortex-M4F): micromath's seed (3.4 % off) and
+/// `NEWTON` steps `y ← y·(1.5 − ½·x·y²)`, about 1.8·10⁻³ relative error with
+/// one, 4.7·10⁻⁶ with two. Everything else is plain `f32`.
 ///
 /// ```
 /// use fixshade::num::{F32Fast, Scalar};

@@ -2,19 +2,18 @@
 //! `1/(a + b·d + c·d²)` and the linear fog ramp `clamp((end − d)/(end − start))`,
 //! stored so that every legal `f32` parameter keeps its relative precision.
 //!
-//! Distances in the fixed tiers are Q16.16 ([`Geo16`]), but the parameters are not:
-//! an attenuation `c = 10⁻⁶` or a fog range of 10⁵ units has no useful Q16.16 value.
-//! The coefficients keep their `f32` mantissa and exponent, and the products with
-//! the distance are formed in a floating-point-like integer arithmetic (normalised
-//! distance, one product per term, a shift by the sum of the exponents).
+//! The fixed tiers' distances are Q16.16 ([`Geo16`]), but `c = 10⁻⁶` or a fog
+//! range of 10⁵ has no useful Q16.16 value: the coefficients keep their `f32`
+//! mantissa and exponent, and products with the distance are formed in
+//! floating-point-like integers (normalised distance, one product per term, a
+//! shift by the summed exponents).
 
 use super::Geo16;
 use core::fmt::Debug;
 
-/// A geometry scalar ([`Scalar::Geo`](super::Scalar::Geo)): [`Geo16`] for the
-/// fixed tiers, `f32` for the float tiers. It decides how distance coefficients are
-/// stored. Sealed (issue 18): not re-exported, only the bound of `Scalar::Geo`
-/// (an [`Attenuation`](crate::lighting::Attenuation) stores the coefficients).
+/// A geometry scalar ([`Scalar::Geo`](super::Scalar::Geo)): [`Geo16`] or `f32`;
+/// it decides how distance coefficients are stored. Sealed: only the bound of
+/// `Scalar::Geo`.
 pub trait GeoScalar: Copy + Debug + PartialEq + Default + Send + Sync + 'static {
     /// The coefficients of `1/(a + b·d + c·d²)`, in the form the tiers evaluate.
     type InvQuadratic: Copy + Debug + PartialEq + Send + Sync + 'static;
@@ -88,12 +87,11 @@ shift_uint!(shift_u64, u64);
 
 /// The coefficients of the attenuation `1/(a + b·d + c·d²)` for Q16.16 distances.
 ///
-/// Every `f32` coefficient is kept exactly, as a 24-bit mantissa and an exponent
-/// (`Q30`), and rounded to a 16-bit mantissa for products within 32 bits (`Q14`);
-/// the exponents are pre-offset by the fixed scales of the evaluation. `a` is also
-/// stored in fixed point (Q16.16 and Q32.32, saturated: an `a` beyond 65536 makes
-/// the factor zero anyway). See `Q14::geo_inv_quadratic` and
-/// `Q30::geo_inv_quadratic` for the evaluation and its error.
+/// Every coefficient kept exactly as a 24-bit mantissa and exponent (`Q30`),
+/// rounded to a 16-bit mantissa for 32-bit products (`Q14`), the exponents
+/// pre-offset by the evaluation's scales; `a` also in Q16.16 and Q32.32
+/// (saturated: beyond 65536 the factor is zero anyway). Evaluation and error:
+/// `Q14`/`Q30::geo_inv_quadratic`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct InvQuadratic16 {
     /// `a` in Q16.16 and Q32.32, saturated.

@@ -10,10 +10,9 @@ use crate::error::{finite, ParamError};
 /// `p' = M·p`. [`Mat4::mul`] composes so that `a.mul(&b)` applies `b` first, as
 /// in OpenGL: `mvp = projection.mul(&view).mul(&model)`.
 ///
-/// Constructors whose parameters can be invalid return a [`ParamError`]; the
-/// others accept any `f32` and produce a non-finite matrix from non-finite
-/// input, which [`Camera::mesh_transform`](crate::camera::Camera::mesh_transform)
-/// then rejects.
+/// Constructors that can fail return a [`ParamError`]; the others turn
+/// non-finite input into a non-finite matrix, which
+/// [`Camera::mesh_transform`](crate::camera::Camera::mesh_transform) rejects.
 ///
 /// ```
 /// use fixshade::num::Mat4;
@@ -223,10 +222,9 @@ impl Mat4 {
     }
 
     /// An orthographic projection (`glOrtho`): the box `left..right`,
-    /// `bottom..top`, `z = −near..−far` maps to `−1..1` on each axis; `w_c = 1`.
-    ///
-    /// With `w_c = 1` everywhere the near plane is not a `w` plane: nothing
-    /// is clipped at it; depths outside `near..far` saturate to 0 or 65535.
+    /// `bottom..top`, `z = −near..−far` maps to `−1..1` on each axis; `w_c = 1`,
+    /// so nothing is clipped at the near plane: depths outside `near..far`
+    /// saturate to 0 or 65535.
     ///
     /// # Errors
     ///

@@ -11,22 +11,17 @@
 //! | `f32` | IEEE single | FPU (or soft float) | ±10⁹ | exact (`libm`) |
 //! | [`F32Fast`] | IEEE single | FPU | ±10⁹ | micromath inverse square root |
 //!
-//! Geometry (positions, distances for attenuation and fog) needs range rather than
-//! precision, so every tier names a separate [`Scalar::Geo`] type: the fixed tiers
-//! use [`Geo16`] (Q16.16, ±32768 scene units), the float tiers use `f32`. The
-//! parameters of the distance functions (attenuation coefficients, fog ranges) are
-//! not geometry: they keep the relative precision of their `f32` values over the
-//! whole legal range ([`Attenuation`](crate::lighting::Attenuation),
-//! [`Scalar::geo_inv_quadratic`], [`Scalar::ramp`]).
+//! Geometry (positions, distances) needs range rather than precision: each tier
+//! names a [`Scalar::Geo`] type, [`Geo16`] (Q16.16, ±32768 scene units) for the
+//! fixed tiers, `f32` for the float tiers. Attenuation coefficients and fog
+//! ranges keep their `f32` relative precision over the whole legal range
+//! ([`Scalar::geo_inv_quadratic`], [`Scalar::ramp`]).
 //!
 //! # Overflow behaviour
 //!
 //! Every operation of every tier **saturates**: it never wraps and never panics,
-//! in debug builds with overflow checks included. Conversions from `f32` map NaN to
-//! zero and clamp to the tier's range. Specular powers are exact (repeated squaring
-//! for the integer exponent), up to the rounding of each multiplication; a
-//! fractional exponent ([`Exponent`]) adds one table-driven `x^f` (see
-//! [`Scalar::pow_frac`]).
+//! overflow checks included. Conversions from `f32` map NaN to zero and clamp to
+//! the tier's range. Powers: see [`Scalar::powi`] and [`Scalar::pow_frac`].
 
 // `max(lo).min(hi)` rather than `clamp(lo, hi)` on the per-pixel path: `clamp`'s
 // `min <= max` assertion (a panic path) can survive in a size-optimised build.
@@ -60,9 +55,8 @@ use core::fmt::Debug;
 /// (what the rasterizer hands the shading kernels, and the encoders read).
 pub const ATTR_FRAC: u32 = 14;
 
-/// `a[i]` for a vertex index `i < 3` (a triangle's vertex): the
-/// index is limited to 2 so that no bounds check (and no panic path) is left
-/// in the image; for `i < 3` it is `a[i]`.
+/// `a[i]` for a vertex index `i < 3`, the index limited to 2 so that no bounds
+/// check (no panic path) is left in the image.
 #[inline(always)]
 pub(crate) fn at3<T: Copy>(a: &[T; 3], i: usize) -> T {
     a[i.min(2)]
@@ -86,11 +80,9 @@ pub type Geo16 = fixed::types::I16F16;
 
 /// A number tier: the scalar type the lighting equation is evaluated in.
 ///
-/// Values of a tier are *unit-range* quantities: colour channels, unit-vector
-/// components, dot products, attenuation and spot factors. Positions and distances
-/// use the associated [`Scalar::Geo`] type.
-///
-/// All operations saturate at the tier's range and never panic.
+/// Values of a tier are *unit-range* quantities (colour channels, unit-vector
+/// components, dot products, attenuation and spot factors); positions and
+/// distances use [`Scalar::Geo`]. All operations saturate and never panic.
 pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync + 'static {
     /// The scalar for positions and distances (more range, less precision).
     type Geo: GeoScalar;
@@ -147,36 +139,26 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
         t.sub(c).add(t)
     }
 
-    /// `N·U/(|N||U|)`: the cosine between a normal `n` and a direction `u` that are
-    /// unit vectors up to rounding. Specular, brilliance and spot powers amplify any
-    /// deviation of a length from 1 (`d(xⁿ) = n·xⁿ⁻¹·dx`), and a unit vector rounded
-    /// to `Q14` is up to 5·10⁻⁵ too long or short (4·10⁻⁴ after a normalisation with
-    /// one Newton step).
-    ///
-    /// The default is `n·u`. `Q14` sums the three products before rounding and
-    /// corrects each length to first order when its square is within 2⁻⁵ of 1
-    /// (`N·U·(1 − (|N|² − 1)/2 − (|U|² − 1)/2)`: the residual is below 10⁻⁸ for
-    /// normalised vectors, 4·10⁻⁴ at the window's edge); a length outside the window
-    /// is taken as it is. The other tiers hold a normalised vector to 10⁻⁸ (`Q30`),
-    /// 10⁻⁷ (`f32`) or their inverse square root's error (`F32Fast<N>`: 4.7·10⁻⁶ with
-    /// two Newton steps, which is what limits its highlights at high exponents) and
-    /// use the default.
+    /// `N·U/(|N||U|)` for `n`, `u` unit up to rounding. Powers amplify a length's
+    /// deviation from 1 (`d(xⁿ) = n·xⁿ⁻¹·dx`); a `Q14` unit vector is up to
+    /// 5·10⁻⁵ off (4·10⁻⁴ after one Newton step). The default is `n·u`. `Q14`
+    /// sums the products unrounded and, when a squared length is within 2⁻⁵ of 1,
+    /// corrects it to first order (`N·U·(1 − (|N|² − 1)/2 − (|U|² − 1)/2)`:
+    /// residual below 10⁻⁸ for normalised vectors, 4·10⁻⁴ at the window's edge).
+    /// The others use the default: a normalised vector is within 10⁻⁸ (`Q30`),
+    /// 10⁻⁷ (`f32`) or 4.7·10⁻⁶ (`F32Fast<2>`, which limits its highlights at
+    /// high exponents).
     #[inline(always)]
     fn cos_normal(n: Vec3<Self>, u: Vec3<Self>) -> Self {
         n.dot(u)
     }
 
-    /// `R·V`, the Phong specular base: the cosine between the reflection `R` of `l`
-    /// about the normal `n` and the view direction `v`, all three unit vectors up to
-    /// rounding. `R·V = 2(N·L)(N·V) − L·V` is first-order sensitive to the length of
-    /// `N` at the mirror direction, twice as much as a plain cosine (see
-    /// [`Scalar::cos_normal`]).
-    ///
-    /// The default is `n.reflect(l).dot(v)`. `Q14` evaluates
-    /// `(2(N·L)(N·V)/|N|² − L·V)/(|L||V|)` with the three dot products unrounded and
-    /// the lengths corrected to first order as in [`Scalar::cos_normal`]; it falls
-    /// back to the default when a dot product exceeds 1.125 (vectors far from unit
-    /// length).
+    /// `R·V`, the Phong specular base, `R` the reflection of `l` about `n` (all
+    /// unit up to rounding); `R·V = 2(N·L)(N·V) − L·V` is twice as sensitive to
+    /// `|N|` as a plain cosine. The default is `n.reflect(l).dot(v)`. `Q14`
+    /// evaluates `(2(N·L)(N·V)/|N|² − L·V)/(|L||V|)`, dot products unrounded and
+    /// lengths corrected as in [`Scalar::cos_normal`], falling back to the
+    /// default when a dot product exceeds 1.125.
     #[inline(always)]
     fn reflect_dot(n: Vec3<Self>, l: Vec3<Self>, v: Vec3<Self>) -> Self {
         n.reflect(l).dot(v)
@@ -257,14 +239,12 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
         Self::normalize(v)
     }
 
-    /// The unit vector along `v` for a precomputed direction that kernels use
-    /// as a unit vector without correcting its length (the halfway vector, whose
-    /// `x^n` amplifies a length error `n` times): among the tier's vectors within
-    /// one step of the exact direction, the one nearest to unit length. The
-    /// default is [`Scalar::normalize_precise`]; `Q14`, whose rounding of each
-    /// component leaves the length up to `5·10⁻⁵` off (5 % of a highlight of
-    /// exponent 1024), picks the floor or ceiling of each component whose squared
-    /// length is nearest to 1 (about ten times closer).
+    /// The unit vector along `v` for a precomputed direction kernels take as
+    /// unit uncorrected (the halfway vector, whose `x^n` amplifies a length
+    /// error `n` times): of the tier's vectors within one step of the direction,
+    /// the one nearest to unit length. Default [`Scalar::normalize_precise`];
+    /// `Q14` (rounding leaves `5·10⁻⁵`, 5 % of a highlight of exponent 1024)
+    /// picks per component floor or ceiling, about ten times closer.
     #[inline]
     fn normalize_nearest_unit(v: Vec3<Self>) -> Vec3<Self> {
         Self::normalize_precise(v)
@@ -278,10 +258,9 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
         Self::normalize(v)
     }
 
-    /// Fraction bits of the rasterizer attribute a unit-range value becomes (26 for
-    /// every tier: a unit normal component is at most 2^26, so even a normal that
-    /// turns by 180° within one pixel at a silhouette stays far below the
-    /// rasterizer's gradient limit of 2^29 units per pixel): [`Scalar::to_attr`] is
+    /// Fraction bits of a unit-range value as a rasterizer attribute: 26 for
+    /// every tier (a normal turning 180° within one pixel stays far below the
+    /// gradient limit of 2^29 units per pixel). [`Scalar::to_attr`] is
     /// `round(x · 2^ATTR_FRAC)` saturated to `i32`.
     const ATTR_FRAC: u32;
     /// The value as a rasterizer attribute (see [`Scalar::ATTR_FRAC`]).
@@ -325,15 +304,12 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     /// (`tests/stability_distance.rs` sweeps every binade of both).
     fn geo_inv_quadratic(k: &<Self::Geo as GeoScalar>::InvQuadratic, d: Self::Geo) -> Self;
 
-    /// [`Scalar::geo_inv_quadratic`] beyond the tier's range: `(m, e)` with the
-    /// factor `m·2^e`. While the factor is below [`Scalar::MAX`], `e = 0` and `m` is
-    /// [`Scalar::geo_inv_quadratic`]'s value; above it (only possible without a
-    /// constant term, `a < ½`, near the light) the fixed tiers return `m` in
-    /// `[1, 2)` (the same relative accuracy) and `e ≥ 1`, and `(1, u32::MAX)` for
-    /// an infinite factor (`a + b·d + c·d² = 0`), so that a product with the factor
-    /// can saturate only after it is formed ([`Scalar::mul_pow2`]). The float tiers
-    /// keep the saturated value (`e = 0`; their maximum, 10⁹, saturates every
-    /// product of the factor above 10⁻⁹).
+    /// [`Scalar::geo_inv_quadratic`] beyond the tier's range, as `m·2^e`: `e = 0`
+    /// below [`Scalar::MAX`]; above it (only with `a < ½`, near the light) the
+    /// fixed tiers return `m` in `[1, 2)` (same relative accuracy) and `e ≥ 1`,
+    /// `(1, u32::MAX)` for an infinite factor, so a product saturates only once
+    /// formed ([`Scalar::mul_pow2`]). The float tiers keep `e = 0` (their 10⁹
+    /// saturates every product of the factor above 10⁻⁹).
     #[inline]
     fn geo_inv_quadratic_exp(
         k: &<Self::Geo as GeoScalar>::InvQuadratic,
@@ -369,23 +345,19 @@ pub trait Scalar: Copy + Debug + PartialEq + PartialOrd + Default + Send + Sync 
     fn ramp_at(r: &Self::Ramp, d: Self::Geo) -> Self;
 }
 
-/// Keeps LLVM from unrolling the loop that calls it: an empty barrier (no
-/// instruction) that the unroller counts as a call. Runtime unrolling costs a
-/// Cortex-M0 more than it saves: the unrolled body's values no longer fit its
-/// eight low registers, and short runs (a sphere's triangles are a few pixels
-/// wide) spend their time in the remainder loop.
+/// Keeps LLVM from unrolling the calling loop (an empty barrier the unroller
+/// counts as a call): on a Cortex-M0 the unrolled body overflows the eight low
+/// registers, and short runs spend their time in the remainder loop.
 #[inline(always)]
 pub(crate) fn no_unroll() {
     core::hint::black_box(());
 }
 
-/// A type with an all-zero value known at compile time, so that buffers of it
-/// can be built by a `const fn` (in a `static`, without building them on the
-/// stack): the payload types of the crate's shading modes (integer arrays)
-/// implement it; a kernel of one's own implements it for its
-/// [`Kernel::Vertex`](crate::shade::Kernel::Vertex) to use
-/// [`MeshBuffers::new`](crate::render::MeshBuffers::new) (slices through
-/// [`MeshMemory`](crate::render::MeshMemory) need nothing).
+/// A type with an all-zero value known at compile time, so that `const fn`
+/// buffers ([`MeshBuffers::new`](crate::render::MeshBuffers::new)) can hold it;
+/// a kernel of one's own implements it for its
+/// [`Kernel::Vertex`](crate::shade::Kernel::Vertex) (or uses slices through
+/// [`MeshMemory`](crate::render::MeshMemory)).
 pub trait Zeroed: Copy {
     /// The zero value.
     const ZERO: Self;

@@ -1,11 +1,9 @@
 //! Real exponents: `x^e` for `x` in [0, 1] and any `e` in 0..=65535, with the
 //! fraction of `e` evaluated only where there is one.
 //!
-//! `x^e = x^⌊e⌋ · x^f`: the integer part by repeated squaring ([`Scalar::powi`],
-//! exact up to the rounding of each product), the fraction `f` (kept in 2⁻¹⁶
-//! units) as `2^(f·log₂ x)` from two interpolated tables. An integer exponent
-//! costs one comparison more than [`Scalar::powi`] and never evaluates a
-//! logarithm.
+//! `x^e = x^⌊e⌋ · x^f`: the integer part by [`Scalar::powi`], the fraction `f`
+//! (in 2⁻¹⁶ units) as `2^(f·log₂ x)` from two interpolated tables; an integer
+//! exponent costs one comparison more than [`Scalar::powi`].
 //!
 //! Quantising `f` to 2⁻¹⁶ moves `x^e` by at most `2⁻¹⁶·x^e·|ln x|`, which is below
 //! `2⁻¹⁶/(e·e_)` (`e_` = 2.718…) for `e ≥ 1`: 8·10⁻⁷ at `e = 12.8`, 1.4·10⁻⁵ below
@@ -268,18 +266,14 @@ pub(crate) const POW_SEG: i32 = 1 << 16;
 /// The table coordinate of `x = 1`.
 pub(crate) const POW_END: i32 = POW_SEGMENTS as i32 * POW_SEG;
 
-/// `x^n` over `[x0, 1]` for a material's (real) shininess `n`, `x0 = 4096^(−1/n)`
-/// (below `x0` the power is under 1/4096 and read as 0), at `POW_SEGMENTS + 1`
-/// evenly spaced points, linearly interpolated: the per-pixel specular power of
-/// the shading kernels (one multiplication where [`Scalar::pow`] takes a chain of
-/// products or logarithms). `x0` (rounded down), `x` and `x^n` are `Q`-bit fixed
-/// point (`Q` = 14 or 15).
-///
-/// The table coordinate `u` of `x` is `(x − x0)/(1 − x0)·POW_END`; [`PowTable::get`]
-/// computes it, a kernel that interpolates the coordinate itself reads
-/// [`PowTable::at`]. Error: the chord of `x^n` over a segment, at most
-/// `n(n − 1)·x^(n−2)·(1 − x0)²/(8·64²)`, plus the rounding of the entries and of
-/// the interpolation (2^−Q each).
+/// The kernels' per-pixel specular power (one multiplication): `x^n` for a
+/// real shininess `n` over `[x0, 1]`, `x0 = 4096^(−1/n)` (below, under 1/4096,
+/// read as 0), at `POW_SEGMENTS + 1` even points, linearly interpolated; `x0`
+/// (rounded down), `x` and `x^n` in `Q`-bit fixed point (`Q` = 14 or 15). The
+/// coordinate of `x` is `u = (x − x0)/(1 − x0)·POW_END` ([`PowTable::get`];
+/// [`PowTable::at`] for a kernel interpolating `u`). Error: the chord,
+/// `n(n − 1)·x^(n−2)·(1 − x0)²/(8·64²)`, plus 2^−Q each for the entries' and
+/// the interpolation's rounding.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PowTable<const Q: u32> {
     /// `x0`, `Q`-bit.
@@ -296,12 +290,11 @@ impl<const Q: u32> PowTable<Q> {
     /// One in `Q`-bit fixed point.
     const ONE: i32 = 1 << Q;
 
-    /// The table of `x^n` (`n = 0` gives 1 everywhere), in 32-bit integer
-    /// arithmetic (no float operation, no 64-bit multiply or divide routine on a
-    /// Cortex-M0): see [`pow_entry`]. Every entry is within `2^−Q·(½ + 2⁻¹²)` of `x^n`: `round(x^n·2^Q)`,
-    /// or one off where `x^n·2^Q` lies within 2⁻¹² of a half (the test
-    /// `pow_table_entries_match_f64`); `x0` is `⌊4096^(−1/n)·2^Q⌋`, or one less
-    /// where that product lies within 2⁻¹⁰ above an integer.
+    /// The table of `x^n` (`n = 0`: all 1) in 32-bit integers, no float or
+    /// 64-bit routine ([`pow_entry`]). Each entry is within `2^−Q·(½ + 2⁻¹²)`
+    /// of `x^n`: `round(x^n·2^Q)`, or one off within 2⁻¹² of a half (test
+    /// `pow_table_entries_match_f64`); `x0` is
+    /// `⌊4096^(−1/n)·2^Q⌋`, or one less within 2⁻¹⁰ above an integer.
     pub(crate) fn new(n: Exponent) -> Self {
         const { assert!(Q <= 15) };
         let nu = n.units();

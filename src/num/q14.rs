@@ -7,14 +7,12 @@ use crate::num::Vec3;
 
 /// The fast 32-bit tier: a Q2.14 fixed-point value, range [−2, 2), resolution 2⁻¹⁴.
 ///
-/// Stored in an `i32` but always kept within the `i16` range, so the product of two
-/// values fits in 32 bits: one `MULS` on a Cortex-M0, no 64-bit multiply and no
-/// library call per pixel. `NEWTON` (0–3) is the number of Newton steps of the inverse
-/// square root used by [`Scalar::normalize`] and [`Scalar::geo_direction`]:
-/// relative error about 1.6·10⁻² with 0, 4·10⁻⁴ with 1, and the Q14 resolution
-/// with 2 (see `num::rsqrt`).
-///
-/// Saturation: every operation clamps its result to [−2, 2 − 2⁻¹⁴]; nothing wraps.
+/// Stored in an `i32` within the `i16` range, so a product fits 32 bits (one
+/// `MULS` on a Cortex-M0, no library call per pixel). `NEWTON` (0–3) is the
+/// Newton step count of the inverse square root of [`Scalar::normalize`] and
+/// [`Scalar::geo_direction`]: relative error about 1.6·10⁻² with 0, 4·10⁻⁴
+/// with 1, the Q14 resolution with 2. Every operation saturates to
+/// [−2, 2 − 2⁻¹⁴].
 ///
 /// ```
 /// use fixshade::num::{Q14, Scalar};
@@ -42,11 +40,9 @@ impl<const NEWTON: u8> Q14<NEWTON> {
         self.0
     }
 
-    /// `v / |v|` for a vector whose squared length is in [¼, 4): the range reduction
-    /// is one comparison (a Cortex-M0 has no count-leading-zeros instruction), then
-    /// one seed lookup and `NEWTON` steps. Cheaper than [`Scalar::normalize`] for
-    /// interpolated normals, which stay near unit length; other lengths fall back to
-    /// the general path, so the result is the same for every input.
+    /// `v / |v|`, for a squared length in [¼, 4) by one comparison (no CLZ on a
+    /// Cortex-M0), a seed lookup and `NEWTON` steps; other lengths take the
+    /// general path, so the result equals [`Scalar::normalize`]'s for every input.
     #[inline(always)]
     pub fn normalize_near_unit(v: Vec3<Self>) -> Vec3<Self> {
         // |v|² in Q28: each square ≤ 2^30 fits an i32, their sum (< 3·2^30) only a u32
@@ -118,11 +114,9 @@ const fn clamp_raw(raw: i32) -> i32 {
     }
 }
 
-/// `a + b·d + c·d²` in Q16.16 (saturated) for the Q16.16 distance `d`, within
-/// 32-bit products: the distance is normalised to 16 bits, `Dn = (D ≪ z) ≫ 15`
-/// with `z` its leading zeros less one (`d = Dn·2^(−1−z)`), each term is one
-/// product of 16-bit values (`mb·Dn`, `mc·(Dn² ≫ 16)`) shifted by its exponent
-/// (rounded, saturated). Negative distances count as 0.
+/// `a + b·d + c·d²` in Q16.16 (saturated) for the Q16.16 distance `d` within
+/// 32-bit products, as `geo_inv_quadratic` below describes; negative
+/// distances count as 0.
 #[inline(always)]
 fn inv_quadratic_sum(k: &InvQuadratic16, d: Geo16) -> u32 {
     let d = d.to_bits().max(0) as u32;

@@ -7,14 +7,12 @@ use super::{round_shr, Geo16, Scalar};
 use crate::num::Vec3;
 
 /// The accurate fixed tier: a Q2.30 fixed-point value in an `i32`, range [−2, 2),
-/// resolution 2⁻³⁰.
+/// resolution 2⁻³⁰, every operation saturating to [−2, 2 − 2⁻³⁰].
 ///
 /// Products are 32×32→64 bit (`__aeabi_lmul` on a Cortex-M0, `SMULL` on a
-/// Cortex-M3/M4). `NEWTON` (0–4) is the number of Newton steps of the inverse square
-/// root: relative error about 1.6·10⁻² with 0, 4·10⁻⁴ with 1, 2·10⁻⁷ with 2 and
-/// the Q30 resolution with 3 (see `num::rsqrt`).
-///
-/// Saturation: every operation clamps its result to [−2, 2 − 2⁻³⁰]; nothing wraps.
+/// Cortex-M3/M4). `NEWTON` (0–4) is the inverse square root's Newton step count:
+/// relative error about 1.6·10⁻² with 0, 4·10⁻⁴ with 1, 2·10⁻⁷ with 2 and
+/// the Q30 resolution with 3.
 ///
 /// ```
 /// use fixshade::num::{Q30, Scalar};
@@ -46,11 +44,8 @@ impl<const NEWTON: u8> Q30<NEWTON> {
     }
 }
 
-/// `a + b·d + c·d²` in Q32.32 (saturated) for the Q16.16 distance `d`, in 64-bit
-/// arithmetic: the distance normalised to 31 bits, `Dn = D ≪ z`
-/// (`d = Dn·2^(−16−z)`), the terms the products of the exact 24-bit mantissas
-/// with `Dn` and `Dn² ≫ 31` shifted into Q32.32 (rounded, saturated). Negative
-/// distances count as 0.
+/// `a + b·d + c·d²` in Q32.32 (saturated) for the Q16.16 distance `d`, as
+/// `geo_inv_quadratic` below describes; negative distances count as 0.
 #[inline(always)]
 fn inv_quadratic_sum(k: &InvQuadratic16, d: Geo16) -> u64 {
     let d = d.to_bits().max(0) as u32;

@@ -50,11 +50,10 @@ pub(crate) fn recip16_floor(q: u32) -> u32 {
     r
 }
 
-/// `⌊2^31 / q⌋` for `q` in `[2^15, 2^16)` (others are clamped into it on
-/// ARMv6-M, to 1 elsewhere): [`recip16_floor`] where the core
-/// has no division instruction (ARMv6-M: a library division costs about a
-/// hundred instructions), the division itself elsewhere (one instruction on
-/// a Cortex-M4 or an RV32IMC). The same value on every target.
+/// `⌊2^31 / q⌋` for `q` in `[2^15, 2^16)` (others clamped into it on ARMv6-M,
+/// to 1 elsewhere), the same on every target: [`recip16_floor`] on ARMv6-M (a
+/// library division costs about a hundred instructions), else the division
+/// (one instruction on a Cortex-M4 or an RV32IMC).
 #[inline(always)]
 pub(crate) fn div_2p31(q: u32) -> u32 {
     // ARMv6-M, told apart on stable Rust by its lack of 32-bit atomics (the

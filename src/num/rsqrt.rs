@@ -2,15 +2,11 @@
 //! (the fixed tiers, and the shading kernels' `1/|N|`), a bit-trick seed and
 //! Newton steps in `f32`.
 //!
-//! A positive integer `s` is written as `s = s′ · 2^(W − k)` with `s′ ∈ [¼, 1)` and
-//! `k` even (W = 32 or 64 bits). Then `1/√s = y · 2^((k − W)/2)` with
-//! `y = 1/√s′ ∈ (1, 2]`, which is what the mantissa functions return (`y` in
-//! fixed point together with `k`).
-//!
-//! Error of `y` (relative, measured by the unit tests below):
-//! seed alone ≤ 1.6·10⁻², one Newton step ≤ 4·10⁻⁴, two steps at the resolution of
-//! the output format. The shading kernels' [`rsqrt_q15`] (for `|N|²` near 1, no
-//! split) has its own, finer seeds: ≤ 7·10⁻⁵ after one step.
+//! With `s = s′ · 2^(W − k)`, `s′ ∈ [¼, 1)`, `k` even (W = 32 or 64), the
+//! mantissa functions return `y = 1/√s′ ∈ (1, 2]` and `k`:
+//! `1/√s = y · 2^((k − W)/2)`. Relative error of `y` (unit tests below): seed
+//! ≤ 1.6·10⁻², one Newton step ≤ 4·10⁻⁴, two at the output's resolution;
+//! [`rsqrt_q15`] (`|N|²` near 1, no split), finer seeds: ≤ 7·10⁻⁵ after one.
 
 /// Seed `1/√s′` in Q14 for `s′ ∈ [i/64, (i+1)/64)`, taken at the bin centre:
 /// `2^14 / √((i + ½)/64) = √(2^35 / (2i + 1))`. Only `i = 16..64` is reached for a
@@ -27,10 +23,9 @@ static SEED_Q14: [u16; 64] = {
     t
 };
 
-/// `1/√s` seeds in Q15 for `s` in `[2^28, 2^31)` (`|N|` in `[½, √2)`, `s` in
-/// Q30), one per `2^22`, taken at the bin centre (relative error ≤ 0.4 %): the
-/// seeds of [`rsqrt_q15`]. (Not [`SEED_Q14`] read finer: these bins are centred
-/// on odd multiples of `2^21`, and the kernels' pixels depend on the seeds.)
+/// The seeds of [`rsqrt_q15`]: `1/√s` in Q15 at the centres of `2^22`-wide
+/// bins over `[2^28, 2^31)` (relative error ≤ 0.4 %); not [`SEED_Q14`] read
+/// finer (other bin centres, and the kernels' pixels depend on the seeds).
 static SEED_Q15: [u16; 448] = {
     let mut t = [0u16; 448];
     let mut i = 0;

@@ -1,11 +1,8 @@
-//! 64-bit results from 32-bit operations, for the rare paths (clipping,
-//! perspective sub-span ends) and the incremental Phong kernel's span set-up:
-//! on a Cortex-M0 a 64-bit multiply or divide is a library routine
-//! (`__aeabi_lmul`, `__aeabi_uldivmod`); there these helpers use only
-//! 32 × 32 → 32-bit multiplications, 64-bit additions and shifts (inline
-//! instructions) and a bit-serial division, so no such routine is linked.
-//! Cores with a widening multiply (Armv7-M `UMULL`/`SMULL`, RV32IM
-//! `MULH[U]`) use it: the same values.
+//! 64-bit results from 32-bit operations for the rare paths (clipping,
+//! perspective sub-span ends) and the incremental kernel's span set-up: on a
+//! Cortex-M0 only 32 × 32 → 32-bit products, 64-bit additions, shifts and a
+//! bit-serial division, so no `__aeabi_lmul` or `__aeabi_uldivmod` is linked;
+//! cores with a widening multiply (Armv7-M, RV32IM) use it, same values.
 
 /// ARMv6-M, told apart on stable Rust by its lack of 32-bit atomics (as
 /// `recip::div_2p31`; the Arm target features are not stable in `cfg`).

@@ -1,21 +1,11 @@
-//! The one clipper: a triangle cut in clip space to the near plane (under a
-//! perspective projection) and to the set-up window, before the division by
-//! `w`, so that every point it projects lies in front of the eye and inside
-//! the window where set-up works in 32-bit arithmetic.
-//!
-//! Clip coordinates ([`Clip`]) put a point on the screen at
-//! `centre + (x/w, y/w)` sub-pixels. An orthographic transform has `w = 1`
-//! and a zero centre: its clip coordinates are the screen position and depth
-//! themselves, and the same planes cut it (the near plane never does).
-//!
-//! Every cut point is computed from its edge's endpoints in a canonical order
-//! (the smaller clip coordinates first), so two triangles sharing an edge cut
-//! it at bit-identical points: meshes stay watertight across the near plane
-//! and the window's edges. Attributes are interpolated linearly in clip space
-//! at a cut, which is the perspective-correct value there. The arithmetic uses
-//! 64-bit values built from 32-bit operations ([`crate::num::wide`]) and, for
-//! the facing of a triangle crossing the near plane, 128-bit products: the
-//! rare path only.
+//! The one clipper: a triangle cut in clip space ([`Clip`]), before the
+//! division by `w`, to the near plane (perspective only) and the set-up
+//! window. Each cut point is computed from its edge's endpoints in canonical
+//! order (the smaller clip coordinates first): bit-identical for both
+//! triangles of an edge. Attributes are interpolated linearly in clip space,
+//! the perspective-correct value at a cut. 64-bit values from 32-bit
+//! operations ([`crate::num::wide`]); 128-bit products for the facing across
+//! the near plane (the rare path).
 
 use super::{WINDOW_MAX, WINDOW_MIN};
 use crate::camera::{Clip, ClipSpace};

@@ -123,16 +123,12 @@ impl Edge {
 
 /// The bounding edges of a triangle walked down its rows.
 ///
-/// Rows whose centre lies above the middle vertex are bounded by the long edge
-/// (top → bottom) and the upper short edge (top → middle), rows below it by the
-/// long edge and the lower short edge (middle → bottom). A row whose centre is
-/// exactly level with the middle vertex applies both short edges (or the fill
-/// rule of a horizontal one), so every row gets exactly the pixels whose
-/// centres pass all three edge functions.
-///
-/// The edges are kept as the row's left and right bound; the row where the
-/// short edge changes is the only special one (a cold path), so an ordinary
-/// row costs two edge steps and one comparison.
+/// Rows above the middle vertex are bounded by the long edge and the upper
+/// short edge, rows below by the long edge and the lower one; a row level with
+/// the middle vertex applies both short edges (or a horizontal one's fill
+/// rule), so every row gets exactly the pixels passing all three edge
+/// functions. That row is the only special one (a cold path): an ordinary row
+/// costs two edge steps and one comparison.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Walker {
     left: Edge,

@@ -8,27 +8,22 @@
 //! per pixel, both with [`ATTR_FRAC`] fraction bits.
 //!
 //! - **Screen-linear**: one 32-bit plane per varying (14-bit barycentric
-//!   coefficients), evaluated once per run. When a plane's error bound could
-//!   carry values out of the range the kernel can take
-//!   ([`Kernel::safe`](crate::shade::Kernel::safe)), runs are clamped to the
-//!   vertex range. A triangle reaching beyond the set-up window is clipped to
-//!   it and its pieces set up; their values stay within the bound of the
-//!   whole triangle (`tests/raster_precision.rs` searches both cases for
-//!   their worst error).
-//! - **Perspective-correct**, as OpenGL interpolates: with `βᵢ`
-//!   the screen-space barycentric weights and `wᵢ` the clip `w` of the
-//!   vertices, a pixel gets `Σ βᵢ·aᵢ/wᵢ / Σ βᵢ/wᵢ`. It is evaluated exactly
-//!   (to the arithmetic below) at the ends of sub-spans of 8 pixels and
-//!   linearly in between (a kernel is handed one sub-span at a time); a
-//!   run's last sub-span ends at the run's last pixel (inside the triangle). Every value is a convex combination of the vertex
-//!   values (the weights are clamped to `[0, 1]`): no clamping is needed.
-//!   Arithmetic: `1/wᵢ` as the product of the other two `w` (16-bit
-//!   mantissas, no division), the weights in Q15 from one table-and-Newton
-//!   reciprocal per sub-span end, so a value is off by about
-//!   `2^−14·max|aⱼ − a₀|` plus the weights' error: their planes' own (which
-//!   dominates on large triangles) and the reciprocal's relative error,
-//!   which grows with the ratio of the vertices' `w` (about
-//!   `2^−16·w_max/w_min`).
+//!   coefficients), evaluated once per run; where a plane's error bound could
+//!   carry values out of [`Kernel::safe`](crate::shade::Kernel::safe), runs
+//!   are clamped to the vertex range. The pieces of a clipped triangle stay
+//!   within the whole triangle's bound (`tests/raster_precision.rs` searches
+//!   both cases for their worst error).
+//! - **Perspective-correct**, as OpenGL: with screen barycentric weights
+//!   `βᵢ` and clip `wᵢ`, a pixel gets `Σ βᵢ·aᵢ/wᵢ / Σ βᵢ/wᵢ`, evaluated at the
+//!   ends of sub-spans of 8 pixels (the last ending at the run's last pixel)
+//!   and linearly between; a kernel gets one sub-span at a time. Every value
+//!   is a convex combination of the vertex values (weights clamped to
+//!   `[0, 1]`): no clamping needed. `1/wᵢ` is the product of the other two `w`
+//!   (16-bit mantissas, no division), the weights Q15 from one
+//!   table-and-Newton reciprocal per sub-span end: a value is off by about
+//!   `2^−14·max|aⱼ − a₀|` plus the weights' error, their planes' own
+//!   (dominant on large triangles) and the reciprocal's, about
+//!   `2^−16·w_max/w_min` relative.
 //!
 //! Depth (`z/w`) is screen-linear under both projections.
 
@@ -139,14 +134,11 @@ pub(crate) struct Affine<V: Varyings> {
 }
 
 impl<V: Varyings> Affine<V> {
-    /// The planes of the first `used` of the vertices' values `v` (in the
-    /// order given to [`Setup::new`]; clamped to ±[`VARYING_LIMIT`]; the
-    /// others are not interpolated), positioned at the triangle's first row;
-    /// the values for which `exact(i)` holds get planes exact to rounding
-    /// (`Setup::plane_exact`). With `clamp`, it is set when a run must be
-    /// clamped (to the vertex range) so that every value stays in `safe(i)`
-    /// (with [`ATTR_FRAC`] bits), given the planes' error bounds; `None`: the
-    /// decision was made before (an earlier band of the same set-up).
+    /// The planes of the first `used` of the vertices' values `v` (order of
+    /// [`Setup::new`], clamped to ±[`VARYING_LIMIT`]) at the triangle's first
+    /// row, exact to rounding where `exact(i)` (`Setup::plane_exact`). `clamp`
+    /// is set when runs must be clamped to keep every value in `safe(i)`
+    /// given the error bounds (`None`: decided in an earlier band).
     #[inline(always)]
     pub(crate) fn new(
         s: &Setup,

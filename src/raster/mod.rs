@@ -15,27 +15,22 @@
 //!   counter-clockwise as seen on the screen (y down), e.g. `(0,0) → (0,10) →
 //!   (10,0)`. [`Cull::Back`] drops the others; with [`Cull::None`] both draw.
 //! - **Window**: set-up works on vertices inside a window of 2^15 sub-pixels
-//!   per axis, `WINDOW_MIN..=WINDOW_MAX` (−512 to 1536 pixels), so
-//!   that every product of the set-up fits 32 bits. A triangle reaching beyond
-//!   it, or behind the near plane of a perspective projection, is clipped in
-//!   clip space first (one clipper, canonical cuts, so neighbours
-//!   that share an edge get the same points and stay watertight). Frames up to
-//!   1024 × 1024 pixels lie inside the window with a guard band of at least
-//!   512 pixels; columns and rows beyond 1536 are never drawn.
+//!   per axis, `WINDOW_MIN..=WINDOW_MAX` (−512 to 1536 pixels), so that its
+//!   products fit 32 bits; a triangle reaching beyond it, or behind a
+//!   perspective near plane, is clipped in clip space first, with canonical
+//!   cuts so that neighbours stay watertight. Frames up to 1024 × 1024 have a
+//!   guard band of at least 512 pixels; nothing beyond 1536 is drawn.
 //! - **Depth**: `z` (0 near to 65535 far) is interpolated linearly in screen
 //!   space (it is `z/w` under a perspective projection); smaller is nearer; a
 //!   pixel passes when `z < stored`.
 //!
 //! # Arithmetic
 //!
-//! The set-up of a triangle takes one 32-bit division (the reciprocal of its
-//! area) and a few dozen 32 × 32 → 32-bit multiplications; edges are walked
-//! column by column without division (exact: the same integers as evaluating
-//! the edge functions at every pixel). Attribute planes carry 14-bit
-//! barycentric coefficients; the set-up bounds their error, and runs whose
-//! values could leave a kernel's range are clamped to the vertex range
-//! ([`interp`]). Clipping uses 64-bit values built from 32-bit operations (no
-//! 64-bit multiply or divide routine is linked).
+//! A triangle's set-up takes one 32-bit division (the reciprocal of its area)
+//! and a few dozen 32 × 32 → 32-bit multiplications; edges are walked column
+//! by column without division, exactly. Attribute planes carry 14-bit
+//! barycentric coefficients with a bounded error ([`interp`]). Clipping builds
+//! 64-bit values from 32-bit operations (no 64-bit routine is linked).
 
 pub(crate) mod clip;
 mod edge;

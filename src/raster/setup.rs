@@ -1,12 +1,10 @@
 //! Triangle set-up in 32-bit arithmetic: orientation, culling, the barycentric
 //! coefficients (one reciprocal of the area per triangle) and attribute planes.
 //!
-//! Every product here is a 32 × 32 → 32-bit multiplication (one `MULS` on a
-//! Cortex-M0) whose operands are bounded so that it cannot overflow, and the
-//! only division is the reciprocal of the area. The bounds come from the
-//! [window](super::WINDOW_MIN): every vertex lies within a span of 2^15
-//! sub-pixels, so coordinate differences are below 2^15 and edge-function
-//! products below 2^30.
+//! Every product is a 32 × 32 → 32-bit `MULS` that cannot overflow: within
+//! the [window](super::WINDOW_MIN) coordinate differences are below 2^15 and
+//! edge-function products below 2^30. The only division is the area's
+//! reciprocal.
 
 pub(crate) use crate::num::at3;
 
@@ -242,12 +240,10 @@ impl Setup {
     /// with the reference value's own rounding (< 24 units) the error is below
     /// `ε·(w + h) + 24`. Computed generously, saturating.
     ///
-    /// A plane whose per-pixel gradient saturated at ±2^30 ([`scale`]: a
-    /// sliver across which the attribute changes by more than four units of
-    /// its range per pixel) has no such bound: `u32::MAX`, so that its values
-    /// are clamped to the vertex range (fuzz target `surface`: a gradient
-    /// capped at 2^30 gave values 4.5 times the range, which overflowed the
-    /// fast normal-map kernel).
+    /// A plane whose gradient saturated at ±2^30 ([`scale`]: a sliver across
+    /// which the attribute changes by over four units of its range per pixel)
+    /// has no bound, `u32::MAX`, so its values are clamped to the vertex range
+    /// (fuzz target `surface`).
     #[inline]
     pub(crate) fn err(&self, p: &Plane) -> u32 {
         if p.dx.unsigned_abs() >= 1 << 30 || p.dy.unsigned_abs() >= 1 << 30 {
@@ -339,13 +335,10 @@ impl Setup {
         (r, b)
     }
 
-    /// [`Setup::plane`] with its gradients exact to rounding: from the
-    /// reciprocal `recip` ([`Setup::exact_recip`]) to 32 bits and 64-bit
-    /// products made of 32-bit ones, instead of 14-bit barycentric
-    /// coefficients, so that a value is off by at most one unit (of
-    /// `2^−ATTR_FRAC`) per pixel stepped: for values whose every unit counts
-    /// (texture coordinates: the texel a pixel samples). Values within
-    /// ±(2^15 − 1).
+    /// [`Setup::plane`] with gradients exact to rounding (one unit of
+    /// `2^−ATTR_FRAC` per pixel stepped), from the 32-bit reciprocal `recip`
+    /// ([`Setup::exact_recip`]) and 64-bit products of 32-bit ones instead of
+    /// 14-bit coefficients: for texture coordinates. Values within ±(2^15 − 1).
     #[inline]
     pub(crate) fn plane_exact(&self, a: [i32; 3], recip: (u32, u32)) -> Plane {
         let b = &self.bary;

@@ -31,12 +31,10 @@ impl<'a> Bins<'a> {
 }
 
 /// Sorts the triangles `0..n` into bins over `buf`. `classify(t)` gives the
-/// first and last frame row of triangle `t` (rows already clamped to the
-/// frame) or `None` when it is not drawn. It is called once per triangle when
-/// the index area has room beyond the visible triangles for a bitmap of the
-/// visible ones (`n/16` entries) and their start bands (one byte each, fewer
-/// than 255 bands): the usual case (`bins_len` gives one entry per triangle,
-/// about twice the visible ones of a closed mesh); else twice.
+/// first and last frame row (clamped) of triangle `t`, or `None` when it is
+/// not drawn; it is called once per triangle when the index area holds the
+/// [`Kept`] record too (the usual case with [`bins_len`](super::bins_len), and fewer than 255
+/// bands), else twice.
 ///
 /// # Errors
 ///
@@ -76,10 +74,8 @@ pub(crate) fn sort<'a>(
     heads.fill(0);
     cross.fill(0);
     // pass 1: count per start band; crossings as a difference array (+1 at
-    // the start band, −1 at the end band, wrapping u16 arithmetic). While
-    // there is room, the visible triangles' start bands are kept at the end
-    // of `indices` (a bitmap of the visible triangles, then a byte per start
-    // band, growing down) so that pass 2 need not classify again.
+    // the start band, −1 at the end band, wrapping u16 arithmetic); the start
+    // bands kept while there is room (`Kept`)
     let mut keep = Kept::new(indices.len(), n, bands);
     if keep.room {
         keep.clear(indices);

@@ -211,26 +211,16 @@ pub struct MeshMemory<'a, V> {
 }
 
 /// [`MeshMemory`] as arrays: `NV` vertices, `NB` bin entries, `NC` resume
-/// records. The payload type `V` is inferred from the shader.
+/// records. The payload type `V` is inferred from the shader. `new` is a
+/// `const fn`: the buffers can live in a `static` in `.bss`, never on the stack
+/// (unlike `cortex_m::singleton!` or `StaticCell::init`), e.g. through
+/// `static_cell::ConstStaticCell`, which hands out the `&'static mut` once
+/// without `unsafe`.
 ///
 /// ```
 /// use fixshade::render::{bins_len, MeshBuffers};
 /// // the standard sphere (362 vertices, 720 triangles) in 30 bands
-/// let buffers: MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 64> = MeshBuffers::new();
-/// assert_eq!(core::mem::size_of_val(&buffers), 362 * 12 + 782 * 2 + 64 * 6);
-/// ```
-///
-/// `new` is a `const fn`: the buffers can live in a `static`, built at
-/// compile time in `.bss` (not on the stack first, as a run-time constructor
-/// through `cortex_m::singleton!` or `StaticCell::init` would), for example
-/// with `static_cell::ConstStaticCell`, which hands out the `&'static mut`
-/// once without `unsafe`:
-///
-/// ```
-/// use fixshade::render::{bins_len, MeshBuffers};
-/// type Buffers = MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 64>;
-/// // evaluated at compile time (what a `static`'s initialiser needs)
-/// static BUFFERS: Buffers = MeshBuffers::new();
+/// static BUFFERS: MeshBuffers<[u16; 3], 362, { bins_len(720, 30) }, 64> = MeshBuffers::new();
 /// assert_eq!(core::mem::size_of_val(&BUFFERS), 362 * 12 + 782 * 2 + 64 * 6);
 /// ```
 #[derive(Clone, Copy, Debug)]
@@ -285,17 +275,15 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> Default
 /// - [`Orthographic`]: values interpolated screen-linearly (exact for an
 ///   orthographic projection), no division, no perspective code linked;
 ///   triangles reaching beyond the set-up window are clipped to it.
-/// - [`Perspective`](crate::camera::Perspective): each vertex is divided by
-///   its `w` once per frame; every value a kernel interpolates (colours,
-///   normals, eye positions, texture coordinates) is perspective-correct, as
-///   OpenGL interpolates it (exact at every 8th pixel of a run and at its last, linear in
-///   between: see [`interp`](crate::raster::interp)); depth (`z/w`) is affine
-///   on the screen and interpolated exactly. A triangle with a vertex behind
-///   the near plane or beyond the window is clipped in clip space to the near
-///   plane and to the window; every cut point is computed from its edge's
-///   endpoints in a canonical order, so meshes stay watertight across the
-///   near plane (the property tests render random sheets through it and count
-///   every pixel). No far-plane clipping: depth saturates at 65535 beyond it.
+/// - [`Perspective`](crate::camera::Perspective): each vertex divided by its
+///   `w` once per frame; every interpolated value is perspective-correct as in
+///   OpenGL (exact at every 8th pixel of a run and its last, linear between:
+///   [`interp`](crate::raster::interp)); depth (`z/w`) is exact. A triangle
+///   behind the near plane or beyond the window is clipped in clip space, each
+///   cut point computed from its edge's endpoints in canonical order, so meshes
+///   stay watertight (the property tests render random sheets through the near
+///   plane and count every pixel). No far-plane clipping: depth saturates at
+///   65535 beyond it.
 pub struct MeshDraw<'a, K: Kernel, P: Projection = Orthographic> {
     prep: Binned<'a, K, P>,
     /// This renderer's resume records and where it is in the frame.
@@ -333,50 +321,37 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// caller's `memory`; `options`: culling, silhouette refinement, a vertex
     /// stage already run ([`DrawOptions`]).
     ///
-    /// With refinement, after the vertex stage the triangles along the
-    /// outline of the mesh for this view are subdivided into curved (PN
-    /// triangle) pieces within the budget of the [`Refine`](super::refine::Refine) (see
-    /// [`refine`](super::refine) for the rule, the geometry and what happens
-    /// when the budget runs out). The new triangles are culled, binned and
-    /// drawn like mesh triangles, after them within each band (so a banded
-    /// frame is still the whole frame bit for bit). The bins must hold the
-    /// replacing triangles too: [`bins_len`](super::bins_len)`(triangles +
+    /// With refinement ([`refine`](super::refine)), the triangles along the
+    /// outline are then subdivided into curved pieces, drawn after the mesh's
+    /// own in each band (a banded frame is still the full frame bit for bit).
+    /// The bins must hold them too: [`bins_len`](super::bins_len)`(triangles +
     /// refine triangle budget, bands)` always suffices.
     ///
     /// ```
     /// use fixshade::prelude::*;
-    /// use fixshade::render::refine::RefineBuffers;
-    /// use fixshade::render::DrawOptions;
-    /// const N: (usize, usize) = uv_sphere_counts(8, 12);
-    /// static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(8, 12, 14);
-    /// let cam = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, Viewport::new(0, 0, 64, 64)?)?
-    ///     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
-    /// let t = cam.mesh_transform(&Mat4::rotate_x(0.3), SPHERE.frac)?;
-    /// let lighting = fixshade::standard::lambert::<Q14>()?;
+    /// use fixshade::render::{refine::RefineBuffers, DrawOptions};
+    /// use fixshade::standard::{lambert, transform, SPHERE};
+    /// let (t, lighting) = (transform()?, lambert::<Q14>()?);
     /// let shader = Shader::new(GouraudShading, &lighting, Linear);
-    /// let mut mem: MeshBuffers<[u16; 3], { N.0 }, { bins_len(N.1 + 256, 1) }, 0> = MeshBuffers::new();
-    /// let mut refine: RefineBuffers<[u16; 3], { N.0 }, 64, 256> = RefineBuffers::new();
+    /// let mut mem: MeshBuffers<[u16; 3], 362, { bins_len(720 + 256, 1) }, 0> = MeshBuffers::new();
+    /// let mut refine: RefineBuffers<[u16; 3], 362, 64, 256> = RefineBuffers::new();
     /// let options = DrawOptions::default().with_refine(refine.refine(0));
-    /// let layout = Layout::full(64, 64)?;
-    /// let mut draw = MeshDraw::new(layout, SPHERE.mesh(), &t, shader, mem.memory(), options)?;
+    /// let mut draw = MeshDraw::new(Layout::full(240, 240)?, SPHERE.mesh(), &t, shader, mem.memory(), options)?;
     /// assert!(draw.refine_stats().vertices > 0);
-    /// let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
-    /// let mut frame = FullFrame::new(64, 64, &mut color, Some(&mut depth))?;
-    /// frame.render(Rgb565::BLACK, &mut [&mut draw])?;
+    /// let (mut color, mut depth) = (vec![Rgb565::BLACK; 240 * 240], vec![0u16; 240 * 240]);
+    /// FullFrame::new(240, 240, &mut color, Some(&mut depth))?.render(Rgb565::BLACK, &mut [&mut draw])?;
     /// # Ok::<(), fixshade::error::Error>(())
     /// ```
     ///
     /// # Errors
     ///
-    /// [`RenderError::BufferTooSmall`] for a vertex cache shorter than the
-    /// mesh's vertices, too few bins, resume records given but too few
-    /// (none given: checked when the mesh is drawn, before anything is
-    /// drawn, unless it is drawn only through [`MeshDraw::share`]s), or
-    /// refinement memory shorter than the mesh's vertices (`vertex_words`);
+    /// Nothing is drawn on an error. [`RenderError::BufferTooSmall`] for a
+    /// vertex cache or refinement `vertex_words` shorter than the mesh's
+    /// vertices, too few bins, or too few resume records (none given: checked
+    /// before drawing, unless drawn only through [`MeshDraw::share`]s);
     /// [`RenderError::MissingAttribute`] when the shader reads texture
-    /// coordinates or tangents the mesh lacks;
-    /// [`RenderError::TooManyVertices`] when the mesh and its replacing
-    /// triangles exceed `u16` indices. Nothing is drawn then.
+    /// coordinates or tangents the mesh lacks; [`RenderError::TooManyVertices`]
+    /// when the mesh and its replacing triangles exceed `u16` indices.
     pub fn new<R: Refinement<'a, K::Vertex>>(
         layout: Layout,
         mesh: Mesh<'a>,
@@ -437,12 +412,10 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         })
     }
 
-    /// The vertex stage of vertices `first .. first + part.len()` of `mesh`
-    /// (fewer at the mesh's end) into `part`, the same entries of the vertex
-    /// cache: the vertex stage in pieces, for example half of the cache on
-    /// each core (`split_at_mut`), before [`MeshDraw::new`] with
-    /// [`DrawOptions::lit`]. The same work as the vertex stage of
-    /// [`MeshDraw::new`], entry for entry.
+    /// The vertex stage of [`MeshDraw::new`] for vertices `first .. first +
+    /// part.len()` of `mesh` (fewer at its end) into `part`, those entries of
+    /// the cache: e.g. half the cache on each core (`split_at_mut`), then
+    /// [`MeshDraw::new`] with [`DrawOptions::lit`].
     pub fn light_vertices(
         mesh: &Mesh<'_>,
         transform: &MeshTransform<P>,
@@ -453,20 +426,15 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         vertex::stage(mesh, transform, kernel, first, part);
     }
 
-    /// This prepared mesh for another band renderer, with its own resume
-    /// records `carry` (as many as [`MeshDraw::carry_needed`]): the vertex
-    /// cache, the bins and the shader are shared, read only. Several band
-    /// renderers, each with its own strip, depth strip and records, draw
-    /// disjoint sets of bands of one frame, for example one on each core
-    /// ([`Bands::render_bands`](crate::framebuffer::Bands::render_bands)); the frame is
-    /// the one a single renderer draws, bit for bit.
-    ///
-    /// Each renderer takes its bands from the top down. Consecutive bands
-    /// are cheapest: a triangle continuing into the next band resumes where
-    /// it left off, while at a band after a gap every triangle reaching
-    /// into it from above is set up again (so give each core one run of
-    /// bands, e.g. the upper and the lower half, rather than every other
-    /// band).
+    /// This prepared mesh for another band renderer with its own resume
+    /// records `carry` (as many as [`MeshDraw::carry_needed`]; too few are
+    /// refused by [`DrawBand::check`] before anything is drawn), sharing the
+    /// cache, bins and shader read-only. Renderers with their own strips draw
+    /// disjoint bands of one frame, e.g. one per core
+    /// ([`Bands::render_bands`](crate::framebuffer::Bands::render_bands)), bit
+    /// for bit the single-renderer frame. Each goes top down; give each one run
+    /// of bands (e.g. the upper and lower half): after a gap every triangle
+    /// reaching into the band from above is set up again.
     ///
     /// ```
     /// # use fixshade::prelude::*;
@@ -498,10 +466,6 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
     /// });
     /// # Ok::<(), fixshade::error::Error>(())
     /// ```
-    ///
-    /// Too few records are refused when the share is drawn
-    /// ([`DrawBand::check`]: [`RenderError::BufferTooSmall`] before anything
-    /// is drawn).
     #[inline(always)]
     pub fn share<'b>(&'b self, carry: &'b mut [Carry]) -> MeshDraw<'b, K, P>
     where
@@ -709,14 +673,12 @@ impl<K: Kernel, P: Projection> Binned<'_, K, P> {
         }
     }
 
-    /// One band's triangles: those of the records merged by triangle index
-    /// (within a band, mesh order) with those starting in the band. Each is
-    /// drawn into `Ok(band)`, its record kept when it continues (a band at
-    /// or above the last one drawn starts a new frame; after a gap,
-    /// [`Binned::catch_up`] first); or, for band `Err(b)`, not drawn, kept
-    /// (to be set up again) when it reaches the first row of band `p.next`.
-    /// (Three arguments, the band's drawing a tail call from
-    /// `draw_band`: its stack holds no frame between the two.)
+    /// One band's triangles: the records' merged in mesh order with those
+    /// starting in the band. Each is drawn into `Ok(band)`, its record kept when
+    /// it continues (a band at or above the last one drawn starts a new frame;
+    /// after a gap, [`Binned::catch_up`] first); for `Err(b)` not drawn, kept
+    /// when it reaches band `p.next`'s first row. (Three arguments: a tail call
+    /// from `draw_band`, no stack frame between.)
     fn merge(&self, p: &mut Progress<'_>, mut to: Result<&mut BandView<'_, K::Color>, u32>) {
         let b = match &to {
             Ok(band) => {

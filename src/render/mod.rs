@@ -12,15 +12,10 @@
 //! | spans | [`crate::shade::Kernel`] | the mode's depth-fused span kernel |
 //! | framebuffer | [`Bands`](crate::framebuffer::Bands), [`FullFrame`](crate::framebuffer::FullFrame) | a band strip flushed to any `DrawTarget`, or a whole frame in memory |
 //!
-//! All memory is the caller's: the vertex cache (one [`CachedVertex`] per
-//! mesh vertex), the bins (`u16`s, see [`bins_len`]), the resume records
-//! ([`Carry`], see [`MeshDraw::carry_needed`]), the colour strip and the depth
-//! strip. Nothing is allocated, nothing panics; a buffer too small is a
-//! [`RenderError`] before anything is drawn.
-//!
-//! Drawing order: within every band the triangles of a mesh are drawn in the
-//! order of the mesh, and meshes in the order given, so a frame rendered in
-//! bands is bit-for-bit the frame rendered whole.
+//! All memory is the caller's ([`MeshDraw`] lists it); nothing is allocated,
+//! nothing panics, a buffer too small is a [`RenderError`] before anything is
+//! drawn. Within every band a mesh's triangles are drawn in mesh order, meshes
+//! in the order given: a banded frame is bit for bit the frame drawn whole.
 
 mod bins;
 mod draw;

@@ -7,36 +7,25 @@
 //! The decision is made per **edge**, from its two vertices only, so both
 //! triangles sharing an edge split it identically and no crack opens:
 //!
-//! 1. every mesh vertex is classified for the current view by `N·V`, its
-//!    eye-space normal against the direction to the viewer (`V = (0, 0, 1)`
-//!    for an orthographic transform, towards the eye for a perspective one):
-//!    *front* when `N·V > τ`, *back* when `N·V < −τ`, *near* otherwise
-//!    (`τ` = [`Refine::threshold`], Q14; `τ = 0` is the plain sign test);
-//! 2. an edge is a *silhouette edge* when one vertex is front and the other
-//!    back (its normals straddle the band `|N·V| ≤ τ`), or both are near
-//!    (it runs along the silhouette); an edge from a near vertex to a front or
-//!    back one leaves the silhouette and is not split (a vertex exactly on
-//!    the silhouette would otherwise split every edge around it);
-//! 3. a silhouette edge is split at its midpoint, in the order the triangles
-//!    of the mesh meet it, while the budget lasts, and the decision is made
-//!    per **geometric edge**: an edge is known by its two endpoint
-//!    *positions* (a hash of the lower one picks its list of split edges), so
-//!    the copies of one edge (the two sides of a texture seam, where the
-//!    vertices are duplicated with other texture coordinates) decide together.
-//!    The first triangle that meets a copy creates its vertex, the second
-//!    finds it again; another copy of the same geometric edge gets a vertex of
-//!    its own (its texture coordinates and tangent) at exactly the same
-//!    position. Once the budget of new vertices is spent, a copy that finds
-//!    no room marks its geometric edge dead, and no copy of it is split (a
-//!    second pass writes the replacing triangles from the live edges only;
-//!    the vertices already made for the dead ones go unused). So an edge is
-//!    split for all its triangles or for none: within any budget the output
-//!    is crack-free, silhouette edges beyond the budget stay whole and their
-//!    triangles are drawn flat, as without refinement, just less round.
+//! 1. every mesh vertex is classified by `N·V`, its eye-space normal against
+//!    the direction to the viewer (`(0, 0, 1)` orthographic, towards the eye in
+//!    perspective): *front* when `N·V > τ`, *back* when `N·V < −τ`, *near*
+//!    otherwise (`τ` = [`Refine::threshold`], Q14; `τ = 0` is the sign test);
+//! 2. a *silhouette edge* goes from front to back or from near to near; a
+//!    near-to-front or near-to-back edge is not split (else a vertex exactly on
+//!    the silhouette would split every edge around it);
+//! 3. silhouette edges are split at their midpoint, in the order the triangles
+//!    meet them, while the budget lasts, per **geometric edge**: an edge is
+//!    keyed by its endpoint *positions*, so the copies of one edge (the two
+//!    sides of a texture seam) decide together, each copy getting its own new
+//!    vertex (texture coordinates, tangent) at the same position. When the
+//!    budget runs out, a copy that finds no room marks its geometric edge dead
+//!    and no copy of it is split. So every edge is split for all its triangles
+//!    or none: crack-free within any budget; edges beyond it stay whole (drawn
+//!    as without refinement).
 //!
 //! A triangle with 1, 2 or 3 split edges becomes 2, 3 or 4 triangles (one
-//! level of subdivision); each is culled, binned and drawn like a mesh
-//! triangle.
+//! level), each culled, binned and drawn like a mesh triangle.
 //!
 //! # The new vertex
 //!
@@ -45,38 +34,30 @@
 //! `M = (P_i + P_j)/2 − (w_ij·N_i + w_ji·N_j)/8`, `w_ij = (P_j − P_i)·N_i`;
 //! its normal the midpoint of the quadratic normal edge,
 //! `normalize(N_i + N_j + 2·n_ij)`, `n_ij = normalize(N_i + N_j − v_ij·(P_j − P_i))`,
-//! `v_ij = 2·(P_j − P_i)·(N_i + N_j) / |P_j − P_i|²`. All in integers, in
-//! model space on the mesh's raw `i16` positions and Q14 normals, and
-//! symmetric in `i` and `j` (the same bits whichever triangle or seam copy
-//! computes it). Texture coordinates are averaged, tangents averaged and
-//! normalised. The new vertex then goes through the vertex stage like a mesh
-//! vertex (transform, projection, [`Kernel::vertex`]) into the refinement's
-//! own cache slots.
+//! `v_ij = 2·(P_j − P_i)·(N_i + N_j) / |P_j − P_i|²`. In integers on the mesh's
+//! raw `i16` positions and Q14 normals (model space), symmetric in `i` and `j`
+//! (the same bits from either triangle or seam copy). Texture coordinates and
+//! tangents are averaged (tangents normalised); the vertex then goes through the
+//! vertex stage ([`Kernel::vertex`]) into the refinement's own cache slots.
 //!
-//! On a unit sphere the new vertices land within `10⁻⁴` of the sphere for
-//! the 15° edges of the 24 × 16 UV sphere (the chord midpoint is `0.0086`
-//! inside). Measured on the standard sphere drawn at 960 px, the outline's
-//! largest radial error drops from 2.50 to 1.19 px (1.00 to 0.75 px at
-//! 240 px, where pixels dominate); see `docs/tradeoff.md`.
+//! The new vertices land within `10⁻⁴` of a unit sphere for the 15° edges of
+//! the 24 × 16 UV sphere (the chord midpoint is `0.0086` inside). On the
+//! standard sphere at 960 px the outline's largest radial error drops from 2.50
+//! to 1.19 px (1.00 to 0.75 px at 240 px); see `docs/tradeoff.md`.
 //!
 //! # Limits
 //!
-//! - One level: each silhouette edge is halved once. Where the outline
-//!   crosses the middle of a triangle it still follows the straight cut
-//!   between two new vertices, so on a very coarse mesh the gain depends on
-//!   the view.
+//! - One level: where the outline crosses the middle of a triangle it follows
+//!   the straight cut between two new vertices.
 //! - The budget is `min(E, T/4)` new vertices (`E` vertex slots, `T` triangle
-//!   slots), which guarantees room for every replacing triangle on a mesh
-//!   whose edges each belong to at most two triangles; on a mesh with an
-//!   edge in more triangles, a triangle whose pieces do not fit is dropped
-//!   from the refinement's list and drawn whole (a crack is then possible
-//!   there).
-//! - The replacing triangles are drawn after the mesh's own within each band
-//!   (the order matters only without a depth buffer).
-//! - Vertices that share a position should share their normal (a seam, not a
-//!   crease): each copy is classified by its own normal, and a crease whose
+//!   slots): room for every replacing triangle when each edge belongs to at most
+//!   two triangles; otherwise a triangle whose pieces do not fit is drawn whole
+//!   (a crack is then possible there).
+//! - Replacing triangles are drawn after the mesh's own in each band (the
+//!   order matters only without a depth buffer).
+//! - Vertices sharing a position should share their normal: a crease whose
 //!   copies fall in different classes can be split on one side only (a
-//!   T-junction there).
+//!   T-junction).
 
 use super::vertex::{self, CachedVertex};
 use crate::camera::{MeshTransform, Projection};
@@ -128,9 +109,8 @@ pub struct RefineMemory<'a, V> {
 
 /// Silhouette refinement for [`DrawOptions::with_refine`](super::DrawOptions::with_refine):
 /// its memory and the threshold `τ` (Q14, `0..=16384`; see the [module](self)
-/// docs). `τ = 0` splits only the edges whose vertex normals straddle
-/// `N·V = 0`; a larger `τ` also splits edges next to the silhouette (rounder
-/// for coarse meshes, more triangles).
+/// docs): a larger `τ` also splits edges next to the silhouette (rounder for
+/// coarse meshes, more triangles).
 #[derive(Debug)]
 pub struct Refine<'a, V> {
     /// The memory.
@@ -477,10 +457,9 @@ fn find(
     (copy, twin)
 }
 
-/// Runs the refinement of one frame: classifies the vertices, decides which
-/// silhouette edges to split within the budget (per geometric edge: every copy
-/// of it or none), runs the vertex stage on the new vertices and writes the
-/// replacing triangles.
+/// Runs one frame's refinement (see the module docs): classifies the vertices,
+/// splits silhouette edges within the budget, runs the vertex stage on the new
+/// vertices and writes the replacing triangles.
 pub(crate) fn build<'a, K: Kernel, P: Projection>(
     mesh: &Mesh<'_>,
     t: &MeshTransform<P>,
@@ -527,11 +506,7 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
     }
     let class_of = |words: &[u16], i: usize| words.get(i).map_or(0, |w| w >> CLASS_SHIFT);
     let mut stats = RefineStats::default();
-    // pass 1: which edges are split. A copy of an edge met for the first time
-    // gets a new vertex while the budget lasts (at the position of another
-    // copy's new vertex, if there is one: the same bits on both sides of a
-    // seam); when the budget is spent, every copy of its geometric edge is
-    // marked dead, so that none is split
+    // pass 1: which edges are split (see the module docs, step 3)
     let mut used = 0usize;
     for tri in mesh.triangles() {
         let idx = tri.map(usize::from);

@@ -42,12 +42,10 @@ pub(crate) struct Resume {
 }
 
 /// Sets up the triangle of screen positions `xy` (inside the window), depths
-/// `z`, clip `cw` and values `v` and draws the part of it in `band` with
-/// `kernel` (triangle constants `t`), starting at the band's first row from
-/// `resume` when given. Returns where it continues in the next band, if it
-/// does. `PERSP`:
-/// perspective-correct values (from `cw`), else screen-linear. Not inlined:
-/// the common path and the clipping path share one copy.
+/// `z`, clip `cw` and values `v` and draws its part in `band` with `kernel`
+/// (constants `t`), from `resume` at the band's first row when given; returns
+/// where it continues in the next band. `PERSP`: perspective-correct values
+/// (from `cw`). Not inlined: the common and clipping paths share one copy.
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn draw<K: Kernel, const PERSP: bool>(
@@ -148,15 +146,12 @@ pub(crate) fn draw_clipped<K: Kernel, const PERSP: bool>(
 /// clipped to the near plane (`PERSP`: a perspective clip space) and the
 /// set-up window.
 ///
-/// The clipped polygon is convex, but rounding its cut corners to sub-pixels
-/// can bend a nearly straight corner inwards or fold a sliver over, and a fan
-/// over such a polygon has overlapping triangles (pixels written twice). So
-/// the rounded polygon is made convex again in the triangle's exact facing
-/// (from its clip coordinates): a corner that turns the other way, or not at
-/// all, is removed (it lies within a sub-pixel rounding of the line through
-/// its neighbours), until every corner turns the same way. If what remains
-/// still winds around more than once (a polygon of a few sub-pixels), it is
-/// dropped. The fan's triangles are then disjoint.
+/// Rounding the cut corners to sub-pixels can bend a nearly straight corner
+/// inwards or fold a sliver over, and a fan over that overlaps (pixels written
+/// twice). So in the triangle's exact facing (from its clip coordinates) every
+/// corner that turns the other way or not at all (within a sub-pixel of the
+/// line through its neighbours) is removed, and a polygon still winding more
+/// than once (a few sub-pixels) is dropped: the fan's triangles are disjoint.
 #[inline]
 pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     c: &[ClipCorner<V>; 3],
@@ -359,12 +354,10 @@ pub struct Corner {
 }
 
 impl Corner {
-    /// The corner at world point `position` with normal `normal` (`f32`,
-    /// world coordinates) seen through `camera`: its clip coordinates
-    /// ([`Camera::clip`], in [`Camera::clip_space`]), its eye position and
-    /// normal ([`Camera::eye`]; `w` for perspective-correct texture
-    /// coordinates). Add texture coordinates or a tangent with
-    /// [`VertexIn::with_uv`], [`VertexIn::with_tangent`].
+    /// The corner at world point `position` with normal `normal` (`f32`) seen
+    /// through `camera`: clip coordinates ([`Camera::clip`]), eye position and
+    /// normal ([`Camera::eye`]) and `w`; add texture coordinates or a tangent
+    /// with [`VertexIn::with_uv`], [`VertexIn::with_tangent`].
     ///
     /// # Errors
     ///
@@ -414,9 +407,7 @@ impl Corner {
 }
 
 /// One triangle a program brings itself, as an item of a frame
-/// ([`DrawBand`]): drawn by [`draw_triangle`] in every band, into any
-/// [`Bands`](crate::framebuffer::Bands) or
-/// [`FullFrame`](crate::framebuffer::FullFrame) and so any `DrawTarget`.
+/// ([`DrawBand`]): [`draw_triangle`] in every band.
 ///
 /// ```
 /// use fixshade::prelude::*;
@@ -473,18 +464,14 @@ impl<K: Kernel> DrawBand<K::Color> for Triangle<'_, K> {
     }
 }
 
-/// Draws one triangle into `band` with `kernel`: the per-triangle entry of
-/// the pipeline, for programs that bring their own screen- or clip-space
-/// triangles ([`Triangle`] makes one an item of a frame; a [`DrawBand`] of
-/// your own calls this for every band). The corners ([`Corner::world`] from
-/// `f32` world coordinates through a camera, [`Corner::screen`] from pixel
-/// positions) go through the kernel's vertex stage, then the same culling
-/// (`cull`), clipping (near plane and window, in clip space), set-up,
-/// interpolation and span stage as a mesh triangle: a mesh drawn triangle by
-/// triangle with the corners of its transform
-/// ([`MeshTransform::clip`](crate::camera::MeshTransform::clip), its normal
-/// and eye rows) gives the pixels of [`MeshDraw`](super::MeshDraw) bit for
-/// bit. Draws the triangle's rows that the band holds; never panics.
+/// Draws the rows `band` holds of one triangle with `kernel`: the pipeline's
+/// per-triangle entry ([`Triangle`] makes one an item of a frame; a
+/// [`DrawBand`] of your own calls this per band). The corners
+/// ([`Corner::world`], [`Corner::screen`]) go through the kernel's vertex
+/// stage, then the culling (`cull`), clipping, set-up, interpolation and span
+/// stage of a mesh triangle: corners from a mesh's transform
+/// ([`MeshTransform::clip`](crate::camera::MeshTransform::clip)) give
+/// [`MeshDraw`](super::MeshDraw)'s pixels bit for bit. Never panics.
 ///
 /// ```
 /// use fixshade::camera::ClipSpace;

@@ -80,12 +80,10 @@ impl<I: Illuminate, E: Encoder<C>, C: OutputColor> Kernel for Shader<'_, Gouraud
 /// fraction bits each), green in another: two additions per pixel instead of
 /// three, and no masks.
 ///
-/// Each field stays inside its 16 bits: the vertex values are
-/// `c·2^s + 2^(s−1)` with `(c + ½)·2^s < 2^15` (see [`Linear`](super::Linear)), the
-/// run's values are within the range [`Encoder::safe`] allows, and rounding
-/// the steps to 2^−11 of a channel moves a value by at most `len/2` such units
-/// over a run, far less than the half-step margin (1024 units) for any run of
-/// the window.
+/// Each field stays inside its 16 bits: vertex values `c·2^s + 2^(s−1)` with
+/// `(c + ½)·2^s < 2^15` ([`Linear`](super::Linear)), run values within
+/// [`Encoder::safe`], and steps rounded to 2^−11 of a channel drift by at most
+/// `len/2` units over a run, far below the 1024-unit half-step margin.
 #[derive(Clone, Copy)]
 struct Channels565 {
     rb: u32,

@@ -142,11 +142,9 @@ fn shade_run<I: Illuminate, C: OutputColor, const K: usize, const SPEC: bool>(
     }
 }
 
-/// The span of [`shade_run`] whose normal leaves the fast path's range: the
-/// per-pixel lighting of `lighting` on the interpolated normal (`a`/`d` as
-/// in [`shade_run`]). Out of line and cold: inlined, its registers and stack
-/// weighed on the fast path's span set-up (27 instructions a span on the
-/// Cortex-M4F).
+/// A span of [`shade_run`] that leaves the fast path's range: `lighting` per
+/// pixel. Out of line and cold (inlined, it cost the fast span set-up 27
+/// instructions on the Cortex-M4F).
 #[inline(never)]
 #[cold]
 fn general<I: Illuminate, C: OutputColor>(

@@ -15,22 +15,15 @@
 //! | `GouraudShading.`[`textured`](GouraudShading::textured)`(…)`, `PhongShading.textured(…)` ([`Textured`]) | `textured.rs` | per vertex or per pixel, primary and secondary colour apart | colours or normal, texture coordinates | as the mode (`texel × primary + secondary`, OpenGL's `GL_MODULATE`) |
 //! | `PhongShading.`[`normal_mapped`](PhongShading::normal_mapped)`(…)`, `IncrementalPhongShading.normal_mapped(…)` ([`NormalMapped`]) | `normal_mapped.rs` | at every pixel with the normal of a [`NormalMap`](crate::texture::NormalMap) in the tangent frame: the full model, or incrementally (`Q14`, one directional light) | normal and tangent, or `L`, `H` in tangent space; texture coordinates | yes, and surface detail |
 //!
-//! A mode that cannot shade a lighting does not compile with it (the
-//! incremental and quadratic kernels take directional lights only), and
-//! nothing chooses a kernel behind the user's back: the per-pixel modes share
-//! one core (`perpixel.rs`), each kernel is a plain `impl Kernel`.
-//!
-//! The reflection models ([`Lambert`](crate::lighting::Lambert),
-//! [`Phong`](crate::lighting::Phong), [`BlinnPhong`](crate::lighting::BlinnPhong))
-//! say *what light a point reflects* and live in [`lighting`](crate::lighting).
-//! Every mode writes through an [`Encoder`] (plain rounding, ordered
-//! dithering or a gamma table).
-//!
-//! Every value a kernel interpolates is perspective-correct under a
-//! perspective projection ([`crate::raster::interp`]). A shader draws meshes
+//! A mode that cannot shade a lighting does not compile with it, and nothing
+//! chooses a kernel behind the user's back: each kernel is a plain `impl
+//! Kernel` (the per-pixel modes share `perpixel.rs`). *What light a point
+//! reflects* is the reflection model's ([`lighting`](crate::lighting)). Every
+//! mode writes through an [`Encoder`] (rounding, ordered dithering or a gamma
+//! table); every interpolated value is perspective-correct under a perspective
+//! projection ([`crate::raster::interp`]). A shader draws meshes
 //! ([`MeshDraw`](crate::render::MeshDraw)) and single triangles
-//! ([`draw_triangle`](crate::render::draw_triangle)) through the same
-//! pipeline.
+//! ([`draw_triangle`](crate::render::draw_triangle)) alike.
 
 mod flat;
 mod gouraud;
@@ -68,65 +61,51 @@ pub struct FlatShading;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct GouraudShading;
 
-/// Phong shading, per-pixel lighting: the vertex normals are interpolated
-/// across the triangle, renormalised per pixel with the tier's
-/// [`Scalar::normalize_interpolated`], and every pixel is lit with the full
-/// lighting model, for every tier, light kind and model. When the lighting
-/// needs the surface position (point or spot lights, a local viewer, fog) the
-/// eye-space position is interpolated too. Catches the highlight in the
-/// middle of a large triangle.
-///
-/// For a `Q14` lighting of directional lights,
-/// [`IncrementalPhongShading`] gives the same pictures within the same error
-/// bound at a fraction of the cost on a Cortex-M0.
+/// Phong shading, per-pixel lighting: the interpolated vertex normal is
+/// renormalised per pixel ([`Scalar::normalize_interpolated`]) and lit with the
+/// full model, for every tier, light kind and model (the eye-space position is
+/// interpolated too when the lighting needs it). Catches the highlight inside
+/// a large triangle. For `Q14` directional lights, [`IncrementalPhongShading`]
+/// gives the same pictures within the same bound, far cheaper on a Cortex-M0.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PhongShading;
 
-/// Per-pixel Phong shading computed incrementally along each span: the Cortex-M0
-/// fast path for `K` (1 to 4) directional lights in an array, a viewer at infinity,
-/// no fog and the [`Lambert`](crate::lighting::Lambert) or
-/// [`BlinnPhong`](crate::lighting::BlinnPhong) model in the `Q14` tiers
-/// (`Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>`, `M` an
-/// [`IncrementalModel`]): the same images as [`PhongShading`] up to the error
-/// stated below, at a fraction of the cost on a Cortex-M0:
+/// Per-pixel Phong shading computed incrementally along each span, the
+/// Cortex-M0 fast path: `Lighting<Q14<NW>, [DirectionalLight<Q14<NW>>; K], M>`
+/// (`K` 1 to 4, a viewer at infinity, no fog, `M` an [`IncrementalModel`]:
+/// Lambert or Blinn-Phong), the same images as [`PhongShading`] up to the
+/// error stated below, for a fraction of the cost:
 ///
-/// - `N·L` and `N·H` of the *unnormalised* interpolated normal are affine over the
-///   triangle: the rasterizer interpolates them as attributes (`3 + 2K` attributes:
-///   the normal, then `N·L` and `N·H` per light), one addition per light and pixel;
-/// - `|N|²` is quadratic: second-order forward differences, two additions;
-/// - `1/|N|` is refined by one Newton step from the previous pixel's value
-///   (exact at the start of every span; two steps on spans where `|N|` changes
-///   by more than 2^-8 per pixel), three multiplications per step;
-/// - `(N·H)^n` comes from a 65-entry table of the material's power over
-///   `[x0, 1]`, `x0 = 4096^(−1/n)` (below `x0` the power is under 1/4096), linearly
-///   interpolated: one multiplication;
-/// - the colour is accumulated directly in output channel units: one
-///   multiplication per channel and term.
+/// - `N·L` and `N·H` of the *unnormalised* normal are affine: interpolated as
+///   attributes (`3 + 2K`: the normal, then both per light), one addition each;
+/// - `|N|²` by second-order forward differences, two additions;
+/// - `1/|N|` by one Newton step (three multiplications) from the previous
+///   pixel's (exact at each span start; two where `|N|` changes by over 2^-8
+///   per pixel);
+/// - `(N·H)^n` from a 65-entry table over `[x0, 1]`, `x0 = 4096^(−1/n)`,
+///   linearly interpolated: one multiplication;
+/// - the colour accumulated in output channel units, one multiplication per
+///   channel and term.
 ///
 /// Output is rounded to nearest like [`Linear`] (the shader's encoder is not
 /// used). A span whose interpolated normal gets shorter than ½ or longer than 2
-/// (normals more than ~120° apart across a triangle), or whose `|N|²` changes
-/// by more than 1/8 from one pixel to the next (tiny triangles with very
-/// different vertex normals), falls back to the per-pixel lighting of
-/// [`PhongShading`] for that span: the result
-/// stays within the bound, only the speed differs.
+/// (normals ~120° apart), or whose `|N|²` changes by more than 1/8 per pixel,
+/// falls back to [`PhongShading`]'s per-pixel lighting: same bound, slower.
 ///
 /// Error against the `f64` reference: see the golden tests and `docs/tradeoff.md`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct IncrementalPhongShading;
 
 /// Per-pixel Phong shading by re-anchored quadratic interpolation along each
-/// span (see [`QuadraticModel`]; the tiers: the `Q14` tiers, `f32` and
-/// [`F32Fast`](crate::num::F32Fast); the lighting: one `Lighting` of `K` directional lights):
-/// the lighting is evaluated exactly at anchors 4–32 pixels apart (segment
-/// lengths from bounds on the third derivatives, so the interpolation adds at
-/// most 0.3 + 0.3 steps of the 8-bit output), each encoded colour channel
-/// follows the quadratic through them, and the specular power `x^n` comes per
-/// pixel from a table. Directional lights and a viewer at infinity; Lambert,
-/// Blinn-Phong and Phong `R·V`; the `Q14` tiers, `f32` and [`F32Fast`](crate::num::F32Fast);
-/// any [`Encoder`]. Cheapest where the lighting is smooth: Lambert, and the FPU
-/// tiers; for `Q14` Blinn-Phong [`IncrementalPhongShading`] is cheaper
-/// (`docs/tradeoff.md`).
+/// span ([`QuadraticModel`]): the lighting is evaluated exactly at anchors
+/// 4–32 pixels apart (segment lengths from bounds on the third derivatives, so
+/// the interpolation adds at most 0.3 + 0.3 steps of the 8-bit output), each
+/// encoded channel follows the quadratic through them, and `x^n` comes per
+/// pixel from a table. `K` directional lights, a viewer at infinity; Lambert,
+/// Blinn-Phong and Phong `R·V`; the `Q14` tiers, `f32` and
+/// [`F32Fast`](crate::num::F32Fast); any [`Encoder`]. Cheapest where the
+/// lighting is smooth (Lambert, the FPU tiers); for `Q14` Blinn-Phong
+/// [`IncrementalPhongShading`] is cheaper (`docs/tradeoff.md`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct QuadraticPhongShading;
 
@@ -196,13 +175,11 @@ impl<'l, M: Mode<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'l,
     }
 }
 
-/// The vertex payload of shading mode `M`: what the vertex cache
-/// ([`CachedVertex`](crate::render::CachedVertex),
-/// [`MeshBuffers`](crate::render::MeshBuffers)) holds per vertex for a
-/// [`Shader`] of that mode, the same for every lighting, encoder and output
-/// colour: `[u16; 3]` for [`GouraudShading`], `[i16; 3]` for [`FlatShading`]
-/// and the per-pixel modes, 16 bytes for `GouraudShading.textured(…)`, …
-/// A firmware sizes its `static` buffers with it:
+/// The vertex payload of shading mode `M` (whatever the lighting, encoder and
+/// output colour): what the vertex cache ([`MeshBuffers`](crate::render::MeshBuffers))
+/// holds per vertex. `[u16; 3]` for [`GouraudShading`], `[i16; 3]` for
+/// [`FlatShading`] and the per-pixel modes, 16 bytes for
+/// `GouraudShading.textured(…)`, …; a firmware sizes its `static` buffers with it:
 ///
 /// ```
 /// use fixshade::prelude::*;
@@ -293,14 +270,11 @@ impl VertexIn {
 /// A shading kernel: what the pipeline needs from a shader. Every shading
 /// mode implements it, and so may a program's own kernel.
 ///
-/// Per frame the pipeline calls [`Kernel::vertex`] once per vertex (the vertex
-/// stage, into the vertex cache), [`Kernel::triangle`] once per visible
-/// triangle (its constants and the values to interpolate at its corners), and
-/// [`Kernel::span`] for every run of pixels that passed the depth test, with
-/// the interpolated values at the run's first pixel and their change per
-/// pixel (see [`crate::raster::interp`] for units and for how they are
-/// interpolated: screen-linear, or perspective-correct in sub-spans of 8
-/// pixels under a perspective projection).
+/// Per frame the pipeline calls [`Kernel::vertex`] once per vertex (into the
+/// vertex cache), [`Kernel::triangle`] once per visible triangle (its constants
+/// and corner values), and [`Kernel::span`] for every run of pixels that passed
+/// the depth test, with the values at its first pixel and their change per
+/// pixel (units and interpolation: [`crate::raster::interp`]).
 pub trait Kernel {
     /// The pixel colour written.
     type Color: OutputColor;
@@ -326,10 +300,8 @@ pub trait Kernel {
     /// pipeline passes zeros and skips transforming the mesh's tangents).
     const NEEDS_TANGENT: bool = false;
     /// Whether the span stage asks [`Kernel::fill`] how to write a whole
-    /// screen-linear run (its values clamped over the whole run where they
-    /// need it); else it splits runs at the depth test itself and calls
-    /// [`Kernel::span`] for each passing run, with that run's values. The
-    /// default is `false`.
+    /// screen-linear run; else (the default) it calls [`Kernel::span`] for each
+    /// run that passes the depth test.
     const FILLS: bool = false;
 
     /// The payload of vertex `v`.
@@ -356,13 +328,11 @@ pub trait Kernel {
     }
 
     /// Whether value `i` needs its screen-linear interpolation exact to
-    /// rounding (one unit of 2^−[`ATTR_FRAC`](crate::num::ATTR_FRAC) per
-    /// pixel stepped) rather than within the 14-bit barycentric
-    /// coefficients' error: texture coordinates, whose every unit can move a
-    /// pixel to the neighbouring texel. Costs the triangle's set-up one
-    /// bit-serial division and four 16 × 16-bit products per such value. The
-    /// default is `false`; perspective-correct values are exact to the same
-    /// order anyway.
+    /// rounding (one unit of 2^−[`ATTR_FRAC`](crate::num::ATTR_FRAC) per pixel
+    /// stepped) rather than within the 14-bit barycentric coefficients' error:
+    /// texture coordinates, where one unit can change the texel. Costs the
+    /// set-up a bit-serial division and four 16 × 16-bit products per value.
+    /// Default `false` (perspective-correct values are that exact anyway).
     #[inline(always)]
     fn exact(&self, i: usize) -> bool {
         let _ = i;
@@ -384,11 +354,7 @@ pub trait Kernel {
     );
 
     /// How the span stage writes the run of `n` pixels whose values start at
-    /// `start` and step by `step` (asked when [`Kernel::FILLS`]): one colour,
-    /// a rounded 5-6-5 ramp, or [`Fill::Shaded`] (the default: the stage
-    /// depth-tests the run and calls [`Kernel::span`] for each passing part).
-    /// The first two the stage writes in its own loops, the depth test fused
-    /// in: one pass over the pixels instead of two.
+    /// `start` and step by `step` (asked when [`Kernel::FILLS`]): see [`Fill`].
     #[inline(always)]
     fn fill(
         &self,
@@ -401,7 +367,9 @@ pub trait Kernel {
     }
 }
 
-/// How the span stage writes a run of a kernel's pixels ([`Kernel::fill`]).
+/// How the span stage writes a run of a kernel's pixels ([`Kernel::fill`]):
+/// the first two in its own loops with the depth test fused in (one pass over
+/// the pixels instead of two).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Fill<C> {
     /// Every pixel this colour.
@@ -420,8 +388,8 @@ pub enum Fill<C> {
         /// Its step.
         dg: u32,
     },
-    /// The kernel's own colours: [`Kernel::span`] on each run of pixels that
-    /// pass the depth test.
+    /// The default: [`Kernel::span`] on each run of pixels that pass the depth
+    /// test.
     Shaded,
 }
 

@@ -28,21 +28,17 @@ use crate::texture::{Nearest, NormalMap, Wrap};
 /// - `IncrementalPhongShading.normal_mapped(map)` (`Q14`, one directional
 ///   light in an array, a viewer at infinity, no fog, Lambert or
 ///   Blinn-Phong): `L` and `H` are transformed into the tangent frame per
-///   vertex and interpolated; per pixel the texel (a Q14 unit normal, used as
-///   stored), `n·L` and `n·H` as three multiply-adds each, both divided by
-///   the length of the interpolated `L` and `H` (`1/|L|`, `1/|H|` by one
-///   Newton step each from the previous pixel's value, `|L|²`, `|H|²` by
-///   forward differences, exact at every span start), `(n·H)^shininess` from
-///   the power table of [`IncrementalPhongShading`], the colour accumulated
-///   in output channel units (rounded like [`Linear`](super::Linear)). Spans
-///   whose interpolated `L` or `H` is shorter than ½, or changes length by
-///   more than 2^-4 per pixel, take an exact inverse square root per pixel
-///   (same result within the bound, slower).
+///   vertex and interpolated; per pixel `n·L` and `n·H` of the texel (used as
+///   stored) are three multiply-adds each, divided by `|L|`, `|H|` (one Newton
+///   step each from the previous pixel, squares by forward differences,
+///   exact at every span start), `(n·H)^n` from [`IncrementalPhongShading`]'s
+///   table, the colour accumulated in channel units (rounded like
+///   [`Linear`](super::Linear)). Spans where `L` or `H` is shorter than ½ or
+///   changes length by more than 2^-4 per pixel take an exact inverse square
+///   root per pixel (same bound, slower).
 ///
-/// Texture coordinates are interpolated like every other value (screen-linear
-/// or perspective-correct: [`crate::raster::interp`]); the map is sampled at
-/// the nearest texel. Error bounds and costs: `docs/tradeoff.md` ("Normal
-/// mapping").
+/// The map is sampled at the nearest texel. Error bounds and costs:
+/// `docs/tradeoff.md` ("Normal mapping").
 #[derive(Clone, Copy, Debug)]
 pub struct NormalMapped<'m, M> {
     mode: M,

@@ -1,11 +1,8 @@
-//! The per-pixel core: every pixel lit with the full lighting model, for
-//! every tier, light kind and model, any [`Encoder`]. One loop serves
-//! [`PhongShading`](super::PhongShading), its normal-mapped and textured forms
-//! and both: the surface's [`Features`] (constants of each kernel) decide
-//! which values are interpolated and what a pixel reads. Each mode's
-//! `Kernel` is written in its own file ([`phong`](super::phong),
-//! [`normal_mapped`](super::normal_mapped), [`textured`](super::textured))
-//! by [`per_pixel_kernel!`] over the functions here.
+//! The per-pixel core: one loop, the full lighting model for every tier,
+//! light kind, model and [`Encoder`], serves [`PhongShading`](super::PhongShading)
+//! and its normal-mapped and textured forms; the surface's [`Features`]
+//! decide what is interpolated and read. Each mode's `Kernel` is written by
+//! [`per_pixel_kernel!`] in its own file.
 //!
 //! The values interpolated, in this order (only what the surface has):
 //! the normal (3, Q14), the texture coordinates (2, Q12), the tangent (3,

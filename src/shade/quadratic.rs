@@ -30,23 +30,16 @@ const TAU_Q: f32 = 0.4;
 /// The precomputed constants of [`QuadraticPhongShading`] for `K` directional
 /// lights and a viewer at infinity.
 ///
-/// Along a span the shader evaluates the lighting at *anchors* (the ends and
-/// middle of segments of 4 to 32 pixels; `1/|N|` from a 448-entry seed and one
-/// Newton step) and interpolates each encoded colour channel quadratically in
-/// between: two additions per channel and pixel. The specular term is not
-/// interpolated: the table coordinate of `N̂·Ĥ` (Blinn-Phong) or `R̂·V̂` (Phong)
-/// is, and `x^n` comes per pixel from a 65-entry table over `[x0, 1]`,
-/// `x0 = 4096^(−1/n)`, linearly interpolated. The segment length is chosen per
-/// segment from bounds on the third derivatives (see `segment.rs`), so that the
-/// interpolation adds at most 0.3 (ambient + diffuse) and 0.3 (specular) 8-bit
-/// steps; segments where `N·L` may change sign are split down to single
-/// pixels, which are evaluated exactly.
-///
-/// The shader's encoder is used (plain rounding, dithering, gamma). A span
-/// falls back to the general path ([`PhongShading`](super::PhongShading)'s
-/// per-pixel lighting) pixel by pixel where the interpolated normal is shorter
-/// than ½ (normals more than 120° apart across a triangle) or longer than
-/// √2, and as a whole when the normal turns by more than ¼ radian per pixel.
+/// Anchors (ends and middle of each segment) get `1/|N|` from a 448-entry
+/// seed and one Newton step; between them each encoded channel is quadratic
+/// (two additions per channel and pixel), except the specular term, whose
+/// table coordinate of `N̂·Ĥ` or `R̂·V̂` is interpolated and `x^n` read per pixel
+/// from a 65-entry table over `[x0, 1]`, `x0 = 4096^(−1/n)`. Segments where
+/// `N·L` may change sign are split down to single pixels, evaluated exactly.
+/// A span falls back to [`PhongShading`](super::PhongShading)'s per-pixel
+/// lighting pixel by pixel where the normal is shorter than ½ (normals over
+/// 120° apart) or longer than √2, and as a whole where it turns by more than ¼
+/// radian per pixel.
 #[derive(Clone, Copy, Debug)]
 pub struct QuadraticState<const K: usize> {
     pow: PowTable,
@@ -174,11 +167,8 @@ fn state<const K: usize, C: OutputColor>(d: &Desc<K>) -> QuadraticState<K> {
     let q14 = |c: [f32; 3]| -> [i32; 3] {
         map(c).map(|v| libm::roundf(v * 16384.0).clamp(-65536.0, 65536.0) as i32)
     };
-    // the directions as unit vectors: the tier's `L` and `H` are rounded per
-    // component (Q14: up to 5·10⁻⁵ off unit length), which the general path's
-    // cosines correct and x^n amplifies (n = 840: 4 %); the kernels use them
-    // as unit vectors
-    // (in f32, 6·10⁻⁸ relative: no f64 linked into a firmware)
+    // `L` and `H` made unit (Q14 rounding: 5·10⁻⁵, 4 % of x^840), in f32
+    // (6·10⁻⁸ relative; no f64 linked into a firmware)
     let unit = |v: [f32; 3]| -> [f32; 3] {
         let len = libm::sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
         if len > 0.0 {

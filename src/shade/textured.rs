@@ -12,43 +12,25 @@ use crate::texture::{modulate_run, Filter, Pieces, TexCoord, Texels, Texture, Wr
 /// A mode with a colour texture: OpenGL's `GL_MODULATE` with
 /// `GL_SEPARATE_SPECULAR_COLOR` (made by [`GouraudShading::textured`]).
 ///
-/// Each vertex is lit once ([`Illuminate::shade_parts`]): the **primary** colour
-/// (emission + ambient + diffuse) and the **secondary** colour (specular), each
-/// clamped to [0, 1] and encoded like a Gouraud vertex colour. Both are
-/// interpolated across the triangle (Gouraud), the texture coordinates
-/// perspective-correctly, and every pixel gets
+/// Each vertex is lit once ([`Illuminate::shade_parts`]) into the **primary**
+/// (emission + ambient + diffuse) and **secondary** (specular) colours, each
+/// clamped to [0, 1] and encoded like a Gouraud vertex colour and interpolated;
+/// every pixel gets `out = clamp(texel × primary + secondary)`. The mesh needs
+/// texture coordinates ([`Kernel::NEEDS_TEXCOORD`]; Q12), interpolated like
+/// every value ([`crate::raster::interp`]).
 ///
-/// `out = clamp(texel × primary + secondary)`
-///
-/// # Texture coordinates
-///
-/// The coordinates are interpolated like every other value of a kernel
-/// ([`crate::raster::interp`]): screen-linearly under an orthographic
-/// projection, perspective-correctly under a perspective one (exact at every
-/// 8th pixel of a run, linear in between). The 5-6-5 fast path packs them in
-/// 16 bits (`v` 15) per texture: `2^−16` more, plus a drift of at most
-/// `2^−17` per pixel of a 32-pixel piece.
-///
-/// # Modulation
-///
-/// The general path reads the texel through [`Texture::sample`] (any format,
-/// filter and wrap), weighs it `w(t) = t + t/128` (`t` 8-bit: 0 → 0, 255 → 256)
-/// and computes `(primary·w(t))/256 + secondary` on the encoder values (so any
-/// [`Encoder`]: plain rounding, dithering, gamma). The fast path (`Rgb565`
-/// texels, [`Filter::Nearest`], [`Wrap::Repeat`], sides of at least 2 texels,
-/// [`Linear`](super::Linear) `Rgb565` output, no specular light on the
-/// triangle) multiplies the 5- and 6-bit texel channels `t` by the primary
-/// channel `A` (5 or 6 integer and 6 or 4 fraction bits, the Gouraud value
-/// including its rounding half) as `⌊(t + 1)·A / 32⌋` (`/64` for green): a
-/// white texel gives exactly the untextured Gouraud pixel, a black one 0, and
-/// any other is within 1 step of the exactly rounded `t/31·p` (tested).
-///
-/// # Use
-///
-/// `Shader::new(GouraudShading.textured(texture, filter), &lighting,
-/// encoder)`; the mesh needs texture coordinates ([`Kernel::NEEDS_TEXCOORD`]:
-/// the mesh's `texcoords`, Q12; [`MeshDraw`](crate::render::MeshDraw) says
-/// when it has none).
+/// The general path reads [`Texture::sample`] (any format, filter, wrap),
+/// weighs it `w(t) = t + t/128` (`t` 8-bit: 0 → 0, 255 → 256) and computes
+/// `(primary·w(t))/256 + secondary` on the encoder values (any [`Encoder`]).
+/// The 5-6-5 fast path (`Rgb565` texels, [`Filter::Nearest`],
+/// [`Wrap::Repeat`], sides of at least 2 texels, [`Linear`](super::Linear)
+/// `Rgb565` output, no specular light on the triangle) packs the coordinates
+/// in 16 bits (`v` 15) per texture (`2^−16` more error, plus a drift of at
+/// most `2^−17` per pixel of a 32-pixel piece) and multiplies the 5- and 6-bit
+/// texel channels `t` by the Gouraud primary `A` (with its rounding half) as
+/// `⌊(t + 1)·A / 32⌋` (`/64` for green): a white texel gives exactly the
+/// untextured Gouraud pixel, a black one 0, any other is within 1 step of the
+/// exactly rounded `t/31·p` (tested).
 #[derive(Clone, Copy, Debug)]
 pub struct Textured<'t, M> {
     mode: M,

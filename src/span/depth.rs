@@ -1,17 +1,17 @@
 //! The depth test and the pixel write of a run: the fused loops for the
 //! colours the span stage writes itself ([`Fill::Solid`],
 //! [`Fill::Ramp565`]) and the split one (the depth test of the run, then the
-//! kernel's own colours on each passing part).
+//! kernel's own colours on each passing part). Everywhere pixel `k` has depth
+//! `(z + k·dz) >> ATTR_FRAC` (wrapping `u32` steps) and passes when that is
+//! less than `depth[k]`, which then takes it.
 
 use crate::num::ATTR_FRAC;
 use crate::raster::interp::{get, Varyings};
 use crate::shade::{pixel565, Fill, Kernel};
 
-/// Depth-tests pixels `x..x + color.len()` of row `y` (pixel `k` has the
-/// depth `(z.0 + k·z.1) >> ATTR_FRAC`, wrapping `u32` steps, and passes when
-/// that is less than `depth[k]`, which then takes it) and writes the passing
-/// pixels with `kernel`'s colours, its values starting at `start` and
-/// stepping by `step` over the whole run.
+/// Depth-tests pixels `x..x + color.len()` of row `y` and writes the passing
+/// ones with `kernel`'s colours, its values starting at `start` and stepping
+/// by `step` over the whole run.
 #[inline(always)]
 pub(crate) fn write<K: Kernel>(
     kernel: &K,
@@ -66,11 +66,9 @@ fn ramp565<C: crate::color::OutputColor>(
     );
 }
 
-/// The fused loop: pixel `k` has depth
-/// `(z.0 + k·z.1) >> ATTR_FRAC` and, when that is less than `depth[k]`,
-/// takes it and gets the colour `pixel(&s)`; `step(&mut s)` moves the
-/// kernel's state `s` a pixel on, passing or not. One pass, few live values
-/// (the 5-6-5 Gouraud loop keeps its state in two registers).
+/// The fused loop: a passing pixel gets the colour `pixel(&s)`;
+/// `step(&mut s)` moves the kernel's state a pixel on, passing or not. One
+/// pass, few live values (the 5-6-5 Gouraud loop: two registers).
 #[inline(always)]
 fn fused<C, S>(
     z: (i32, i32),
@@ -99,10 +97,9 @@ fn fused<C, S>(
     }
 }
 
-/// The depth test of the leading pixels of a run: pixel `k` has depth
-/// `(z + k·dz) >> 14` and passes when that is less than `depth[k]`, which then
-/// takes it. Stops at the first pixel that fails; returns how many passed.
-/// A loop of its own (few live values: no register spills on a Cortex-M0).
+/// The depth test of a run's leading pixels, up to the first that fails;
+/// returns how many passed. A loop of its own (no register spills on a
+/// Cortex-M0).
 #[inline(never)]
 fn depth_prefix(z: u32, dz: u32, depth: &mut [u16]) -> usize {
     let mut z = z;

@@ -79,12 +79,10 @@ impl<const ON: bool> Clamp for Fixed<ON> {
     }
 }
 
-/// The rows `w.y..=last` of a set-up triangle ([`draw_rows`]) whose runs are
-/// clamped when `clamp` holds.
-/// Built for speed, each case gets its own copy of the row loop; built for
-/// size (opt-level "s" or "z": `cfg(fixshade_opt_size)`, set by `build.rs`),
-/// one copy reads the flag per row (about 0.4 KiB less code on the
-/// Cortex-M0).
+/// The rows `w.y..=last` of a set-up triangle ([`draw_rows`]), runs clamped
+/// when `clamp` holds: a loop copy per case, or built for size
+/// (`cfg(fixshade_opt_size)`, set by `build.rs`) one copy reading the flag
+/// per row (about 0.4 KiB less code on the Cortex-M0).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn rows<K: Kernel, R: Runs<K>>(

@@ -1,17 +1,16 @@
 //! Textures in flash and their sampling in fixed point (the sampler of
 //! [`Textured`](crate::shade::Textured)).
 //!
-//! A [`Texture`] borrows `'static` (or any) texel data — `Rgb565` words, 8-bit grey
-//! levels, or 8-bit indices into a palette of `Rgb565` colours — of a power-of-two
-//! size, 1 … 32 768 texels a side. Texture coordinates are [`TexCoord`]s: `u, v` in
-//! Q16 (`1 << 16` is one whole texture), so `u = (i + ½)/w` is the centre of texel
-//! column `i`, as in OpenGL. [`Wrap::Repeat`] takes the coordinate modulo the
-//! texture (any `i32` is legal), [`Wrap::Clamp`] clamps to the edge texels
-//! (`GL_CLAMP_TO_EDGE`). [`Filter::Nearest`] returns the texel that contains the
-//! point; [`Filter::Bilinear`] blends the four nearest texel centres with 8-bit
-//! weights. All arithmetic is 32-bit integer: no division, no float, no table; a
-//! sample never panics and never reads outside the data (the constructor checks
-//! its length).
+//! A [`Texture`] borrows texel data (`Rgb565` words, 8-bit grey levels, or
+//! 8-bit indices into an `Rgb565` palette) of a power-of-two size, 1 … 32 768
+//! texels a side. [`TexCoord`]s are Q16 (`1 << 16` is one whole texture), so
+//! `u = (i + ½)/w` is the centre of texel column `i`, as in OpenGL.
+//! [`Wrap::Repeat`] takes coordinates modulo the texture (any `i32`),
+//! [`Wrap::Clamp`] clamps to the edge texels (`GL_CLAMP_TO_EDGE`).
+//! [`Filter::Nearest`] returns the texel containing the point,
+//! [`Filter::Bilinear`] blends the four nearest centres with 8-bit weights.
+//! 32-bit integers only (no division, float or table); a sample never panics
+//! and never reads outside the data.
 //!
 //! ```
 //! use fixshade::texture::{Filter, TexCoord, Texture, Texels, Wrap};

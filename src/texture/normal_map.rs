@@ -1,52 +1,5 @@
 //! Normal maps and bump maps: per-texel tangent-space normals for
-//! [`NormalMapped`](crate::shade::NormalMapped).
-//!
-//! A [`NormalMap`] borrows `'static` (or any) texels of a power-of-two size,
-//! 1 … 4096 texels a side. Each texel is a tangent-space unit normal in Q14
-//! (an `[i16; 3]`, `[x, y, z]`, `16384` = 1.0; `x` along the tangent `T`
-//! (increasing `u`), `y` along the bitangent `B`, `z` along the surface normal:
-//! the flat normal is `[0, 0, 16384]`).
-//!
-//! **Format and quantisation.** Six bytes a texel (a 64 × 64 map is 24 KiB of
-//! flash). [`NormalMap::unit_texel`] rounds each component of a unit vector to the
-//! nearest Q14 step: a component is within `2^-15` of exact, so the length is
-//! within `1 ± 2^-15·√3` (< 6·10⁻⁵) and the angle within 0.006°. That is why
-//! the fast path of [`NormalMapped`](crate::shade::NormalMapped) can use
-//! a texel as a unit normal without renormalising it (an 8-bit format would be
-//! off by up to 0.7 % in length, 25 % of a highlight of exponent 32).
-//!
-//! **Validation.** [`NormalMap::new`] checks that every texel is such a unit
-//! normal (`|x² + y² + z² − 2^28| ≤ 2^15`, a length within
-//! `1 ± 6.1·10⁻⁵`; every texel of [`NormalMap::unit_texel`] and [`NormalMap::from_bump`]
-//! passes) and returns [`TextureError::NotUnit`] naming the first one that
-//! is not. So a map from flash is checked once, at start-up, and the per-pixel
-//! kernels can rely on it: a texel such as `[i16::MAX; 3]` (length 3.46)
-//! would overflow the fast path's 32-bit dot products and light 3.5 times too
-//! brightly. Texels from another source (an 8-bit map scaled up, a tool that
-//! truncates) are made unit in place by [`NormalMap::normalize_texels`].
-//!
-//! **Sampling.** Nearest texel ([`NormalMap::sample`], [`TexCoord`] in Q16, the
-//! texel containing the point, as [`crate::texture`]); [`Wrap::Repeat`] takes
-//! coordinates modulo the map, [`Wrap::Clamp`] clamps to the edge texels.
-//!
-//! **Bump maps.** [`NormalMap::from_bump`] turns a height map (`u8` heights and a
-//! scale) into a normal map by central differences (Blinn's bump mapping in
-//! tangent space: `n = normalize(−s·∂h/∂u, −s·∂h/∂v, 1)`) into a caller-owned
-//! buffer, once at load time.
-//!
-//! ```
-//! use fixshade::texture::{NormalMap, Wrap};
-//! use fixshade::texture::TexCoord;
-//! // a 4 × 4 height ramp rising along u, converted into a normal map
-//! let heights: [u8; 16] = core::array::from_fn(|i| (i % 4) as u8 * 10);
-//! let mut texels = [[0i16; 3]; 16];
-//! NormalMap::from_bump(&heights, 2, 2, Wrap::Clamp, 0.1, &mut texels)?;
-//! let map = NormalMap::new(&texels, 2, 2, Wrap::Clamp)?;
-//! // ∂h/∂u = 10 per texel, scale 0.1: n = normalize(−1, 0, 1)
-//! let n = map.sample(TexCoord::from_f32(0.4, 0.6));
-//! assert_eq!(n, [-11585, 0, 11585]);
-//! # Ok::<(), fixshade::error::TextureError>(())
-//! ```
+//! [`NormalMapped`](crate::shade::NormalMapped) (see [`NormalMap`]).
 
 use super::{TexCoord, Wrap};
 use crate::error::TextureError;
@@ -68,7 +21,40 @@ pub(crate) const fn is_unit_texel(t: [i16; 3]) -> bool {
     d.unsigned_abs() <= UNIT_TOLERANCE as u64
 }
 
-/// A tangent-space normal map over borrowed texels (see the [module docs](crate::texture)).
+/// A tangent-space normal map over borrowed texels, for
+/// [`NormalMapped`](crate::shade::NormalMapped): a power-of-two size, 1 … 4096
+/// texels a side, each texel a unit normal in Q14 (`[x, y, z]`, `16384` = 1.0;
+/// `x` along the tangent (increasing `u`), `y` along the bitangent, `z` along
+/// the surface normal: flat is [`NormalMap::FLAT`]).
+///
+/// **Quantisation.** Six bytes a texel (64 × 64: 24 KiB of flash).
+/// [`NormalMap::unit_texel`] rounds each component to the nearest Q14 step:
+/// the length stays within `1 ± 2^-15·√3` (< 6·10⁻⁵), the angle within 0.006°,
+/// so the fast path uses a texel as a unit normal without renormalising (an
+/// 8-bit format would be 0.7 % off in length, 25 % of a highlight of exponent
+/// 32).
+///
+/// **Validation.** [`NormalMap::new`] checks every texel once (a texel such
+/// as `[i16::MAX; 3]` would overflow the fast path's 32-bit dot products and
+/// light 3.5 times too brightly); [`NormalMap::normalize_texels`] repairs
+/// texels from another source (an 8-bit map scaled up, a truncating tool).
+///
+/// **Sampling.** The nearest texel ([`NormalMap::sample`], as
+/// [`crate::texture`]). **Bump maps:** [`NormalMap::from_bump`].
+///
+/// ```
+/// use fixshade::texture::{NormalMap, Wrap};
+/// use fixshade::texture::TexCoord;
+/// // a 4 × 4 height ramp rising along u, converted into a normal map
+/// let heights: [u8; 16] = core::array::from_fn(|i| (i % 4) as u8 * 10);
+/// let mut texels = [[0i16; 3]; 16];
+/// NormalMap::from_bump(&heights, 2, 2, Wrap::Clamp, 0.1, &mut texels)?;
+/// let map = NormalMap::new(&texels, 2, 2, Wrap::Clamp)?;
+/// // ∂h/∂u = 10 per texel, scale 0.1: n = normalize(−1, 0, 1)
+/// let n = map.sample(TexCoord::from_f32(0.4, 0.6));
+/// assert_eq!(n, [-11585, 0, 11585]);
+/// # Ok::<(), fixshade::error::TextureError>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct NormalMap<'a> {
     texels: &'a [[i16; 3]],
@@ -97,11 +83,13 @@ impl<'a> NormalMap<'a> {
     pub const FLAT: [i16; 3] = [0, 0, 1 << 14];
 
     /// A map of `2^w_log2 × 2^h_log2` texels, row by row from the top-left
-    /// (`v = 0`) texel. Errors: a side above [`NormalMap::MAX_LOG2_SIZE`], fewer texels
-    /// than the size (extra texels are ignored), a texel that is not a unit
-    /// normal (`x² + y² + z²` within `2^28 ± 2^15`: [`TextureError::NotUnit`],
-    /// the first one; [`NormalMap::normalize_texels`] repairs a map). Checking the
-    /// texels costs one pass over them (three 32-bit squares each), once.
+    /// (`v = 0`) texel; checking them costs one pass (three 32-bit squares
+    /// each). Every texel of [`NormalMap::unit_texel`] and
+    /// [`NormalMap::from_bump`] passes. Errors: a side above
+    /// [`NormalMap::MAX_LOG2_SIZE`], fewer texels than the size (extra ones are
+    /// ignored), a texel that is not a unit normal (`x² + y² + z²` within
+    /// `2^28 ± 2^15`, a length within `1 ± 6.1·10⁻⁵`: [`TextureError::NotUnit`],
+    /// the first one).
     ///
     /// ```
     /// use fixshade::error::TextureError;

@@ -1,32 +1,23 @@
 //! The span engine of [`QuadraticPhongShading`](crate::shade::QuadraticPhongShading):
 //! re-anchored quadratic interpolation of the lit colour along a span.
 //!
-//! A span of `n` pixels is cut into segments of `h = 2^j` pixels. At the two
-//! ends and the middle of a segment (the *anchors*) the lighting is evaluated
-//! by the tier's [`Probe`] (exactly, up to the tier's arithmetic); in between,
-//! each encoded colour channel follows the quadratic through the three anchor
-//! values, two additions per channel and pixel (second-order forward
-//! differences, Bishop & Weimer's idea with the derivatives taken from the
-//! anchors instead of a Taylor expansion). The specular term, whose power
-//! `x^n` is sharp, is not interpolated: its smooth base (the table coordinate
-//! `u` of `N̂·Ĥ` or `R̂·V̂`) is, and `x^n` is read from a table at every pixel.
+//! A span is cut into segments of `h = 2^j` pixels; the tier's [`Probe`]
+//! evaluates the lighting exactly at the two ends and the middle (the
+//! *anchors*), and each encoded channel follows the quadratic through them by
+//! second-order forward differences (Bishop & Weimer's idea, derivatives from
+//! the anchors). The sharp specular `x^n` is not interpolated: its base (the
+//! table coordinate `u` of `N̂·Ĥ` or `R̂·V̂`) is, and `x^n` read per pixel.
 //!
 //! # Why the interpolation error is bounded
 //!
-//! Along a span the normal is `N(t) = N0 + t·dN`, so `N̂(t)` moves on a great
-//! circle as the central projection of a line. With `w = |dN|/|N|` (the local
-//! angular speed, radians per pixel) every component `f = N̂·A` of a fixed unit
-//! vector `A` satisfies `|f'| ≤ w·√(1 − f²)`, `|f''| ≤ 1.16·w²` and
-//! `|f'''| ≤ 3·w³` (from the derivatives of `atan`); for `R̂·V̂` (`R̂` the
-//! reflection of `L̂`) the constants are 2, 8.64 and 25.9. A quadratic through
-//! three points `h/2` apart misses a function by at most `0.008·h³·max|f'''|`,
-//! and a function deviates from the polyline through the anchors by at most
-//! `max|f''|·(h/2)²/8`. [`Walk`] holds, per lighting, the largest `(h·w)²`
-//! that keeps each term's error under its budget (the specular one per bucket
-//! of `u`, since the slope of `x^n` grows towards the highlight), and each
-//! segment is halved until `(h·w)²` is below it. Segments where some light's
-//! `N·L` may change sign (a kink: no diffuse and no specular behind the
-//! surface) are halved too, down to single pixels evaluated exactly.
+//! With `w = |dN|/|N|` (radians per pixel) a cosine `f = N̂·A` has
+//! `|f''| ≤ 1.16·w²`, `|f'''| ≤ 3·w³` (for `R̂·V̂`: 8.64·w², 25.9·w³); the
+//! quadratic through anchors `h/2` apart misses `f` by at most
+//! `0.008·h³·max|f'''|`. [`Walk`] holds per lighting the largest `(h·w)²`
+//! within each term's budget (the specular one per bucket of `u`), and
+//! segments are halved until below it, or down to single exact pixels where
+//! some `N·L` may change sign. Derivation: `docs/derivations.md`, "Quadratic
+//! Phong".
 //!
 //! The pixel loops that follow the quadratics are the [`Sink`]s of `sink`; the
 //! walk of one light's diffuse term through a table of pixels is [`walk_lut`].

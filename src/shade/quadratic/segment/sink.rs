@@ -181,14 +181,12 @@ fn quad16(v: [i32; 3], jm: u32, sh: u32) -> Quad {
     Quad { v: a, d1, d2 }
 }
 
-/// The fast sink for [`Linear`](crate::color::Linear) 5-6-5 pixels. Segments without a
-/// specular term: with one light, the pixel comes from the [`DiffuseTable`]
-/// indexed by the interpolated `N̂·L̂` (one quadratic, one load per pixel);
-/// otherwise red/blue (one word, as [`fill565`](crate::shade::gouraud)) and green
-/// are interpolated in two passes (each keeps its values in the Cortex-M0's
-/// registers). Segments with one light's specular term: one loop with the
-/// power table per pixel. Segments that need clamping, or with several
-/// specular terms: the generic loop.
+/// The fast sink for [`Linear`](crate::color::Linear) 5-6-5 pixels. Without a
+/// specular term: one light reads the [`DiffuseTable`] at the interpolated
+/// `N̂·L̂`; more interpolate red/blue (one word, as
+/// [`fill565`](crate::shade::gouraud)) and green in two passes (each in the
+/// Cortex-M0's registers). One light's specular term: one loop with the power
+/// table. Clamping or several specular terms: the generic loop.
 pub(crate) struct Fast565Sink<'o, C, G> {
     pub x: i32,
     pub y: i32,
