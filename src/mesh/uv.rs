@@ -130,7 +130,11 @@ mod tests {
     fn every_layout_is_a_closed_outward_sphere() {
         for (stacks, slices) in [(2, 3), (2, 4), (3, 3), (5, 7), (16, 24), (40, 3), (3, 64)] {
             for seam in [false, true] {
-                let uv = Uv { stacks, slices, seam };
+                let uv = Uv {
+                    stacks,
+                    slices,
+                    seam,
+                };
                 let (v, t) = if seam {
                     textured_sphere_counts(stacks, slices)
                 } else {
@@ -147,13 +151,19 @@ mod tests {
                     let [a, b, c] = tri.map(|i| p[i]);
                     let n = cross3(sub3(b, a), sub3(c, a));
                     let centre = [0, 1, 2].map(|i| (a[i] + b[i] + c[i]) / 3.0);
-                    assert!(dot3(n, centre) > 0.0, "{stacks}x{slices} {seam}: {k} faces in");
+                    assert!(
+                        dot3(n, centre) > 0.0,
+                        "{stacks}x{slices} {seam}: {k} faces in"
+                    );
                     for (i, j) in [(0, 1), (1, 2), (2, 0)] {
                         *edges.entry((tri[i], tri[j])).or_insert(0) += 1;
                         used[tri[i]] = true;
                     }
                 }
-                assert!(used.iter().all(|&u| u), "{stacks}x{slices} {seam}: a vertex unused");
+                assert!(
+                    used.iter().all(|&u| u),
+                    "{stacks}x{slices} {seam}: a vertex unused"
+                );
                 for (&(a, b), &n) in &edges {
                     assert_eq!(n, 1, "{stacks}x{slices}: edge {a}-{b} twice one way");
                     if !seam {

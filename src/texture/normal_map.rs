@@ -435,7 +435,8 @@ mod tests {
                 let phi = a as f32 * 0.0314159;
                 let z = b as f32 / 49.0;
                 let r = libm::sqrtf(1.0 - z * z);
-                let t = NormalMap::unit_texel([r * libm::cosf(phi), r * libm::sinf(phi), z]).unwrap();
+                let t =
+                    NormalMap::unit_texel([r * libm::cosf(phi), r * libm::sinf(phi), z]).unwrap();
                 let u = unit(t);
                 let len = libm::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
                 worst = worst.max((len - 1.0).abs());
