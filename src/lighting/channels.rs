@@ -102,11 +102,12 @@ impl<const K: usize> ChannelTerms<K> {
     /// range (rounded to nearest by the ½ in the base).
     #[inline(always)]
     pub(crate) fn color<C: OutputColor>(acc: [i32; 3]) -> C {
-        let max = C::CHANNEL_MAX.map(|m| m as i32);
+        // (no `array::map`: at opt-level "z" it stays a call per pixel)
+        let m = C::CHANNEL_MAX;
         C::from_channels([
-            (acc[0] >> 8).max(0).min(max[0]) as u32,
-            (acc[1] >> 8).max(0).min(max[1]) as u32,
-            (acc[2] >> 8).max(0).min(max[2]) as u32,
+            (acc[0] >> 8).max(0).min(m[0] as i32) as u32,
+            (acc[1] >> 8).max(0).min(m[1] as i32) as u32,
+            (acc[2] >> 8).max(0).min(m[2] as i32) as u32,
         ])
     }
 }
