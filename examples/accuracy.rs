@@ -11,13 +11,10 @@
 //! cargo run --release --example accuracy
 //! ```
 
-#[path = "../tests/common/scenes.rs"]
-mod scenes;
-#[path = "../tests/common/worst_case.rs"]
-mod worst_case;
+use fixshade_testkit::scenes;
 
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
-use scenes::{measure, search, Band, Term, BANDS, TERMS};
+use fixshade_testkit::scenes::{measure, search, Band, Term, BANDS, TERMS};
 
 const CASES: u32 = 20_000;
 /// The search: random samples, then hill climbs of so many steps from the worst.
@@ -50,7 +47,7 @@ fn main() {
     println!(
         "the whole legal range; samples within 1e-3 of N·L = 0 or a spot cone's edge excluded;"
     );
-    println!("generator: tests/common/scenes.rs)\n");
+    println!("generator: testkit/src/scenes.rs)\n");
     println!(
         "| term | {} | {} | {} | {} | {} | {} |",
         Q14::<1>::NAME,

@@ -36,8 +36,10 @@
 //! [`GouraudShading`] for `GL_SMOOTH` and [`GeneralPhongShading`] for
 //! per-pixel lighting (wrapped in `SeparateSpecular` for
 //! `GL_SEPARATE_SPECULAR_COLOR`), and kernels of this example for what OpenGL
-//! does that the library's modes do not: [`Solid`] (`GL_FLAT`: the colour lit
-//! at the provoking vertex, and the object ids), [`VertexColors`]
+//! does that the library's modes do not: [`Solid`] (the test kit's kernel of
+//! one colour, one per triangle: `GL_FLAT`, the colour lit at the provoking
+//! vertex, which the library's [`FlatShading`](fixshade::shade::FlatShading)
+//! does not pick: it lights the centroid; and the object ids), [`VertexColors`]
 //! (`GL_SMOOTH` with colours the example lights per vertex:
 //! `GL_COLOR_MATERIAL`, separate specular, `GL_NORMALIZE` off) and the `f64`
 //! reference ([`RefKernel`]).
@@ -70,6 +72,7 @@ use fixshade::render::{
     Layout, MeshDraw, MeshMemory,
 };
 use fixshade::shade::{GeneralPhongShading, GouraudShading, Kernel, Shader, VertexIn};
+use fixshade_testkit::support::Solid;
 use serde_json::{json, Value};
 
 // ------------------------------------------------------------------ scene files
@@ -678,31 +681,6 @@ fn homogeneous(g: &Geometry, t: [usize; 3]) -> [[f64; 3]; 3] {
                 w,
             ]
         }),
-    }
-}
-
-/// A kernel of one colour: `GL_FLAT` (the colour OpenGL lights at the
-/// provoking vertex, which the library's [`FlatShading`](fixshade::shade::FlatShading)
-/// does not pick: it lights the centroid) and the object ids. One per
-/// triangle.
-#[derive(Clone, Copy, Debug)]
-struct Solid(Rgb888);
-
-impl Kernel for Solid {
-    type Color = Rgb888;
-    type Vertex = ();
-    type Varyings = [i32; 0];
-    type Triangle = ();
-    const NEEDS_POSITION: bool = false;
-
-    fn vertex(&self, _: &VertexIn) {}
-
-    fn triangle(&self, _: [&(); 3], _: &[[i32; 3]; 3]) -> ((), [[i32; 0]; 3]) {
-        ((), [[]; 3])
-    }
-
-    fn span(&self, _: &(), _: &[i32; 0], _: &[i32; 0], _x: i32, _y: i32, out: &mut [Rgb888]) {
-        out.fill(self.0);
     }
 }
 

@@ -11,8 +11,6 @@
 //! gives the same frame, and so does a sink that keeps each strip until it
 //! is asked for it (as DMA does) with a second strip.
 
-mod support;
-
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
 use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Projection, Viewport};
@@ -30,7 +28,7 @@ use fixshade::shade::{
     PhongShading, QuadraticPhongShading, Shader,
 };
 use fixshade::standard::{self, SPHERE};
-use support::Collect;
+use fixshade_testkit::support::Collect;
 
 const W: u32 = standard::SIZE;
 

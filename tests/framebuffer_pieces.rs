@@ -12,8 +12,6 @@
 //! general kernels), Gouraud through a gamma table and Phong (linear),
 //! orthographic and perspective (every value perspective-correct).
 
-mod support;
-
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::Viewport;
 use fixshade::camera::{Camera, Mat4, MeshTransform, Orthographic, Perspective, Projection};
@@ -24,7 +22,7 @@ use fixshade::lighting::{
 use fixshade::raster::Cull;
 use fixshade::shade::{GouraudShading, Kernel, Linear, PhongShading, Shader};
 use fixshade::standard::SPHERE;
-use support::mesh_frame;
+use fixshade_testkit::support::mesh_frame;
 
 const W: u32 = 240;
 

@@ -1,13 +1,11 @@
 //! Inputs the fuzz targets of `fuzz/` found crashing, kept as regression tests
 //! (overflow checks are on in this profile, as in the fuzz build).
 
-mod support;
-
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::raster::SUBPIXEL_BITS;
 use fixshade::render::{Corner, FullFrame};
-use support::{clip_corner, Solid, Tris};
+use fixshade_testkit::support::{clip_corner, Solid, Tris};
 
 /// One triangle drawn white into a 16 × 16 frame with a depth buffer; the
 /// pixels and the depth buffer after the frame.
@@ -185,7 +183,7 @@ fn surface_fast_normal_map_newton_after_the_last_pixel() {
 #[test]
 fn slivers_cut_by_the_near_plane_are_drawn_once() {
     use fixshade::raster::Cull;
-    use support::{full, lumas, Count, Tris};
+    use fixshade_testkit::support::{full, lumas, Count, Tris};
     let c = |x: i32, y: i32, z: i32, w: i32| clip_corner(Clip { x, y, z, w }, 0);
     let m = i32::MIN;
     let cases = [

@@ -5,11 +5,9 @@
 //! are the ones stated in the README; `cargo test --release --test golden --
 //! --nocapture` prints the measured table.
 
-mod common;
-
-use common::render::{diff_tier, render_reference, scenes, Diff};
 use embedded_graphics_core::pixelcolor::Rgb888;
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
+use fixshade_testkit::render::{diff_tier, render_reference, scenes, Diff};
 
 /// (largest error in LSB, smallest PSNR in dB) a tier guarantees on the scenes:
 /// 2 LSB for the Q14 tiers (the Q14 rounding of the normal shows in the n = 100
@@ -75,8 +73,8 @@ fn mesh_renderer_against_the_reference() {
     fn check<S: Scalar>(failures: &mut Vec<String>) {
         for scene in scenes() {
             let reference = render_reference(&scene);
-            let px = common::render::render_mesh_pixels::<S>(&scene);
-            let (max, mean, n, only) = common::render::compare_mesh(&px, &reference);
+            let px = fixshade_testkit::render::render_mesh_pixels::<S>(&scene);
+            let (max, mean, n, only) = fixshade_testkit::render::compare_mesh(&px, &reference);
             println!(
                 "{:<22} {:<10} max {max} mean {mean:.3} on {n}, {only} covered by one of the two",
                 scene.name,
@@ -106,8 +104,8 @@ fn mesh_renderer_against_the_reference() {
 fn per_triangle_front_equals_the_mesh_renderer() {
     fn check<S: Scalar>(failures: &mut Vec<String>) {
         for scene in scenes() {
-            let mesh = common::render::render_tier::<S, Rgb888>(&scene);
-            let tri = common::render::render_triangles::<S, Rgb888>(&scene);
+            let mesh = fixshade_testkit::render::render_tier::<S, Rgb888>(&scene);
+            let tri = fixshade_testkit::render::render_triangles::<S, Rgb888>(&scene);
             let differ = tri.iter().zip(&mesh).filter(|(a, b)| a != b).count();
             if differ > 0 {
                 failures.push(format!(

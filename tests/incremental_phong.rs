@@ -4,17 +4,15 @@
 //! `PhongShading` choosing exactly this kernel for a Q14 lighting of one
 //! directional light.
 
-mod common;
-
-use common::render::{
-    all_phong, compare, config_scene, render_incremental, render_reference, scenes, LightSet, Mode,
-};
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use fixshade::color::OutputColor;
 use fixshade::lighting::DirectionalLight;
 use fixshade::prelude::*;
 use fixshade::raster::ATTR_FRAC;
 use fixshade::shade::{IncrementalPhongShading, Linear, Shader};
+use fixshade_testkit::render::{
+    all_phong, compare, config_scene, render_incremental, render_reference, scenes, LightSet, Mode,
+};
 
 /// The lightings `IncrementalPhongShading` accepts: `K` directional lights in
 /// an array, a viewer at infinity, no fog.
@@ -71,7 +69,10 @@ fn span<const NW: u8, M: fixshade::shade::IncrementalModel>(
 const MAX_LSB: u32 = 2;
 const MIN_PSNR: f64 = 55.0;
 
-fn check_scene<const NW: u8>(scene: &common::render::Scene, failures: &mut Vec<String>) -> bool {
+fn check_scene<const NW: u8>(
+    scene: &fixshade_testkit::render::Scene,
+    failures: &mut Vec<String>,
+) -> bool {
     let scene = all_phong(scene);
     let (Some(a), Some(b)) = (
         render_incremental::<NW, Rgb888>(&scene),
@@ -129,7 +130,7 @@ fn bound(n: f32) -> u32 {
 }
 
 proptest! {
-    #![proptest_config(common::seeded::config("incremental_phong", 500))]
+    #![proptest_config(fixshade_testkit::seeded::config("incremental_phong", 500))]
 
     /// Random spans of normals (any directions whose interpolation stays longer than
     /// ½; others take the general path) against the f64 reference at every pixel,
@@ -352,7 +353,7 @@ impl<C: embedded_graphics_core::pixelcolor::PixelColor>
 
 // ---- targeted worst-case search (issue 21, item 6) -------------------------------------
 
-use common::worst_case::{self, around, f32s, f64s, norm, nudge, Rng};
+use fixshade_testkit::worst_case::{self, around, f32s, f64s, norm, nudge, Rng};
 
 /// A span of the random-span test: end normals, length, exponent, light.
 #[derive(Clone, Debug)]
@@ -484,7 +485,7 @@ fn perturb_span(s: &Span, amount: f64, rng: &mut Rng, band: (u32, u32)) -> Span 
 
 /// The pixel bound of the random spans (`bound`) at targeted worst cases:
 /// spans through the highlight at the highest exponent of each band and along
-/// the terminator, hill-climbed (`common::worst_case`).
+/// the terminator, hill-climbed (`fixshade_testkit::worst_case`).
 #[test]
 fn targeted_worst_case_search() {
     for (i, band) in [(1u32, 64u32), (65, 256), (257, 1024)]

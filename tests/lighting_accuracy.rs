@@ -3,22 +3,20 @@
 //! `fixshade::num` (8-bit LSBs, largest channel error).
 //!
 //! The bounds are the tiers' documented guarantees over the sampled domain: every
-//! parameter range of `common::scenes::sample` (normals within 75° of the viewer,
+//! parameter range of `fixshade_testkit::scenes::sample` (normals within 75° of the viewer,
 //! unit or interpolated; exponents n up to 1024, spot exponents up to 40,
 //! brilliance up to 8, transmission exponents up to 31; attenuation, fog and
 //! positions over their whole legal range), excluding samples within 10⁻³ of a
 //! discontinuity of the equation and attenuation factors beyond the fixed tiers'
-//! range of 2 (`common::scenes::excluded`). They are the largest errors that
+//! range of 2 (`fixshade_testkit::scenes::excluded`). They are the largest errors that
 //! `cargo run --release --example accuracy` finds: the max over 20 000 samples per
 //! cell and the worst case of a search (hill climbs from the worst samples); the
 //! tests below repeat both with less effort on every run.
 
-mod common;
-
-use common::scenes::{
+use fixshade::num::{F32Fast, Scalar, Q14, Q30};
+use fixshade_testkit::scenes::{
     excluded, lsb_error, reference_u8, sample, search, tier_u8, Band, Sample, Term, BANDS, TERMS,
 };
-use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use proptest::prelude::*;
 
 /// A tier's bound for a term and band.
@@ -67,7 +65,7 @@ fn check<S: Scalar>(
     term: Term,
     band: Band,
     bound: Bound,
-    s: &common::scenes::Sample,
+    s: &fixshade_testkit::scenes::Sample,
 ) -> Result<(), TestCaseError> {
     let (got, want) = (tier_u8::<S>(s), reference_u8(s));
     let e = lsb_error(got, want);
@@ -93,14 +91,14 @@ fn term_strategy() -> impl Strategy<Value = Term> {
     proptest::sample::select(TERMS.to_vec())
 }
 
-fn case() -> impl Strategy<Value = (Term, Band, common::scenes::Sample)> {
+fn case() -> impl Strategy<Value = (Term, Band, fixshade_testkit::scenes::Sample)> {
     (term_strategy(), band_strategy())
         .prop_flat_map(|(t, b)| (Just(t), Just(b), sample(t, b)))
         .prop_filter("on a discontinuity", |(_, _, s)| !excluded(s))
 }
 
 proptest! {
-    #![proptest_config(common::seeded::config("lighting_accuracy", 3000))]
+    #![proptest_config(fixshade_testkit::seeded::config("lighting_accuracy", 3000))]
 
     #[test]
     fn q14_two_newton_steps((term, band, s) in case()) {
@@ -132,7 +130,7 @@ proptest! {
 /// and exponent band, random samples with half of the lights near the highlight and
 /// half of the normals shorter than 1 (interpolated normals, renormalised as
 /// per-pixel shading does), then hill climbs from the worst of them
-/// (`common::scenes::search`). Uniform sampling rarely lands on the few directions
+/// (`fixshade_testkit::scenes::search`). Uniform sampling rarely lands on the few directions
 /// where the rounding of `N`, `L` and `H` is amplified most; the climbs do.
 /// `cargo run --release --example accuracy` runs the same search with more effort.
 #[test]
@@ -201,10 +199,10 @@ fn worst_case_search_heavy() {
 /// (202 against 197).
 #[test]
 fn phong_highlight_on_an_interpolated_normal() {
-    use common::scenes::ModelKind;
     use fixshade::lighting::MaterialDesc;
     use fixshade::lighting::{LightDesc, LightKind};
     use fixshade::reference::ViewerDesc;
+    use fixshade_testkit::scenes::ModelKind;
     let s = Sample {
         lights: vec![LightDesc {
             kind: LightKind::Directional {
@@ -239,12 +237,12 @@ fn phong_highlight_on_an_interpolated_normal() {
 /// amplified most — the mirror direction at the band's highest exponent, grazing
 /// lights (`N·L` just outside the excluded 10⁻³), colours near saturation,
 /// attenuation at the top of the fixed tiers' range and far down it
-/// (`common::scenes::targeted_starts`, `common::worst_case::climb`). Prints the
+/// (`fixshade_testkit::scenes::targeted_starts`, `fixshade_testkit::worst_case::climb`). Prints the
 /// worst case per cell.
 #[test]
 fn targeted_worst_case_search() {
     fn cell<S: Scalar>(term: Term, band: Band, bound: Bound, seed: u64) -> u32 {
-        let (e, s) = common::scenes::targeted_search::<S>(term, band, 32, 200, seed);
+        let (e, s) = fixshade_testkit::scenes::targeted_search::<S>(term, band, 32, 200, seed);
         assert!(
             e <= bound(term, band),
             "{}: {term:?} n-band {band:?}: {e} LSB > {} at {s:?}",

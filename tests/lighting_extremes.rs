@@ -2,9 +2,6 @@
 //! errors, evaluation never panics (these tests run with overflow checks on) and
 //! behaves as documented.
 
-mod common;
-
-use common::scenes::{lsb_error, reference_u8, sample, tier_u8, Band, Sample, Term};
 use fixshade::error::ParamError;
 use fixshade::lighting::{
     AnyLight, Attenuation, DirectionalLight, LightColors, LightDesc, LightKind, PointLight,
@@ -15,6 +12,7 @@ use fixshade::lighting::{Material, MaterialDesc};
 use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use fixshade::reference::ViewerDesc;
+use fixshade_testkit::scenes::{lsb_error, reference_u8, sample, tier_u8, Band, Sample, Term};
 use proptest::prelude::*;
 
 macro_rules! for_each_tier {
@@ -299,7 +297,7 @@ fn unnormalised_and_tiny_normals() {
                 fog: None,
                 p: [0.0; 3],
                 n: n.to_f32(),
-                model: common::scenes::ModelKind::Blinn,
+                model: fixshade_testkit::scenes::ModelKind::Blinn,
             };
             let want = reference_u8(&s);
             assert!(
@@ -372,7 +370,7 @@ fn any3() -> impl Strategy<Value = [f32; 3]> {
 }
 
 proptest! {
-    #![proptest_config(common::seeded::config("lighting_extremes", 2000))]
+    #![proptest_config(fixshade_testkit::seeded::config("lighting_extremes", 2000))]
 
     /// Arbitrary `f32` parameters (NaN, infinities, huge, negative): every
     /// constructor returns `Ok` or a typed error, and shading whatever was accepted

@@ -3,15 +3,13 @@
 //! counting kernel, and one triangle through the near plane via the
 //! per-triangle front.
 
-mod support;
-
 use core::f32::consts::FRAC_PI_2;
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Viewport};
 use fixshade::mesh::{icosphere, icosphere_counts, Mesh};
 use fixshade::raster::{Cull, SUBPIXEL_BITS};
 use fixshade::render::{bins_len, CachedVertex, DrawOptions, Layout, MeshDraw, MeshMemory};
-use support::{clip_corner, full, lumas, Count, Record, Tris};
+use fixshade_testkit::support::{clip_corner, full, lumas, Count, Record, Tris};
 
 const W: i32 = 64;
 const H: i32 = 48;

@@ -4,9 +4,8 @@
 //! transforms, and meshes drawn through any such transform (the vertex
 //! stage, the one clip-space clipper and set-up).
 
-#[path = "common/seeded.rs"]
-mod seeded;
-mod support;
+use fixshade_testkit::seeded;
+use fixshade_testkit::support;
 
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::camera::{
@@ -16,8 +15,8 @@ use fixshade::mesh::*;
 use fixshade::num::{Vec3, Q14};
 use fixshade::raster::Cull;
 use fixshade::render::{bins_len, CachedVertex, Carry, DrawOptions, Layout, MeshDraw, MeshMemory};
+use fixshade_testkit::support::{clip_corner, full, lumas, Count, Tris};
 use proptest::prelude::*;
-use support::{clip_corner, full, lumas, Count, Tris};
 
 /// Any f32, with the special values made likely.
 fn any_f32() -> impl Strategy<Value = f32> {

@@ -958,8 +958,7 @@ mod mesh {
 
 // ---- targeted worst-case search (issue 21, item 6) -------------------------------------
 
-#[path = "common/worst_case.rs"]
-mod worst_case;
+use fixshade_testkit::worst_case;
 
 /// One search point: a triangle, the light, the shininess, the map.
 #[derive(Clone, Debug)]
@@ -1028,7 +1027,7 @@ fn nm_perturb(c: &NmCase, amount: f64, rng: &mut worst_case::Rng) -> NmCase {
 /// `Q14<2>`, Blinn-Phong, shininess up to 128) and the general path (`Q14`,
 /// `f32`; Blinn-Phong and Phong, a directional light) with the highlight
 /// inside the triangle or the light grazing it, hill-climbed
-/// (`common::worst_case`). Prints the worst per path.
+/// (`fixshade_testkit::worst_case`). Prints the worst per path.
 #[test]
 fn targeted_worst_case_search() {
     let flat = vec![NormalMap::FLAT; 4];

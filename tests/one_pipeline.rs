@@ -6,8 +6,6 @@
 //! and, in perspective, through the near plane — whole and in bands. And the
 //! depth-plane regression: a back face never wins over the front surface.
 
-mod support;
-
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{Camera, Mat4, MeshTransform, Projection, Viewport};
 use fixshade::mesh::Mesh;
@@ -17,7 +15,7 @@ use fixshade::shade::{
     FlatShading, GeneralPhongShading, GouraudShading, Kernel, Linear, PhongShading, Shader,
 };
 use fixshade::standard::{self, SPHERE};
-use support::mesh_frame;
+use fixshade_testkit::support::mesh_frame;
 
 const W: u32 = standard::SIZE;
 

@@ -13,8 +13,7 @@
 //! Pixels within 10⁻³ of `N·L = 0` are skipped (there the rounding of either
 //! side decides whether a specular term exists), as in that test.
 
-#[path = "common/seeded.rs"]
-mod seeded;
+use fixshade_testkit::seeded;
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
 use fixshade::color::{GammaTable, Transfer};
@@ -428,10 +427,9 @@ proptest! {
 
 // ---- targeted worst-case search (issue 21, item 6) -------------------------------------
 
-#[path = "common/worst_case.rs"]
-mod worst_case;
+use fixshade_testkit::worst_case;
 
-use worst_case::{around, f32s, f64s, norm, nudge, Rng};
+use fixshade_testkit::worst_case::{around, f32s, f64s, norm, nudge, Rng};
 
 /// The largest error of a span against the reference: unquantised (the climb
 /// follows it) and in 8-bit LSBs, pixels within 10⁻³ of `N·L = 0` skipped.
@@ -565,7 +563,7 @@ where
 
 /// Every bound of this file at targeted worst cases: the kernels' spans through
 /// the highlight at the highest exponents of each band and grazing the
-/// terminator, hill-climbed (`common::worst_case`). Prints the worst per cell.
+/// terminator, hill-climbed (`fixshade_testkit::worst_case`). Prints the worst per cell.
 #[test]
 fn targeted_worst_case_search() {
     fn cell<S, M>(tier: &str, band: (u32, u32), seed: u64)

@@ -2,14 +2,12 @@
 //! pixels; a passing pixel writes its depth (the frame's depth buffer: a
 //! pixel passes when `z < stored`, and then stores `z`).
 
-mod support;
-
 use std::cell::Cell;
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::render::{Corner, DrawBand};
 use fixshade::shade::{Kernel, VertexIn};
-use support::{corner, full, Tris, S};
+use fixshade_testkit::support::{corner, full, Tris, S};
 
 /// Paints a solid grey; counts the runs it is handed.
 #[derive(Debug)]

@@ -3,15 +3,15 @@
 //! of the pipeline (`render::draw_triangle`) with kernels of the test's own
 //! (ported from the unit tests of the removed per-triangle rasterizer).
 
-mod support;
-
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::raster::interp::VARYING_LIMIT;
 use fixshade::raster::{Cull, ATTR_FRAC};
 use fixshade::render::Corner;
-use support::{clip_corner, corner, counts, exact_plane, full, lumas, plane_bound, Count, Record};
-use support::{Tris, PERSPECTIVE_SPAN, S};
+use fixshade_testkit::support::{
+    clip_corner, corner, counts, exact_plane, full, lumas, plane_bound, Count, Record,
+};
+use fixshade_testkit::support::{Tris, PERSPECTIVE_SPAN, S};
 
 const N: u32 = 16;
 

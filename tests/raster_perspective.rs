@@ -5,13 +5,13 @@
 //! and all of it far closer to the exact value of the 3D attribute than
 //! screen-linear interpolation.
 
-mod support;
-
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::raster::{ATTR_FRAC, SUBPIXEL_BITS};
 use fixshade::render::Corner;
-use support::{clip_corner, full, plane_bound, Record, Run, Tris, PERSPECTIVE_SPAN};
+use fixshade_testkit::support::{
+    clip_corner, full, plane_bound, Record, Run, Tris, PERSPECTIVE_SPAN,
+};
 
 const W: usize = 128;
 const H: usize = 128;

@@ -13,12 +13,10 @@
 //! triangle's geometry (see its comment for the derivation); the search
 //! maximises the ratio of the error to it.
 
-mod support;
-
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::raster::interp::VARYING_LIMIT;
 use fixshade::raster::SUBPIXEL_BITS;
-use support::{corner, exact_plane, full, plane_bound, Record, Rng, Tris};
+use fixshade_testkit::support::{corner, exact_plane, full, plane_bound, Record, Rng, Tris};
 
 const W: u32 = 200;
 

@@ -7,12 +7,9 @@
 //! whose error bound could leave it) — for a perspective clip space, inside
 //! the corners' range always (every value is a convex combination).
 
-mod support;
-
 use std::cell::Cell;
 
-#[path = "common/seeded.rs"]
-mod seeded;
+use fixshade_testkit::seeded;
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 use fixshade::camera::{Clip, ClipSpace};
@@ -20,8 +17,8 @@ use fixshade::raster::interp::VARYING_LIMIT;
 use fixshade::raster::{Cull, ATTR_FRAC};
 use fixshade::render::{draw_triangle, BandView, Corner, DrawBand};
 use fixshade::shade::{Kernel, VertexIn};
+use fixshade_testkit::support::{banded, full, lumas};
 use proptest::prelude::*;
-use support::{banded, full, lumas};
 
 const W: u32 = 40;
 const H: u32 = 30;

@@ -4,15 +4,14 @@
 //! reaching far beyond the set-up window (the clipper), lifted into a
 //! perspective clip space with a different `w` per vertex, and in bands.
 
-#[path = "common/seeded.rs"]
-mod seeded;
-mod support;
+use fixshade_testkit::seeded;
+use fixshade_testkit::support;
 
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::render::Corner;
+use fixshade_testkit::support::{banded, counts, full, lumas, Count, Tris, S};
 use proptest::prelude::*;
-use support::{banded, counts, full, lumas, Count, Tris, S};
 
 const W: u32 = 64;
 const H: u32 = 48;

@@ -5,8 +5,7 @@
 //! texture seam, within and beyond the budget; seamed spheres under every
 //! budget from 1 to 40 new vertices), banded = whole frame.
 
-#[path = "common/seeded.rs"]
-mod seeded;
+use fixshade_testkit::seeded;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;

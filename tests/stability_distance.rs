@@ -9,14 +9,12 @@
 //! binade of the geometry range plus its ends, and a random search adds
 //! log-uniform combinations.
 
-mod common;
-
-use common::scenes::{lsb_error, reference_u8, tier_u8, ModelKind, Rng, Sample};
 use fixshade::lighting::LinearFog;
 use fixshade::lighting::MaterialDesc;
 use fixshade::lighting::{Attenuation, LightDesc, LightKind};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
 use fixshade::reference::{FogDesc, ViewerDesc};
+use fixshade_testkit::scenes::{lsb_error, reference_u8, tier_u8, ModelKind, Rng, Sample};
 
 /// A tier with the tolerances its documentation states (`Scalar::geo_inv_quadratic`,
 /// `Scalar::ramp_at`): the attenuation within `ATT_REL` relative plus the final

@@ -4,8 +4,7 @@
 //! directly: huge, infinite and NaN coordinates included (the float tiers' `Vec3`
 //! holds any `f32`; the fixed tiers' any raw value).
 
-#[path = "common/seeded.rs"]
-mod seeded;
+use fixshade_testkit::seeded;
 
 use fixshade::color::Rgb;
 use fixshade::lighting::{AnyLight, LightDesc, LightKind, LightSet};

@@ -6,10 +6,9 @@
 //! ±2, ±1, the smallest steps, NaN and infinities for the float tiers) and all
 //! their combinations for the vector operations, plus random raw values.
 
-#[path = "common/seeded.rs"]
-mod seeded;
 use fixshade::num::Vec3;
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
+use fixshade_testkit::seeded;
 
 /// The range of the float tiers (±10⁹, documented in `fixshade::num`).
 const F32_LIMIT: f32 = 1.0e9;

@@ -14,10 +14,7 @@
 //! (huge, infinite, NaN) are what a transform saturates them to (`as`
 //! saturates, NaN → 0; `MeshTransform::eye` saturates the same way).
 
-mod support;
-
-#[path = "common/seeded.rs"]
-mod seeded;
+use fixshade_testkit::seeded;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::{Clip, ClipSpace};
@@ -29,8 +26,8 @@ use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use fixshade::raster::{Cull, SUBPIXEL_BITS};
 use fixshade::render::Corner;
 use fixshade::shade::{FlatShading, GeneralPhongShading, GouraudShading, Linear, Shader, VertexIn};
+use fixshade_testkit::support::{full, Tris};
 use proptest::prelude::*;
-use support::{full, Tris};
 
 const W: u32 = 64;
 

@@ -2,7 +2,7 @@
 //! bands flushed to a display equal the whole frame (with depth), display
 //! errors, band geometry, and a mesh refused by a frame of another layout.
 
-mod support;
+use fixshade_testkit::support;
 
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
@@ -14,7 +14,7 @@ use fixshade::prelude::*;
 use fixshade::render::{
     bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
 };
-use support::{corner, full, Solid, Tris, S};
+use fixshade_testkit::support::{corner, full, Solid, Tris, S};
 
 /// The largest frame width and height the renderer accepts (documented on
 /// `Layout::new`).

@@ -1220,8 +1220,7 @@ fn extremes_never_panic() {
 
 // ---- targeted worst-case search (issue 21, item 6) -------------------------------------
 
-#[path = "common/worst_case.rs"]
-mod worst_case;
+use fixshade_testkit::worst_case;
 
 /// The modulation bound (one Rgb565 step of `round(t/max · p · max)`) at
 /// targeted worst cases: primary levels hill-climbed towards the rounding

@@ -1,8 +1,7 @@
 //! Random lighting samples for comparing the tiers with the f64 reference.
 //!
-//! Shared by `tests/lighting_accuracy.rs` and `examples/accuracy.rs` (included with
-//! `#[path]`), so the README's figures and the asserted bounds come from one
-//! generator.
+//! Used by the lighting accuracy tests and the `accuracy` harness, so the
+//! README's figures and the asserted bounds come from one generator.
 
 #![allow(dead_code)]
 

@@ -1,8 +1,8 @@
 //! Deterministic worst-case search for the stated error bounds (issue 21,
 //! item 6): hill climbs from seeded, *targeted* starts (near the mirror
 //! direction where `x^n` is steepest, grazing lights, the highest exponents,
-//! colours near saturation, attenuation extremes), the approach of
-//! `examples/accuracy.rs` for the general lighting path, shared by the tests
+//! colours near saturation, attenuation extremes), the approach of the
+//! `accuracy` harness for the general lighting path, shared by the tests
 //! of every kernel with a bound (`lighting_accuracy`, `incremental_phong`,
 //! `quadratic_accuracy`, `normal_mapping`, `texture_mapping`).
 //!

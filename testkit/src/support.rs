@@ -3,9 +3,6 @@
 //! of the tests' own (counting, solid, recording), triangle lists drawn
 //! through the per-triangle front [`draw_triangle`], and frames rendered
 //! whole ([`FullFrame`]) or in bands ([`Bands`]) into a `Vec`.
-//!
-//! Included with `mod support;` (a directory module: not a test target of
-//! its own); every test uses a part of it.
 
 #![allow(dead_code)]
 
@@ -296,6 +293,8 @@ pub fn counts(w: u32, h: u32, tris: &[[Corner; 3]]) -> Vec<u8> {
 pub struct Rng(pub u64);
 
 impl Rng {
+    /// The next value (an endless stream, not an `Iterator`).
+    #[allow(clippy::should_implement_trait)]
     pub fn next(&mut self) -> u64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;

@@ -16,8 +16,8 @@
 //! comes from the pipeline's own set-up: the reference is drawn by a
 //! `MeshDraw` of the same mesh with a kernel of this file.
 //!
-//! Shared by `tests/golden.rs`, `tests/incremental_phong.rs`,
-//! `examples/showcase.rs` and `benches/tradeoff.rs` (included with `#[path]`).
+//! Used by the golden and incremental-Phong tests, `examples/showcase.rs` and
+//! `benches/tradeoff.rs`.
 
 #![allow(dead_code)]
 
