@@ -127,10 +127,8 @@ fn orthographic_transform_rounding_at_i32_max() {
 
 // ---- the mesh renderer and surface detail (issue 21, item 7) ---------------------------
 
-/// The fuzz targets' decoding and checks (`fuzz/src/`), so that a kept input
-/// replays here exactly as in the fuzzer.
-#[path = "../fuzz/src/lib.rs"]
-mod fuzz;
+// The fuzz targets' decoding and checks: `fixshade_fuzz` (fuzz/src/, the library
+// of the fuzz package), so that a kept input replays here exactly as in the fuzzer.
 
 /// fuzz target `surface`, crash-4a9262f7: a 1 × 1 normal map of
 /// `normalize_texels([i16::MIN; 3])` = `[−9459; 3]` (a unit normal facing
@@ -140,7 +138,7 @@ mod fuzz;
 /// line 852).
 #[test]
 fn surface_fast_normal_map_on_a_turned_sphere() {
-    fuzz::surface::run(include_bytes!(
+    fixshade_fuzz::surface::run(include_bytes!(
         "../fuzz/regressions/surface/crash-4a9262f7c490278123e3aac51c48d2d7e0b7fc34"
     ));
 }
@@ -151,7 +149,7 @@ fn surface_fast_normal_map_on_a_turned_sphere() {
 /// 194).
 #[test]
 fn mesh_incremental_phong_extreme_normals() {
-    fuzz::mesh::run(include_bytes!(
+    fixshade_fuzz::mesh::run(include_bytes!(
         "../fuzz/regressions/mesh/crash-335eed3a497e6dd397f3ee982617850211fe40e6"
     ));
 }
@@ -164,7 +162,7 @@ fn mesh_incremental_phong_extreme_normals() {
 /// normalmap.rs line 891); it wraps now, like the other accumulators there.
 #[test]
 fn surface_fast_normal_map_newton_after_the_last_pixel() {
-    fuzz::surface::run(include_bytes!(
+    fixshade_fuzz::surface::run(include_bytes!(
         "../fuzz/regressions/surface/crash-569c613ab464faaebbc74a3599ffa85ce416b263"
     ));
 }
@@ -225,7 +223,7 @@ fn slivers_cut_by_the_near_plane_are_drawn_once() {
 /// first (at most 1 in magnitude).
 #[test]
 fn mesh_normal_matrix_of_subnormal_elements() {
-    fuzz::mesh::run(include_bytes!(
+    fixshade_fuzz::mesh::run(include_bytes!(
         "../fuzz/regressions/mesh/crash-5167a126ce8b9c84b1e115695299a119ee61a2cd"
     ));
 }
