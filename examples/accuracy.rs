@@ -4,7 +4,7 @@
 //! climbs from the worst samples, near the highlight, with interpolated normals, and
 //! from targeted starts: the mirror direction at the band's highest exponent, grazing
 //! lights, colours near saturation, attenuation extremes).
-//! The README's accuracy table and the bounds of `tests/lighting_accuracy.rs` come
+//! The README's accuracy table and the bounds of `tests/lighting/lighting_accuracy.rs` come
 //! from this program:
 //!
 //! ```sh
@@ -25,7 +25,7 @@ fn cell<S: Scalar>(term: Term, band: Band, seed: u64) -> String {
     let (cases, climbs, steps) = SEARCH;
     let (worst, _) = search::<S>(term, band, cases, climbs, steps, seed + 7);
     // and from the targeted starts (mirror direction, grazing, saturation,
-    // attenuation extremes) of tests/lighting_accuracy.rs, with more effort
+    // attenuation extremes) of tests/lighting/lighting_accuracy.rs, with more effort
     let worst = worst.max(scenes::targeted_search::<S>(term, band, 64, 600, seed + 11).0);
     format!(" {max} / {mean:.3} / **{worst}** |")
 }

@@ -19,7 +19,7 @@
 # inputs on one machine, but another clone found crashes this one did not: CI could
 # fail on an unchanged tree. Replaying fixed files is the same everywhere; exploring
 # is a developer's step, and what it finds is kept in fuzz/regressions/<t>/ and as a
-# test in tests/fuzz_regressions.rs, what it covers in fuzz/corpus/<t>.tar.gz (FUZZ_GROW;
+# test in tests/stability/fuzz_regressions.rs, what it covers in fuzz/corpus/<t>.tar.gz (FUZZ_GROW;
 # an archive per target: thousands of small inputs, about 1.4 MB in all).
 #
 # Builds the targets as `cargo fuzz build -s none` does (libFuzzer with
@@ -106,7 +106,7 @@ for t in "${targets[@]}"; do
     fi
   else
     grep -v '^ \+\(at \|[0-9]\+: \)' "$log" | tail -40 >&2
-    echo "FAIL fuzz $t ($what): crash (input in fuzz/artifacts/$t/; keep it in fuzz/regressions/$t and as a test in tests/fuzz_regressions.rs)" >&2
+    echo "FAIL fuzz $t ($what): crash (input in fuzz/artifacts/$t/; keep it in fuzz/regressions/$t and as a test in tests/stability/fuzz_regressions.rs)" >&2
     status=1
   fi
   rm -rf "$work" "$log" "$unpacked"

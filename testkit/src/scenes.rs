@@ -490,7 +490,7 @@ pub fn excluded(s: &Sample) -> bool {
 /// Whether an attenuation factor of the sample exceeds 2 (`a + b·d + c·d² < ½`):
 /// beyond the fixed tiers' range, where they carry the factor as `m·2^e` and the
 /// error of every cosine is multiplied by it (the reference's sensitivity too;
-/// `tests/attenuation_unbounded.rs` covers that domain with a bound that grows
+/// `tests/lighting/attenuation_unbounded.rs` covers that domain with a bound that grows
 /// with the factor); the generator keeps the sum above 0.6, but a search may
 /// move a light closer.
 pub fn beyond_range(s: &Sample) -> bool {
@@ -519,7 +519,7 @@ pub fn beyond_range(s: &Sample) -> bool {
 /// exists only for `N·L > 0`), a spot cone's edge, or the edge of total internal
 /// reflection (transmission: `cos² θt = 1 − η²·sin² θi` near 0, where the refracted
 /// light jumps from grazing to none). The accuracy bounds exclude these samples;
-/// `tests/lighting_extremes.rs` covers them for panics and range.
+/// `tests/lighting/lighting_extremes.rs` covers them for panics and range.
 pub fn near_discontinuity(s: &Sample) -> bool {
     let pd = [s.p[0] as f64, s.p[1] as f64, s.p[2] as f64];
     let n = norm([s.n[0] as f64, s.n[1] as f64, s.n[2] as f64]);

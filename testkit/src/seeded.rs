@@ -5,7 +5,9 @@
 //!
 //! - Each block has its own fixed seed (a hash of the name it passes).
 //! - Failures are still kept: proptest's regression files
-//!   (`tests/*.proptest-regressions`, `proptest-regressions/`) are replayed
+//!   (`tests/proptest-regressions/` for the integration tests: proptest
+//!   names a file after the source file, beside the directory of the test
+//!   binary's `main.rs`; `proptest-regressions/` for `src/`) are replayed
 //!   first, and a new failure is written there as a `cc` line (the failing
 //!   case's own seed): commit it with the fix.
 //! - Fresh random cases, to look for new failures: `FIXSHADE_PROPTEST_FRESH=1

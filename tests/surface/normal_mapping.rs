@@ -445,7 +445,7 @@ fn general_error<S: Scalar, M: Model>(
                             core::array::from_fn(|k| ti[k] * m[0] + bi[k] * m[1] + ni[k] * m[2]);
                         // within GATE of n·L = 0 the specular term switches on
                         // (a jump of up to ks): not compared, as in
-                        // tests/lighting_accuracy.rs
+                        // tests/lighting/lighting_accuracy.rs
                         let l = match desc.kind {
                             LightKind::Directional { towards_light } => norm(f64v(towards_light)),
                             LightKind::Point { position, .. }

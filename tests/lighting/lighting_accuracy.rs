@@ -160,7 +160,7 @@ fn worst_case_search() {
 /// The same search with about 30 times the effort (four seeds, 20 000 samples and 48
 /// climbs of 1500 steps per cell): the bounds above are what it finds. About two
 /// minutes; prints the worst case per tier and cell:
-/// `cargo test --release --test lighting_accuracy -- --ignored --nocapture`.
+/// `cargo test --release --test lighting lighting_accuracy:: -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn worst_case_search_heavy() {

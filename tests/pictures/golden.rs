@@ -2,8 +2,8 @@
 //! tier through the real pipeline (one `MeshDraw` per object), against the same
 //! scene rendered by the f64 reference model on the same pixels (from the same
 //! quantised inputs: Q14 normals, Q16.16 eye positions, sub-pixel vertices). Bounds per tier (8-bit LSBs, PSNR in dB)
-//! are the ones stated in the README; `cargo test --release --test golden --
-//! --nocapture` prints the measured table.
+//! are the ones stated in the README; `cargo test --release --test pictures
+//! golden:: -- --nocapture` prints the measured table.
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};

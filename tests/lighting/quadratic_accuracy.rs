@@ -600,7 +600,7 @@ fn targeted_worst_case_search() {
 
 /// [`targeted_worst_case_search`] with about 20 times the effort (six seeds,
 /// 60 starts and 150 moves per cell): the bounds of [`bound`] are what it finds.
-/// `cargo test --release --test quadratic_accuracy -- --ignored --nocapture`.
+/// `cargo test --release --test lighting quadratic_accuracy:: -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn targeted_worst_case_search_heavy() {

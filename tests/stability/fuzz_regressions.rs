@@ -139,7 +139,7 @@ fn orthographic_transform_rounding_at_i32_max() {
 #[test]
 fn surface_fast_normal_map_on_a_turned_sphere() {
     fixshade_fuzz::surface::run(include_bytes!(
-        "../fuzz/regressions/surface/crash-4a9262f7c490278123e3aac51c48d2d7e0b7fc34"
+        "../../fuzz/regressions/surface/crash-4a9262f7c490278123e3aac51c48d2d7e0b7fc34"
     ));
 }
 
@@ -150,7 +150,7 @@ fn surface_fast_normal_map_on_a_turned_sphere() {
 #[test]
 fn mesh_incremental_phong_extreme_normals() {
     fixshade_fuzz::mesh::run(include_bytes!(
-        "../fuzz/regressions/mesh/crash-335eed3a497e6dd397f3ee982617850211fe40e6"
+        "../../fuzz/regressions/mesh/crash-335eed3a497e6dd397f3ee982617850211fe40e6"
     ));
 }
 
@@ -163,7 +163,7 @@ fn mesh_incremental_phong_extreme_normals() {
 #[test]
 fn surface_fast_normal_map_newton_after_the_last_pixel() {
     fixshade_fuzz::surface::run(include_bytes!(
-        "../fuzz/regressions/surface/crash-569c613ab464faaebbc74a3599ffa85ce416b263"
+        "../../fuzz/regressions/surface/crash-569c613ab464faaebbc74a3599ffa85ce416b263"
     ));
 }
 
@@ -224,6 +224,6 @@ fn slivers_cut_by_the_near_plane_are_drawn_once() {
 #[test]
 fn mesh_normal_matrix_of_subnormal_elements() {
     fixshade_fuzz::mesh::run(include_bytes!(
-        "../fuzz/regressions/mesh/crash-5167a126ce8b9c84b1e115695299a119ee61a2cd"
+        "../../fuzz/regressions/mesh/crash-5167a126ce8b9c84b1e115695299a119ee61a2cd"
     ));
 }

@@ -511,7 +511,7 @@ fn targeted_worst_case_search() {
 
 /// [`targeted_worst_case_search`] with about 40 times the effort (three seeds,
 /// 240 starts and 150 moves per band): the bounds of `bound` are what it
-/// finds. `cargo test --release --test incremental_phong -- --ignored --nocapture`.
+/// finds. `cargo test --release --test lighting incremental_phong:: -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn targeted_worst_case_search_heavy() {

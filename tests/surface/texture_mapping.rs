@@ -1091,7 +1091,7 @@ fn perspective_coordinates_stay_in_range_and_are_sampled() {
 /// least one pixel wide against the f64 method (the perspective-correct
 /// value at the sub-span ends, linear in between), within 2^−9 of a
 /// texture; largest found 8.7·10^−4, slivers included (`cargo test --release
-/// --test texture_mapping -- perspective_coordinates_match --nocapture`).
+/// --test surface perspective_coordinates_match -- --nocapture`).
 #[test]
 fn perspective_coordinates_match_the_f64_method() {
     const BOUND: f64 = 1.0 / 512.0;

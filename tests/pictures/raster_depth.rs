@@ -112,7 +112,7 @@ fn runs_split_around_failing_pixels_and_passing_pixels_write_depth() {
 }
 
 /// A sliver on the outline of the standard sphere seen in perspective
-/// (`tests/one_pipeline.rs`), in screen space: every depth it writes lies
+/// (`tests/pictures/one_pipeline.rs`), in screen space: every depth it writes lies
 /// within its corners' depths.
 #[test]
 fn sliver_depth_within_its_corners() {

@@ -49,7 +49,7 @@ fn points() -> Vec<([f32; 3], [f32; 3])> {
     out
 }
 
-/// The tier's bound in 8-bit LSBs (no highlight: `tests/lighting_accuracy.rs`).
+/// The tier's bound in 8-bit LSBs (no highlight: `tests/lighting/lighting_accuracy.rs`).
 const BOUND: u32 = 1;
 
 /// The error of the tier's cosine `N·L` (relative to 1): near the light the

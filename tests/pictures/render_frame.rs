@@ -1,6 +1,6 @@
 //! The mesh renderer on the standard scene: banded equals full frame bit for
 //! bit, every shading mode, orthographic and through the near plane (the
-//! per-triangle front equals `MeshDraw` bit for bit: `tests/one_pipeline.rs`).
+//! per-triangle front equals `MeshDraw` bit for bit: `tests/pictures/one_pipeline.rs`).
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
