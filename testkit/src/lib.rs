@@ -1,5 +1,5 @@
 //! Code shared by fixshade's integration tests, its benchmark, its examples and
-//! its host harnesses (`conformance/`, `measure/error/`), in one place instead
+//! its host harnesses (`conformance/`, `measure/accuracy/`), in one place instead
 //! of files included by `#[path]`. Not published.
 //!
 //! It depends on `fixshade` (feature `reference`) as any user does: the types it

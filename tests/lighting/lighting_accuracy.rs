@@ -8,10 +8,10 @@
 //! brilliance up to 8, transmission exponents up to 31; attenuation, fog and
 //! positions over their whole legal range), excluding samples within 10⁻³ of a
 //! discontinuity of the equation and attenuation factors beyond the fixed tiers'
-//! range of 2 (`fixshade_testkit::scenes::excluded`). They are the largest errors that
-//! `cargo run --release --example accuracy` finds: the max over 20 000 samples per
-//! cell and the worst case of a search (hill climbs from the worst samples); the
-//! tests below repeat both with less effort on every run.
+//! range of 2 (`fixshade_testkit::scenes::excluded`). They are the largest errors
+//! that `cargo run --release -p fixshade-accuracy --bin accuracy` finds: the max
+//! over 20 000 samples per cell and the worst case of a search (hill climbs from
+//! the worst samples); the tests below repeat both with less effort on every run.
 
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use fixshade_testkit::scenes::{
@@ -132,7 +132,8 @@ proptest! {
 /// per-pixel shading does), then hill climbs from the worst of them
 /// (`fixshade_testkit::scenes::search`). Uniform sampling rarely lands on the few directions
 /// where the rounding of `N`, `L` and `H` is amplified most; the climbs do.
-/// `cargo run --release --example accuracy` runs the same search with more effort.
+/// `cargo run --release -p fixshade-accuracy --bin accuracy` runs the same search
+/// with more effort.
 #[test]
 fn worst_case_search() {
     fn cell<S: Scalar>(term: Term, band: Band, bound: Bound, seed: u64) {

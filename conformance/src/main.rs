@@ -5,7 +5,7 @@
 //! model (`ref`).
 //!
 //! ```sh
-//! cargo run --release --example conformance -- [--scenes DIR] [--out DIR] \
+//! cargo run --release -p fixshade-conformance -- [--scenes DIR] [--out DIR] \
 //!     [--mesh-as-triangles] [names…]
 //! ```
 //!
@@ -17,7 +17,7 @@
 //!
 //! Two ways in, one pipeline behind them:
 //!
-//! - **Per triangle** (most objects): the example computes each vertex's clip
+//! - **Per triangle** (most objects): the harness computes each vertex's clip
 //!   coordinates from the scene's GL matrices ([`Clip`] in
 //!   [`ClipSpace::SCREEN`] for orthographic cameras, homogeneous in
 //!   [`ClipSpace::perspective`] for perspective ones, so the library clips at
@@ -35,12 +35,12 @@
 //! `GlScene::back_lighting`). Kernels: the library's
 //! [`GouraudShading`] for `GL_SMOOTH` and [`GeneralPhongShading`] for
 //! per-pixel lighting (wrapped in `SeparateSpecular` for
-//! `GL_SEPARATE_SPECULAR_COLOR`), and kernels of this example for what OpenGL
+//! `GL_SEPARATE_SPECULAR_COLOR`), and kernels of this harness for what OpenGL
 //! does that the library's modes do not: [`Solid`] (the test kit's kernel of
 //! one colour, one per triangle: `GL_FLAT`, the colour lit at the provoking
 //! vertex, which the library's [`FlatShading`](fixshade::shade::FlatShading)
 //! does not pick: it lights the centroid; and the object ids), [`VertexColors`]
-//! (`GL_SMOOTH` with colours the example lights per vertex:
+//! (`GL_SMOOTH` with colours the harness lights per vertex:
 //! `GL_COLOR_MATERIAL`, separate specular, `GL_NORMALIZE` off) and the `f64`
 //! reference ([`RefKernel`]).
 
@@ -688,7 +688,7 @@ fn homogeneous(g: &Geometry, t: [usize; 3]) -> [[f64; 3]; 3] {
 /// [0, 2]: below 2^15).
 const COLOR_FRAC: u32 = 6;
 
-/// `GL_SMOOTH` with colours the example lit per vertex (`GL_COLOR_MATERIAL`,
+/// `GL_SMOOTH` with colours the harness lit per vertex (`GL_COLOR_MATERIAL`,
 /// `GL_SEPARATE_SPECULAR_COLOR`, `GL_NORMALIZE` off: what the library's
 /// [`GouraudShading`] cannot light, since its vertex stage gets a normal and a
 /// position but no colour, and normalises the normal): the corners' colours,
@@ -803,7 +803,7 @@ fn ids(sc: &Scene, geos: &[Geometry]) -> Vec<u16> {
 
 // ------------------------------------------------------------------ the tiers
 
-/// An object's vertices in tier `S`, for the lighting the example evaluates
+/// An object's vertices in tier `S`, for the lighting the harness evaluates
 /// per vertex: eye-space positions, the normals OpenGL lights, and with colour
 /// material the vertex colours.
 struct TierVertices<S: Scalar> {

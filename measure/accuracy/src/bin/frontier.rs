@@ -24,8 +24,8 @@
 //! inside a triangle, far from every vertex.
 //!
 //! ```sh
-//! cargo run --release --example frontier            # writes measure/out/frontier_error.json
-//! cargo run --release --example frontier -- --no-write   # prints it only
+//! cargo run --release -p fixshade-accuracy --bin frontier            # writes measure/out/frontier_error.json
+//! cargo run --release -p fixshade-accuracy --bin frontier -- --no-write   # prints it only
 //! ```
 //! (`python3 measure/frontier.py` runs it and joins the costs of frame.json.)
 
@@ -388,7 +388,7 @@ fn main() -> Result<(), ParamError> {
     let t = standard::fixed_transform(&fixed)?;
     let tc = fixed.mesh_transform(&Pose::IDENTITY, COARSE.frac)?;
     let out = json!({
-        "about": "error of each configuration's host frame against the exact image (per-pixel f64 reference at pixel centres, rounded to 5-6-5), worst channel in 8-bit LSB; examples/frontier.rs",
+        "about": "error of each configuration's host frame against the exact image (per-pixel f64 reference at pixel centres, rounded to 5-6-5), worst channel in 8-bit LSB; measure/accuracy/src/bin/frontier.rs",
         "standard": scene::<{ standard::COUNTS.0 }>(
             "standard sphere 16x24",
             standard::SPHERE.mesh(),
@@ -405,12 +405,11 @@ fn main() -> Result<(), ParamError> {
     let text = serde_json::to_string_pretty(&out).expect("json") + "\n";
     print!("{text}");
     if !std::env::args().any(|a| a == "--no-write") {
-        let path = concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/measure/out/frontier_error.json"
-        );
-        std::fs::write(path, &text).expect("write frontier_error.json");
-        eprintln!("wrote {path}");
+        // measure/out/ beside this package (measure/accuracy/)
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../out/frontier_error.json");
+        std::fs::write(&path, &text).expect("write frontier_error.json");
+        eprintln!("wrote {}", path.display());
     }
     Ok(())
 }

@@ -8,7 +8,7 @@
 //! from this program:
 //!
 //! ```sh
-//! cargo run --release --example accuracy
+//! cargo run --release -p fixshade-accuracy --bin accuracy
 //! ```
 
 use fixshade_testkit::scenes;
