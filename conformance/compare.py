@@ -24,11 +24,11 @@ Targets (issue 12): ``f32``, ``q30`` and ``ref`` within 1 LSB on ≥ 99.9 % of
 interior pixels and within 2 LSB on all; ``q14`` within the bound the crate
 documents for ``Q14<2>`` (README, "the bounds the tests assert": 1 LSB without a
 highlight, 2 for shininess ≤ 64, 9 for ≤ 256); no unexplained coverage
-difference; the tier supported (the example reports no unsupported feature).
+difference; the tier supported (the harness reports no unsupported feature).
 
 ``q14`` alone leaves out pixels lit within 10⁻³ of a discontinuity of the
 lighting equation (a spot cone's edge, the specular switch at N·L = 0), as the
-crate's documented bounds do; the example marks them from the f64 model.
+crate's documented bounds do; the harness marks them from the f64 model.
 
 ``--check`` exits 1 when a scene/tier that is expected to pass fails (FAIL), or
 one marked ``expect_fail`` in ``conformance/scenes.py`` passes (XPASS: support
@@ -327,7 +327,7 @@ def write_markdown(path, results, meta, summary):
         if kn:
             outcomes = ", ".join(f"{t} {res['tiers'][t]['outcome']}" for t in kn)
             lines.append(f"- **{s}** ({outcomes}): {'; '.join(sorted(set(kn.values())))}")
-    lines += ["", "## Unsupported features and warnings reported by the example", ""]
+    lines += ["", "## Unsupported features and warnings reported by the harness", ""]
     for s, res in results.items():
         notes = []
         for t, r in res["tiers"].items():

@@ -23,9 +23,9 @@ python3 -m pip install --quiet --disable-pip-version-check --root-user-action=ig
 echo "== scenes"
 python3 conformance/scenes.py --out "$OUT/scenes"
 
-echo "== fixshade (examples/conformance.rs)"
+echo "== fixshade (conformance/src/main.rs)"
 # the test profile (opt-level 2) shares its dependencies with `cargo test`
-cargo run --quiet --profile test --example conformance -- --scenes "$OUT/scenes" --out "$OUT"
+cargo run --quiet --profile test -p fixshade-conformance -- --scenes "$OUT/scenes" --out "$OUT"
 
 echo "== Mesa (llvmpipe through OSMesa)"
 # the per-pixel shader's lighting function, evaluated per vertex, against fixed function

@@ -16,19 +16,15 @@
 //! coverage). The error of each against the reference is printed beside the
 //! file names.
 
-#[path = "../tests/common/render.rs"]
-mod render;
-#[path = "../tests/common/surface.rs"]
-mod surface;
-#[path = "../tests/common/surface_scenes.rs"]
-mod surface_scenes;
+use fixshade_testkit::render;
+use fixshade_testkit::surface_scenes;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use fixshade::num::{Scalar, Q14, Q30};
 use fixshade::reference::V3;
-use render::{
+use fixshade_testkit::render::{
     compare, compare_mesh, reference_rgb888, render_mesh, render_reference, render_tier,
     render_triangles, scenes, Scene,
 };

@@ -19,14 +19,16 @@
 # inputs on one machine, but another clone found crashes this one did not: CI could
 # fail on an unchanged tree. Replaying fixed files is the same everywhere; exploring
 # is a developer's step, and what it finds is kept in fuzz/regressions/<t>/ and as a
-# test in tests/fuzz_regressions.rs, what it covers in fuzz/corpus/<t>.tar.gz (FUZZ_GROW;
+# test in tests/stability/fuzz_regressions.rs, what it covers in fuzz/corpus/<t>.tar.gz (FUZZ_GROW;
 # an archive per target: thousands of small inputs, about 1.4 MB in all).
 #
 # Builds the targets as `cargo fuzz build -s none` does (libFuzzer with
 # SanitizerCoverage, no sanitizer: works on stable Rust; cargo-fuzz need not be
-# installed here). Any crash (a panic: overflow checks are on in the fuzz
-# profile) fails loudly: exit 1, the crashing input in fuzz/artifacts/<target>/
-# when exploring, the libFuzzer log on stderr. Prints inputs, executions and time.
+# installed here), with the workspace's `fuzz` profile (Cargo.toml at the root:
+# opt-level 3, overflow checks and debug assertions on; the binaries land in the
+# workspace's target/<host triple>/fuzz/). Any crash (a panic: overflow checks are
+# on) fails loudly: exit 1, the crashing input in fuzz/artifacts/<target>/ when
+# exploring, the libFuzzer log on stderr. Prints inputs, executions and time.
 set -euo pipefail
 shopt -s nullglob
 cd "$(dirname "$0")"
@@ -46,10 +48,11 @@ if [ "${#targets[@]}" -eq 0 ]; then
 fi
 triple="$(rustc -vV | sed -n 's/^host: //p')"
 export RUSTFLAGS=" -Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table -Cllvm-args=-sanitizer-coverage-trace-compares --cfg fuzzing -Cllvm-args=-simplifycfg-branch-fold-threshold=0 -Cllvm-args=-sanitizer-coverage-stack-depth -Ccodegen-units=1"
-cargo build --quiet --release --target "$triple" --bins
+cargo build --quiet --profile fuzz --target "$triple" --bins
+target_dir="${CARGO_TARGET_DIR:-../target}"
 status=0
 for t in "${targets[@]}"; do
-  bin="target/$triple/release/$t"
+  bin="$target_dir/$triple/fuzz/$t"
   if [ -z "${RUNS[$t]:-}" ]; then
     echo "FAIL fuzz $t: no such target" >&2
     status=1
@@ -103,7 +106,7 @@ for t in "${targets[@]}"; do
     fi
   else
     grep -v '^ \+\(at \|[0-9]\+: \)' "$log" | tail -40 >&2
-    echo "FAIL fuzz $t ($what): crash (input in fuzz/artifacts/$t/; keep it in fuzz/regressions/$t and as a test in tests/fuzz_regressions.rs)" >&2
+    echo "FAIL fuzz $t ($what): crash (input in fuzz/artifacts/$t/; keep it in fuzz/regressions/$t and as a test in tests/stability/fuzz_regressions.rs)" >&2
     status=1
   fi
   rm -rf "$work" "$log" "$unpacked"

@@ -2,9 +2,10 @@
 """The trade as users make it (issue 19): each configuration of the standard scene, its
 whole-frame cost on each core against its error to the *exact image*.
 
-Runs `cargo run --release --example frontier` (examples/frontier.rs: every configuration
-rendered on the host, compared with the per-pixel f64 reference at pixel centres, on the
-standard sphere and on a coarse 6 x 8 UV sphere; -> measure/out/frontier_error.json), joins
+Runs `cargo run --release -p fixshade-accuracy --bin frontier` (measure/accuracy/src/bin/
+frontier.rs: every configuration rendered on the host, compared with the per-pixel f64
+reference at pixel centres, on the standard sphere and on a coarse 6 x 8 UV sphere;
+-> measure/out/frontier_error.json), joins
 the instructions per lit pixel of the whole frame from measure/out/frame.json (m0, m4f,
 rv32imc; on the coarse mesh the cost shown is the standard scene's: nothing new is
 measured), and writes measure/out/frontier.json, the Pareto fronts per core as markdown
@@ -46,8 +47,8 @@ ORDER = ["flat", "flat_f32", "lambert_gouraud", "lambert_gouraud_f32", "lambert_
          "blinn_gouraud", "blinn_gouraud_f32", "blinn_phong_inc", "blinn_phong", "blinn_phong_f32"]
 
 
-def run_example(write: bool) -> dict:
-    cmd = ["cargo", "run", "--quiet", "--release", "--example", "frontier"]
+def run_frontier(write: bool) -> dict:
+    cmd = ["cargo", "run", "--quiet", "--release", "-p", "fixshade-accuracy", "--bin", "frontier"]
     if not write:
         cmd += ["--", "--no-write"]
     out = subprocess.run(cmd, cwd=ROOT, check=True, stdout=subprocess.PIPE, text=True).stdout
@@ -62,7 +63,7 @@ def join(err: dict, frame: dict) -> dict:
     if bad:
         sys.exit(f"frontier.py: host frames differ from measure/out/frame.json's: {', '.join(bad)}"
                  " (rerun python3 measure/frame.py)")
-    doc = {"about": "error (examples/frontier.rs, 8-bit LSB of the worst channel against the exact image)"
+    doc = {"about": "error (measure/accuracy/src/bin/frontier.rs, 8-bit LSB of the worst channel against the exact image)"
                     " against whole-frame instructions per lit pixel (measure/out/frame.json, full frame;"
                     " the coarse mesh carries the standard scene's cost)",
            "meshes": {}}
@@ -149,7 +150,7 @@ def markdown(doc: dict) -> str:
     vs = [r["error_vs_blinn_phong"]["max"] for m in meshes.values() for r in m["configs"].values()
           if "error_vs_blinn_phong" in r]
     L.append(
-        "**Error** (`examples/frontier.rs`): each configuration's host frame (its checksum equals frame.json's)"
+        "**Error** (`measure/accuracy/src/bin/frontier.rs`): each configuration's host frame (its checksum equals frame.json's)"
         " against the *exact image*: the same scene lit per pixel by `fixshade::reference` in `f64` at pixel"
         " centres, with the mesh's vertex normals interpolated there and normalised (Blinn-Phong for the Blinn"
         " configurations, Lambert for the Lambert ones), rounded to the nearest 5-6-5 colour; the shading"
@@ -278,7 +279,7 @@ def main() -> int:
     ap.add_argument("--check", action="store_true",
                     help="recompute and compare with the committed outputs; exit 1 on a difference")
     args = ap.parse_args()
-    err, err_text = run_example(write=not args.check)
+    err, err_text = run_frontier(write=not args.check)
     doc = join(err, json.loads(FRAME_JSON.read_text()))
     block = markdown(doc)
     outputs = {

@@ -1,7 +1,8 @@
 //! Shared input decoding and checks of the fuzz targets (issues 11 and 21),
 //! and the bodies of the targets `mesh` and `surface` ([`mesh::run`],
-//! [`surface::run`]), which `tests/fuzz_regressions.rs` includes to replay the
-//! kept inputs exactly. The one function that builds a frame of the mesh
+//! [`surface::run`]), through which fixshade's tests replay the kept inputs
+//! exactly (`fuzz_regressions`: a dev-dependency on this library, without
+//! libFuzzer). The one function that builds a frame of the mesh
 //! renderer is `draw` (below; [`frames`] draws it whole and in bands): adapt it
 //! when that API changes.
 //!
@@ -13,9 +14,7 @@
 
 #![allow(dead_code)]
 
-#[path = "mesh.rs"]
 pub mod mesh;
-#[path = "surface.rs"]
 pub mod surface;
 
 use fixshade::color::Rgb;

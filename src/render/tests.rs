@@ -2,9 +2,10 @@
 //! the exact projection, for sheets crossing the near plane and reaching far
 //! beyond the screen.
 
-/// Fixed proptest seeds (shared with the integration tests).
-#[path = "../../tests/common/seeded.rs"]
-mod seeded;
+/// Fixed proptest seeds (shared with the integration tests: `fixshade-testkit`,
+/// which passes no `fixshade` type, so the other instance of the crate it links
+/// does not matter here).
+use fixshade_testkit::seeded;
 
 use super::*;
 use crate::camera::{Camera, Perspective, Viewport};

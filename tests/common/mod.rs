@@ -1,4 +1,0 @@
-pub mod render;
-pub mod scenes;
-pub mod seeded;
-pub mod worst_case;
