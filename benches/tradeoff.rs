@@ -14,8 +14,8 @@
 use fixshade_testkit::render;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use fixshade::framebuffer::{DrawBand, FullFrame, Layout};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
-use fixshade::render::{DrawBand, FullFrame, Layout};
 use fixshade_testkit::render::{
     compare, config_scene, render_reference, render_tier, with_draws, with_incremental_draws,
     LightSet, Mode, Scene, LIGHT_SETS, MODES,

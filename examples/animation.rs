@@ -55,7 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         0.7,
         40.0,
     );
-    let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&gold)?).eye_space();
+    let lighting = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&gold)?).eye_space();
 
     let layout = Layout::banded(SIZE, SIZE, ROWS)?;
     let mut strip = [Rgb565::BLACK; (SIZE * ROWS) as usize];
@@ -73,8 +73,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         // one turn about y, a slow wobble about x
         let model = Mat4::rotate_x(0.5 + 0.25 * a.sin()).mul(&Mat4::rotate_y(a));
         let transform = camera.mesh_transform(&model, KNOT.frac)?;
-        let shader = Shader::new(PhongShading, &lighting, Linear);
-        let mut knot = MeshDraw::new(layout, KNOT.mesh(), &transform, shader, buffers.memory())?;
+        let shader = Shader::new(IncrementalPhongShading, &lighting, Linear);
+        let mut knot = MeshDraw::new(
+            layout,
+            KNOT.mesh(),
+            &transform,
+            shader,
+            buffers.memory(),
+            DrawOptions::default(),
+        )?;
         let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(SIZE, SIZE));
         Bands::new(layout, &mut strip, Some(&mut depth))?.render(
             &mut display,

@@ -1,7 +1,7 @@
 //! An interactive window on the renderer (the embedded-graphics simulator
 //! with SDL2): the standard scene's sphere or the trefoil knot, turning,
-//! under flat, Gouraud or Phong shading (`PhongShading` picks the incremental
-//! kernel for the standard scene's `Q14` lighting of one directional light). Needs SDL2 (`apt-get install
+//! under flat, Gouraud or Phong shading (`PhongShading`, the per-pixel
+//! kernel of every lighting). Needs SDL2 (`apt-get install
 //! libsdl2-dev`), so it is behind the `sdl` feature and not built by CI:
 //!
 //! ```sh
@@ -20,9 +20,10 @@ use embedded_graphics_simulator::{
     OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
 };
 use fixshade::camera::{MeshTransform, Orthographic};
+use fixshade::framebuffer::DrawBand;
 use fixshade::mesh::TorusKnot;
 use fixshade::prelude::*;
-use fixshade::render::{CachedVertex, DrawBand, MeshMemory};
+use fixshade::render::{CachedVertex, MeshMemory};
 use fixshade::shade::Kernel;
 use fixshade::standard;
 
@@ -48,7 +49,7 @@ where
         bins: &mut bins,
         carry: &mut [],
     };
-    let mut draw = MeshDraw::new(layout, mesh, t, kernel, memory)?;
+    let mut draw = MeshDraw::new(layout, mesh, t, kernel, memory, DrawOptions::default())?;
     let mut color = vec![Rgb565::BLACK; (W * W) as usize];
     let mut depth = vec![0u16; (W * W) as usize];
     let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth))?;

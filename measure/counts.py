@@ -13,9 +13,9 @@ the span and triangle kernels of measure/kernels/src/shading.rs in Unicorn
 
 Per configuration (tier, shading, light set) and core:
 
-* span_64, span_240: instructions per pixel of `shade_span`, (c(n) − c(0))/n, for a
+* span_64, span_240: instructions per pixel of `Kernel::span`, (c(n) − c(0))/n, for a
   span of n = 64 and n = 240 pixels (c(0) builds the lighting and shader only);
-* setup: c(tri of 1 pixel) − c(no draw call): one `Shading::draw` of a triangle
+* setup: c(tri of 1 pixel) − c(no draw call): one one-triangle `MeshDraw`
   covering one pixel (triangle setup, edge walking, per-vertex lighting for
   Gouraud, the centroid lighting for flat, and the one pixel);
 * tri_32: (c(tri with legs of 32 pixels) − c(no draw call)) / pixels: whole-triangle

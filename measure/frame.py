@@ -750,7 +750,7 @@ STAGES = [
     ("clear", r"fixshade::framebuffer::(fill|clear)\w*$|fixshade::render::fill$"),
     ("vertex", r"fixshade::render::vertex::(stage|window)$|(^|<)fixshade::shade::.*::vertex$"),
     # (not `Refined::replaced`: the binning's test whether a triangle was replaced)
-    ("refine", r"fixshade::render::refine::(?!Refined<.*>::replaced$)|MeshDraw<K,P>::with_refinement$"),
+    ("refine", r"fixshade::render::refine::(?!Refined<.*>::replaced$)|render::draw::refinement::"),
     ("clip", r"(MeshDraw|Prepared)<K,P>::clipped$|render::tri::(draw_clipped|pieces|clipped_bounds|outline|convex)$"
              r"|fixshade::raster::clip::"),
     ("setup", r"render::tri::(classify|draw|front|draw_triangle)$"

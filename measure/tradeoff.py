@@ -60,7 +60,7 @@ LIGHT_DESC = {
 PLOT_LIGHTS = "dir_blinn"  # the light set of the plot and of the targets
 FAST_TIERS = ["q14_1", "q14_2"]  # the Q14 tiers the targets are about (Q14 = Q14<2>)
 # Targets from the design discussion (measure/bounds.json "target"; instructions per
-# pixel of shade_span, span_64, Cortex-M0, one directional Blinn-Phong light).
+# pixel of Kernel::span, span_64, Cortex-M0, one directional Blinn-Phong light).
 TARGET_PHONG = 40
 TARGET_GOURAUD = 10
 TARGET_RATIO = 3
@@ -299,8 +299,8 @@ def markdown(d: Data, command: str, ran: bool) -> str:
         "Rgb565. **Cost** (`python3 measure/counts.py`, Unicorn emulator, "
         f"`{d.profile}` profile): instructions executed, not cycles (M0 loads, "
         "branches and calls, M4 divisions take more than one cycle). *span*: "
-        "instructions per pixel of one `shade_span` of 64 pixels, (c(64) − c(0))/64 "
-        "(`span_64`); *triangle*: a whole `Shading::draw` of a right triangle with "
+        "instructions per pixel of one `Kernel::span` of 64 pixels, (c(64) − c(0))/64 "
+        "(`span_64`); *triangle*: a whole one-triangle `MeshDraw` of a right triangle with "
         "32-pixel legs (528 pixels), set-up and edge walking included, per pixel "
         "(`tri_32`); *setup*: instructions of drawing a 1-pixel triangle (set-up, "
         "per-vertex lighting for Gouraud, the one lit point for flat); *code*: "

@@ -33,7 +33,7 @@
 //! (OpenGL's model) or Phong specular, an infinite or local viewer, two-sided
 //! lighting as two passes (front faces with the front lighting, back faces with
 //! `GlScene::back_lighting`). Kernels: the library's
-//! [`GouraudShading`] for `GL_SMOOTH` and [`GeneralPhongShading`] for
+//! [`GouraudShading`] for `GL_SMOOTH` and [`PhongShading`] for
 //! per-pixel lighting (wrapped in `SeparateSpecular` for
 //! `GL_SEPARATE_SPECULAR_COLOR`), and kernels of this harness for what OpenGL
 //! does that the library's modes do not: [`Solid`] (the test kit's kernel of
@@ -52,10 +52,11 @@ use std::time::Instant;
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use fixshade::camera::{
-    Camera, Clip, ClipSpace, Mat4, MeshTransform, Orthographic, Perspective, Projection, Viewport,
+    Camera, Clip, ClipSpace, MeshTransform, Orthographic, Perspective, Projection, Viewport,
     SUBPIXEL_BITS,
 };
 use fixshade::color::{Encoder, Linear, Rgb};
+use fixshade::framebuffer::{BandView, DrawBand, FullFrame, Layout};
 use fixshade::lighting::gl::{
     GlColorMaterial, GlFace, GlLight, GlLightModel, GlMaterial, GlScene, GlViewer,
 };
@@ -64,14 +65,14 @@ use fixshade::lighting::{
     LocalViewer, MaterialDesc, Model, Phong as PhongModel, SeparateSpecular,
 };
 use fixshade::mesh::Mesh;
+use fixshade::num::Mat4;
 use fixshade::num::{point_from_f32, Point3, Scalar, Vec3, Q14, Q30};
 use fixshade::raster::Cull;
 use fixshade::reference::{self, ModelDesc, Reference, VertexOptions, ViewerDesc, V3};
 use fixshade::render::{
-    bins_len, draw_triangle, BandView, CachedVertex, Corner, DrawBand, DrawOptions, FullFrame,
-    Layout, MeshDraw, MeshMemory,
+    bins_len, draw_triangle, CachedVertex, Corner, DrawOptions, MeshDraw, MeshMemory,
 };
-use fixshade::shade::{GeneralPhongShading, GouraudShading, Kernel, Shader, VertexIn};
+use fixshade::shade::{GouraudShading, Kernel, PhongShading, Shader, VertexIn};
 use fixshade_testkit::support::Solid;
 use serde_json::{json, Value};
 
@@ -650,8 +651,7 @@ fn draw_one<K: Kernel<Color = Rgb888, Varyings = [i32; N]>, const N: usize>(
     kernel: &K,
     cull: Cull,
 ) {
-    draw_triangle(band, &g.space, kernel, &corners(g, t), cull)
-        .expect("the kernel draws (Kernel::check)");
+    draw_triangle(band, &g.space, kernel, &corners(g, t), cull);
 }
 
 /// `--mesh-as-triangles`: draw mesh objects triangle by triangle (with their
@@ -728,7 +728,7 @@ impl Kernel for VertexColors {
 
     fn span(&self, _: &(), a: &[i32; 3], d: &[i32; 3], _x: i32, _y: i32, out: &mut [Rgb888]) {
         // channel = min(255, ⌊a / 2^(ATTR_FRAC + COLOR_FRAC)⌋), a with 14 fraction bits
-        let sh = fixshade::raster::ATTR_FRAC + COLOR_FRAC;
+        let sh = fixshade::num::ATTR_FRAC + COLOR_FRAC;
         let ch = |v: i32| (v.max(0) >> sh).min(255) as u8;
         let mut a = *a;
         for c in out.iter_mut() {
@@ -765,9 +765,18 @@ fn draw_mesh<K: Kernel<Color = Rgb888>>(
             bins: &mut bins,
             carry: &mut [],
         };
-        let mut draw =
-            MeshDraw::with_options(layout, mesh, t, kernel, DrawOptions { cull }, memory)
-                .expect("buffers for a full frame");
+        let mut draw = MeshDraw::new(
+            layout,
+            mesh,
+            t,
+            kernel,
+            memory,
+            DrawOptions {
+                cull,
+                ..DrawOptions::default()
+            },
+        )
+        .expect("buffers for a full frame");
         draw.draw_band(band);
     }
     let layout = Layout::full(sc.width, sc.height).expect("a frame size");
@@ -881,13 +890,7 @@ fn draw_with<S: Scalar, I: Illuminate<Scalar = S> + Clone>(
             Shade::Gouraud => {
                 draw_mesh(band, sc, m, Shader::new(GouraudShading, lit, Linear), cull)
             }
-            _ => draw_mesh(
-                band,
-                sc,
-                m,
-                Shader::new(GeneralPhongShading, lit, Linear),
-                cull,
-            ),
+            _ => draw_mesh(band, sc, m, Shader::new(PhongShading, lit, Linear), cull),
         }
         return;
     }
@@ -917,16 +920,10 @@ fn draw_with<S: Scalar, I: Illuminate<Scalar = S> + Clone>(
             }
             if separate {
                 let sep = SeparateSpecular(lit.clone());
-                let k = Shader::new(GeneralPhongShading, &sep, Linear);
+                let k = Shader::new(PhongShading, &sep, Linear);
                 draw_tris(band, o, g, &k, cull)
             } else {
-                draw_tris(
-                    band,
-                    o,
-                    g,
-                    &Shader::new(GeneralPhongShading, lit, Linear),
-                    cull,
-                )
+                draw_tris(band, o, g, &Shader::new(PhongShading, lit, Linear), cull)
             }
         }
     }
@@ -1249,8 +1246,7 @@ fn render_reference(sc: &Scene, geos: &[Geometry]) -> (Vec<Rgb888>, Vec<u8>) {
                             near,
                         },
                     };
-                    draw_triangle(band, &g.space, &kernel, &corners(g, idx), cull)
-                        .expect("the kernel draws (Kernel::check)");
+                    draw_triangle(band, &g.space, &kernel, &corners(g, idx), cull);
                 }
             }
         }

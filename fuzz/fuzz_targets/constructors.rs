@@ -5,10 +5,11 @@
 //! colours in every tier.
 #![no_main]
 
-use fixshade::camera::{Camera, Mat4, Viewport};
+use fixshade::camera::{Camera, Viewport};
 use fixshade::color::{GammaTable, Rgb, Transfer};
 use fixshade::lighting::{AnyLight, Attenuation, Material};
 use fixshade::lighting::{Full, InfiniteViewer, Lighting, LinearFog, LocalViewer};
+use fixshade::num::Mat4;
 use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{Exponent, F32Fast, Scalar, Q14, Q30};
 use fixshade_fuzz::{check_color, Input};
@@ -30,8 +31,8 @@ fn tier<S: Scalar>(inp: &mut Input) {
     let (p, n) = (point_from_f32::<S>(inp.f3()), Vec3::<S>::from_f32(inp.f3()));
     if let (Ok(m), Ok(l)) = (m, l) {
         let lit = Lighting::<S, _, Full>::new([l], m)
-            .eye_space()
-            .with_global_ambient_f32(inp.f3());
+            .with_global_ambient_f32(inp.f3())
+            .eye_space();
         check_color(lit.shade(&p, n), "shade");
         if let (Ok(v), Ok(f)) = (local, fog) {
             check_color(

@@ -26,10 +26,10 @@ fn shade<S: Scalar, M: Model, V: Viewer<S>, F: FogModel<S>>(
     let lights = inp.lights::<S>();
     let amb = Rgb::splat(S::from_f32(inp.f32()));
     let lit = Lighting::<S, _, M>::new(lights, m)
-        .eye_space()
         .with_global_ambient(amb)
         .with_viewer(viewer)
-        .with_fog(fog);
+        .with_fog(fog)
+        .eye_space();
     check_color(lit.shade(p, n), "shade");
     check_color(lit.shade_normalizing(p, n), "shade_normalizing");
 }

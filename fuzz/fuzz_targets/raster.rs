@@ -17,15 +17,17 @@ use embedded_graphics_core::geometry::{OriginDimensions, Size};
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::camera::{Clip, ClipSpace};
+use fixshade::color::Linear;
+use fixshade::framebuffer::{BandView, Bands, DrawBand, FullFrame, Layout};
 use fixshade::lighting::{AnyLight, BlinnPhong, Lighting, LinearFog, LocalViewer, Material};
+use fixshade::num::ATTR_FRAC;
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use fixshade::raster::interp::VARYING_LIMIT;
-use fixshade::raster::{Cull, ATTR_FRAC, SUBPIXEL_BITS};
-use fixshade::render::{draw_triangle, BandView, Bands, Corner, DrawBand, FullFrame, Layout};
-use fixshade::shade::{
-    FlatShading, GeneralPhongShading, GouraudShading, Kernel, Linear, Shader, VertexIn,
-};
+use fixshade::raster::Cull;
+use fixshade::render::{draw_triangle, Corner};
+use fixshade::shade::{FlatShading, GouraudShading, Kernel, PhongShading, Shader, VertexIn};
 use fixshade_fuzz::Input;
 use libfuzzer_sys::fuzz_target;
 
@@ -376,13 +378,7 @@ fn draw_modes<S: Scalar, I: fixshade::lighting::Illuminate<Scalar = S>>(
         cull,
         Shader::new(GouraudShading, lit, Linear),
     );
-    draw(
-        f,
-        space,
-        tri,
-        cull,
-        Shader::new(GeneralPhongShading, lit, Linear),
-    );
+    draw(f, space, tri, cull, Shader::new(PhongShading, lit, Linear));
 }
 
 fuzz_target!(|data: &[u8]| {

@@ -169,12 +169,11 @@ impl Input<'_> {
 use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_graphics_core::prelude::{DrawTarget, OriginDimensions, Pixel, RgbColor, Size};
 use fixshade::camera::{MeshTransform, Projection};
+use fixshade::framebuffer::{Bands, DrawBand, FullFrame, Layout};
 use fixshade::mesh::Mesh;
 use fixshade::raster::Cull;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, MeshDraw,
-    MeshMemory, Refine, RefineMemory, RefineStats,
-};
+use fixshade::render::refine::{Refine, RefineMemory, RefineStats};
+use fixshade::render::{bins_len, CachedVertex, Carry, DrawOptions, MeshDraw, MeshMemory};
 use fixshade::shade::Kernel;
 
 /// How a frame is drawn: size, band height, depth buffer, culling and
@@ -248,14 +247,17 @@ fn draw<'a, K: Kernel<Color = Rgb565> + Copy, P: Projection>(
     spec: &FrameSpec,
     mem: &'a mut Memory<K::Vertex>,
 ) -> Option<MeshDraw<'a, K, P>> {
-    let opts = DrawOptions { cull: spec.cull };
+    let opts = DrawOptions {
+        cull: spec.cull,
+        ..DrawOptions::default()
+    };
     let memory = MeshMemory {
         vertices: &mut mem.cache,
         bins: &mut mem.bins,
         carry: &mut mem.carry,
     };
     match spec.refine {
-        None => MeshDraw::with_options(layout, mesh, t, kernel, opts, memory).ok(),
+        None => MeshDraw::new(layout, mesh, t, kernel, memory, opts).ok(),
         Some((_, tau)) => {
             let r = &mut mem.refine;
             let refine = Refine {
@@ -271,7 +273,7 @@ fn draw<'a, K: Kernel<Color = Rgb565> + Copy, P: Projection>(
                 },
                 threshold: tau,
             };
-            MeshDraw::with_refinement(layout, mesh, t, kernel, opts, memory, refine).ok()
+            MeshDraw::new(layout, mesh, t, kernel, memory, opts.with_refine(refine)).ok()
         }
     }
 }

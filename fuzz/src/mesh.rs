@@ -8,16 +8,18 @@
 
 use super::{frames, FrameSpec, Input};
 use embedded_graphics_core::pixelcolor::Rgb565;
+use fixshade::camera::Viewport;
 use fixshade::camera::{Camera, MeshTransform, Projection};
-use fixshade::camera::{Mat4, Viewport};
+use fixshade::color::Linear;
 use fixshade::lighting::DirectionalLight;
 use fixshade::lighting::Material;
 use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Phong};
 use fixshade::mesh::Mesh;
+use fixshade::num::Mat4;
 use fixshade::num::{Q14, Q30};
 use fixshade::raster::Cull;
 use fixshade::shade::{
-    FlatShading, GouraudShading, IncrementalPhongShading, Kernel, Linear, PhongShading,
+    FlatShading, GouraudShading, IncrementalPhongShading, Kernel, PhongShading,
     QuadraticPhongShading, Shader,
 };
 use fixshade::standard;

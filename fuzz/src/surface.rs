@@ -20,21 +20,23 @@
 
 use super::{frames, FrameSpec, Input};
 use embedded_graphics_core::pixelcolor::Rgb565;
+use fixshade::camera::Viewport;
 use fixshade::camera::{Camera, MeshTransform, Projection};
-use fixshade::camera::{Mat4, Viewport};
+use fixshade::color::Linear;
 use fixshade::error::TextureError;
 use fixshade::lighting::DirectionalLight;
 use fixshade::lighting::Material;
-use fixshade::lighting::{BlinnPhong, Lambert, Lighting};
+use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Viewed};
 use fixshade::mesh::{
     displace, textured_sphere_counts, to_compact, uv_sphere_counts, Mesh, MeshData,
     TexturedMeshData,
 };
+use fixshade::num::Mat4;
 use fixshade::num::Q14;
 use fixshade::raster::Cull;
-use fixshade::shade::{GeneralPhongShading, GouraudShading, Kernel, Linear, PhongShading, Shader};
+use fixshade::shade::{GouraudShading, IncrementalPhongShading, Kernel, PhongShading, Shader};
 use fixshade::standard;
-use fixshade::texture::{normalize_texels, NormalMap};
+use fixshade::texture::NormalMap;
 use fixshade::texture::{Filter, TexCoord, Texels, Texture, Wrap};
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -127,7 +129,7 @@ fn same<K: Kernel<Color = Rgb565> + Copy, P: Projection>(
     Some(f.full)
 }
 
-fn lighting() -> Lighting<Q14, [DirectionalLight<Q14>; 1], BlinnPhong> {
+fn lighting() -> Viewed<Lighting<Q14, [DirectionalLight<Q14>; 1], BlinnPhong>> {
     Lighting::new(
         [standard::light::<Q14>().unwrap()],
         Material::new(&standard::material()).unwrap(),
@@ -196,7 +198,7 @@ fn normal_map(inp: &mut Input) {
     match NormalMap::new(&texels, lw, lh, wrap) {
         Ok(_) => {}
         Err(TextureError::NotUnit { .. }) => {
-            if normalize_texels(&mut texels).is_err() {
+            if NormalMap::normalize_texels(&mut texels).is_err() {
                 assert!(
                     texels.contains(&[0; 3]),
                     "normalize_texels refused a non-zero map"
@@ -209,14 +211,16 @@ fn normal_map(inp: &mut Input) {
     let map = NormalMap::new(&texels, lw, lh, wrap).expect("normalised texels are unit normals");
     let v = view(inp);
     let mesh = SEAMED.mesh();
-    // one directional light: `PhongShading.normal_mapped` takes the fast kernel
+    // one directional light: `IncrementalPhongShading.normal_mapped` (the
+    // fast kernel) for Blinn-Phong and Lambert, `PhongShading.normal_mapped`
+    // (the general one) for Q14 and f32
     let l1 = Lighting::<Q14<1>, _, BlinnPhong>::new(
-        standard::light::<Q14<1>>().unwrap(),
+        [standard::light::<Q14<1>>().unwrap()],
         Material::new(&standard::material()).unwrap(),
     )
     .eye_space();
     let lam = Lighting::<Q14<1>, _, Lambert>::new(
-        standard::light::<Q14<1>>().unwrap(),
+        [standard::light::<Q14<1>>().unwrap()],
         Material::new(&standard::material()).unwrap(),
     )
     .eye_space();
@@ -230,25 +234,29 @@ fn normal_map(inp: &mut Input) {
         0 => with_transform!(v, mesh, |t| same(
             mesh,
             &t,
-            Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &l1, Linear),
+            Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading.normal_mapped(map), &l1, Linear),
             &v.spec
         )),
         1 => with_transform!(v, mesh, |t| same(
             mesh,
             &t,
-            Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &lam, Linear),
+            Shader::<_, _, _, Rgb565>::new(
+                IncrementalPhongShading.normal_mapped(map),
+                &lam,
+                Linear
+            ),
             &v.spec
         )),
         2 => with_transform!(v, mesh, |t| same(
             mesh,
             &t,
-            Shader::<_, _, _, Rgb565>::new(GeneralPhongShading.normal_mapped(map), &lit, Linear),
+            Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &lit, Linear),
             &v.spec
         )),
         _ => with_transform!(v, mesh, |t| same(
             mesh,
             &t,
-            Shader::<_, _, _, Rgb565>::new(GeneralPhongShading.normal_mapped(map), &lf, Linear),
+            Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &lf, Linear),
             &v.spec
         )),
     }

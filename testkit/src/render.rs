@@ -23,21 +23,22 @@
 
 use core::cell::RefCell;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use fixshade::camera::{Camera, Clip, ClipSpace, Mat4, MeshTransform, Orthographic, Viewport};
+use fixshade::camera::{Camera, Clip, ClipSpace, MeshTransform, Orthographic, Viewport};
+use fixshade::color::Linear;
 use fixshade::color::{OutputColor, Rgb};
+use fixshade::error::RenderError;
+use fixshade::framebuffer::{BandView, Bands, DrawBand, FullFrame, Layout};
 use fixshade::lighting::{AmbientSource, AnyLight, LightDesc, LightKind, Material, MaterialDesc};
-use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Phong as PhongSpec, Terms};
+use fixshade::lighting::{BlinnPhong, Lambert, Lighting, Phong as PhongSpec, Terms, Viewed};
 use fixshade::mesh::{uv_sphere_counts, Mesh, MeshData};
+use fixshade::num::Mat4;
 use fixshade::num::Scalar;
 use fixshade::raster::Cull;
 use fixshade::reference::{normalize, ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{
-    bins_len, draw_triangle, BandView, Bands, CachedVertex, Carry, Corner, DrawBand, FullFrame,
-    Layout, MeshDraw, MeshMemory, RenderError,
+    bins_len, draw_triangle, CachedVertex, Carry, Corner, DrawOptions, MeshDraw, MeshMemory,
 };
-use fixshade::shade::{
-    FlatShading, GeneralPhongShading, GouraudShading, Kernel, Linear, Shader, VertexIn,
-};
+use fixshade::shade::{FlatShading, GouraudShading, Kernel, PhongShading, Shader, VertexIn};
 
 /// Pixels per eye-space unit of the orthographic camera.
 pub const PIXELS_PER_UNIT: f32 = 100.0;
@@ -423,7 +424,7 @@ impl Vert {
     }
     /// Screen position in pixels.
     pub fn screen(&self) -> [f64; 2] {
-        let sub = f64::from(1u32 << fixshade::raster::SUBPIXEL_BITS);
+        let sub = f64::from(1u32 << fixshade::camera::SUBPIXEL_BITS);
         [f64::from(self.clip.x) / sub, f64::from(self.clip.y) / sub]
     }
     /// The normal in f64 (exactly the Q14 value).
@@ -463,10 +464,10 @@ pub fn prepare(scene: &Scene) -> Vec<Vec<[Vert; 3]>> {
 /// The lightings of a scene's objects in tier `S`, one list per model type
 /// (the shaders borrow them).
 struct Lightings<S: Scalar> {
-    lam: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Lambert>>,
-    bri: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Terms<0, true, false, false>>>,
-    pho: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, PhongSpec>>,
-    bli: Vec<Lighting<S, heapless::Vec<AnyLight<S>, 4>, BlinnPhong>>,
+    lam: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Lambert>>>,
+    bri: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Terms<0, true, false, false>>>>,
+    pho: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, PhongSpec>>>,
+    bli: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, BlinnPhong>>>,
 }
 
 impl<S: Scalar> Lightings<S> {
@@ -489,16 +490,16 @@ impl<S: Scalar> Lightings<S> {
             match o.terms {
                 Terms4::Lambert => l
                     .lam
-                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
+                    .push(Lighting::new(ls, m).with_global_ambient(g).eye_space()),
                 Terms4::Brilliance => l
                     .bri
-                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
+                    .push(Lighting::new(ls, m).with_global_ambient(g).eye_space()),
                 Terms4::Phong => l
                     .pho
-                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
+                    .push(Lighting::new(ls, m).with_global_ambient(g).eye_space()),
                 Terms4::Blinn => l
                     .bli
-                    .push(Lighting::new(ls, m).eye_space().with_global_ambient(g)),
+                    .push(Lighting::new(ls, m).with_global_ambient(g).eye_space()),
             }
         }
         l
@@ -563,10 +564,13 @@ fn mesh_item<'a, K: Kernel + 'a>(
 where
     ObjectMemory: MemoryFor<K::Vertex>,
 {
-    Box::new(MeshDraw::new(layout, mesh, t, k, mem.memory()).expect("buffers sized for the mesh"))
+    Box::new(
+        MeshDraw::new(layout, mesh, t, k, mem.memory(), DrawOptions::default())
+            .expect("buffers sized for the mesh"),
+    )
 }
 
-/// The kernel of a mode (`GeneralPhongShading` for Phong: the per-pixel
+/// The kernel of a mode (`PhongShading` for Phong: the per-pixel
 /// kernel of every tier and light set) lighting with `$lit`, bound to `$k` in
 /// `$body`.
 macro_rules! with_kernel {
@@ -581,7 +585,7 @@ macro_rules! with_kernel {
                 $body
             }
             Mode::Phong => {
-                let $k = Shader::new(GeneralPhongShading, $lit, Linear);
+                let $k = Shader::new(PhongShading, $lit, Linear);
                 $body
             }
         }
@@ -695,8 +699,7 @@ impl<K: Kernel> DrawBand<K::Color> for Triangles<'_, K> {
                 &self.kernel,
                 &t.map(|v| v.corner()),
                 Cull::Back,
-            )
-            .expect("the kernel draws (Kernel::check)");
+            );
         }
     }
 }
@@ -902,7 +905,17 @@ pub fn render_reference(scene: &Scene) -> Vec<Option<V3>> {
             bins,
             carry: &mut [],
         };
-        draws.push(MeshDraw::new(layout, mesh, &transform(scene, m), kernel, memory).unwrap());
+        draws.push(
+            MeshDraw::new(
+                layout,
+                mesh,
+                &transform(scene, m),
+                kernel,
+                memory,
+                DrawOptions::default(),
+            )
+            .unwrap(),
+        );
     }
     let mut dummy = vec![Rgb888::BLACK; (w * h) as usize];
     let mut depth = vec![0u16; (w * h) as usize];
@@ -1143,17 +1156,25 @@ pub fn with_incremental_draws<const NW: u8, C: OutputColor, R>(
     let (mut l1, mut b1, mut l2, mut b2) = (vec![], vec![], vec![], vec![]);
     for o in &scene.objects {
         match (dirs.len(), o.terms) {
-            (1, Terms4::Lambert) => {
-                l1.push(L::<NW, 1, Lambert>::new([dirs[0]], mat(o)).with_global_ambient(g))
-            }
-            (1, _) => {
-                b1.push(L::<NW, 1, BlinnPhong>::new([dirs[0]], mat(o)).with_global_ambient(g))
-            }
-            (_, Terms4::Lambert) => {
-                l2.push(L::<NW, 2, Lambert>::new([dirs[0], dirs[1]], mat(o)).with_global_ambient(g))
-            }
+            (1, Terms4::Lambert) => l1.push(
+                L::<NW, 1, Lambert>::new([dirs[0]], mat(o))
+                    .with_global_ambient(g)
+                    .eye_space(),
+            ),
+            (1, _) => b1.push(
+                L::<NW, 1, BlinnPhong>::new([dirs[0]], mat(o))
+                    .with_global_ambient(g)
+                    .eye_space(),
+            ),
+            (_, Terms4::Lambert) => l2.push(
+                L::<NW, 2, Lambert>::new([dirs[0], dirs[1]], mat(o))
+                    .with_global_ambient(g)
+                    .eye_space(),
+            ),
             _ => b2.push(
-                L::<NW, 2, BlinnPhong>::new([dirs[0], dirs[1]], mat(o)).with_global_ambient(g),
+                L::<NW, 2, BlinnPhong>::new([dirs[0], dirs[1]], mat(o))
+                    .with_global_ambient(g)
+                    .eye_space(),
             ),
         }
     }

@@ -615,7 +615,6 @@ fn eval<S: Scalar, M: Model>(s: &Sample) -> Rgb<S> {
         s.lights.iter().map(|d| AnyLight::new(d).unwrap()).collect();
     let mat = Material::<S>::new(&s.material).unwrap();
     let lit = Lighting::<S, _, M>::new(lights, mat)
-        .eye_space()
         .with_global_ambient(fixshade::color::Rgb::from_f32(s.global_ambient));
     let p = point_from_f32::<S>(s.p);
     let n = Vec3::<S>::from_f32(s.n);

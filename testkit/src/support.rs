@@ -13,12 +13,13 @@ use embedded_graphics_core::geometry::{OriginDimensions, Size};
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, PixelColor};
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::camera::{Clip, ClipSpace, MeshTransform, Projection};
+use fixshade::framebuffer::{BandView, Bands, DrawBand, FullFrame, Layout};
 use fixshade::mesh::Mesh;
-use fixshade::raster::{Cull, SUBPIXEL_BITS};
+use fixshade::raster::Cull;
 use fixshade::render::{
-    bins_len, draw_triangle, BandView, Bands, CachedVertex, Carry, Corner, DrawBand, DrawOptions,
-    FullFrame, Layout, MeshDraw, MeshMemory,
+    bins_len, draw_triangle, CachedVertex, Carry, Corner, DrawOptions, MeshDraw, MeshMemory,
 };
 use fixshade::shade::{Kernel, VertexIn};
 
@@ -74,7 +75,7 @@ impl Kernel for Count {
 #[derive(Clone, Copy, Debug)]
 pub struct Solid<C>(pub C);
 
-impl<C: Copy + core::fmt::Debug> Kernel for Solid<C> {
+impl<C: fixshade::color::OutputColor + core::fmt::Debug> Kernel for Solid<C> {
     type Color = C;
     type Vertex = ();
     type Varyings = [i32; 0];
@@ -178,8 +179,7 @@ impl<K> Tris<K> {
 impl<K: Kernel> DrawBand<K::Color> for Tris<K> {
     fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
         for t in &self.tris {
-            draw_triangle(band, &self.space, &self.kernel, t, self.cull)
-                .expect("the kernel draws (Kernel::check)");
+            draw_triangle(band, &self.space, &self.kernel, t, self.cull);
         }
     }
 }
@@ -321,7 +321,7 @@ pub fn exact_plane(xy: [(i32, i32); 3], a: [i32; 3], x: i32, y: i32) -> f64 {
     let det = (x1 - x0) * (y2 - y0) - (y1 - y0) * (x2 - x0);
     let b1 = ((px - x0) * (y2 - y0) - (py - y0) * (x2 - x0)) / det;
     let b2 = ((x1 - x0) * (py - y0) - (y1 - y0) * (px - x0)) / det;
-    (a0 + b1 * (a1 - a0) + b2 * (a2 - a0)) * f64::from(1u32 << fixshade::raster::ATTR_FRAC)
+    (a0 + b1 * (a1 - a0) + b2 * (a2 - a0)) * f64::from(1u32 << fixshade::num::ATTR_FRAC)
 }
 
 /// The error bound of a screen-linear value of the triangle with sub-pixel
@@ -407,8 +407,7 @@ impl<K: Kernel, P: Projection> DrawBand<K::Color> for Front<'_, K, P> {
                     vertex: VertexIn::new(self.t.normal(n), self.t.eye(p)),
                 }
             });
-            draw_triangle(band, &space, &self.kernel, &c, self.cull)
-                .expect("the kernel draws (Kernel::check)");
+            draw_triangle(band, &space, &self.kernel, &c, self.cull);
         }
     }
 }
@@ -457,7 +456,17 @@ where
         bins: &mut bins,
         carry: &mut carry,
     };
-    let mut item =
-        MeshDraw::with_options(layout, mesh, t, kernel, DrawOptions { cull }, memory).unwrap();
+    let mut item = MeshDraw::new(
+        layout,
+        mesh,
+        t,
+        kernel,
+        memory,
+        DrawOptions {
+            cull,
+            ..DrawOptions::default()
+        },
+    )
+    .unwrap();
     draw(&mut item)
 }

@@ -4,24 +4,25 @@
 //! texture mapping.
 //!
 //! Lit by one `DirectionalLight` in `Q14<2>` (as firmware writes it):
-//! `PhongShading` picks the incremental kernel for it, and
-//! `PhongShading.normal_mapped` the fast normal-map kernel.
+//! `IncrementalPhongShading` draws it per pixel, and
+//! `IncrementalPhongShading.normal_mapped` with a normal map.
 
 #![allow(dead_code)]
 
 use super::surface::{self as sf, HostMesh};
 use embedded_graphics::pixelcolor::Rgb888;
-use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Viewport};
+use fixshade::camera::{Camera, MeshTransform, Perspective, Viewport};
+use fixshade::framebuffer::{FullFrame, Layout};
 use fixshade::mesh::{
     displace, textured_sphere_counts, to_compact, uv_sphere_counts, Mesh, MeshData,
     TexturedMeshData, TEXCOORD_FRAC,
 };
+use fixshade::num::Mat4;
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, CachedVertex, Carry, FullFrame, Layout, MeshDraw, MeshMemory, RefineBuffers,
-};
-use fixshade::shade::{GeneralPhongShading, Kernel};
-use fixshade::texture::{bump_to_normals, normal_texel, NormalMap};
+use fixshade::render::refine::RefineBuffers;
+use fixshade::render::{bins_len, CachedVertex, Carry, MeshDraw, MeshMemory};
+use fixshade::shade::{IncrementalPhongShading, Kernel};
+use fixshade::texture::NormalMap;
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
 
 /// Side of a panel in pixels.
@@ -86,6 +87,7 @@ fn panel<K: Kernel<Color = Rgb888>>(
             bins: &mut bins,
             carry: &mut carry,
         },
+        DrawOptions::default(),
     )
     .unwrap();
     let n = (SIDE * SIDE) as usize;
@@ -141,11 +143,11 @@ fn silhouette_pair(cam: &Camera<Perspective>) -> (Vec<Rgb888>, Vec<Rgb888>, Stri
     let mesh = COARSE_SPHERE.mesh();
     let t = cam.mesh_transform(&model(), COARSE_SPHERE.frac).unwrap();
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
-        key_light(),
+        [key_light()],
         Material::new(&material([0.85, 0.35, 0.25], 0.5, 40.0)).unwrap(),
     )
     .eye_space();
-    let shader = || Shader::<_, _, _, Rgb888>::new(PhongShading, &lighting, Linear);
+    let shader = || Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear);
     let plain = panel(mesh, &t, shader());
     let layout = Layout::full(SIDE, SIDE).unwrap();
     let extra = 1024;
@@ -153,18 +155,17 @@ fn silhouette_pair(cam: &Camera<Perspective>) -> (Vec<Rgb888>, Vec<Rgb888>, Stri
     let mut bins = vec![0u16; bins_len(mesh.triangle_count() + extra, 1)];
     let mut carry = vec![Carry::default(); 2 * (mesh.triangle_count() + extra)];
     let mut refine: Box<RefineBuffers<[i16; 3], { COARSE.0 }, 512, 1024>> = Box::default();
-    let mut draw = MeshDraw::with_refinement(
+    let mut draw = MeshDraw::new(
         layout,
         mesh,
         &t,
         shader(),
-        Default::default(),
         MeshMemory {
             vertices: &mut verts,
             bins: &mut bins,
             carry: &mut carry,
         },
-        refine.refine(0),
+        DrawOptions::default().with_refine(refine.refine(0)),
     )
     .unwrap();
     let stats = draw.refine_stats();
@@ -224,12 +225,12 @@ pub fn normal_map() -> Image {
     let high_c = Compact::from_host(&high);
     let baked: Vec<[i16; 3]> = sf::bake_normal_map(&high, (512, 256))
         .into_iter()
-        .map(|n| normal_texel(n.map(|c| c as f32)).unwrap())
+        .map(|n| NormalMap::unit_texel(n.map(|c| c as f32)).unwrap())
         .collect();
     let map = NormalMap::new(&baked, 9, 8, Wrap::Repeat).unwrap();
     let cam = camera(SIDE, 3.6);
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
-        key_light(),
+        [key_light()],
         Material::new(&material([0.75, 0.72, 0.68], 0.45, 30.0)).unwrap(),
     )
     .eye_space();
@@ -239,17 +240,21 @@ pub fn normal_map() -> Image {
     let a = panel(
         low,
         &t_low,
-        Shader::<_, _, _, Rgb888>::new(PhongShading, &lighting, Linear),
+        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear),
     );
     let b = panel(
         low,
         &t_low,
-        Shader::<_, _, _, Rgb888>::new(PhongShading.normal_mapped(map), &lighting, Linear),
+        Shader::<_, _, _, Rgb888>::new(
+            IncrementalPhongShading.normal_mapped(map),
+            &lighting,
+            Linear,
+        ),
     );
     let c = panel(
         high_c.mesh(),
         &t_high,
-        Shader::<_, _, _, Rgb888>::new(PhongShading, &lighting, Linear),
+        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear),
     );
     let (width, height, pixels) = frame_of(vec![a, b, c]);
     Image {
@@ -259,7 +264,7 @@ pub fn normal_map() -> Image {
         height,
         pixels,
         notes: vec![format!(
-            "low-poly {} triangles, high-poly {} triangles, normal map 512 × 256 (Q14, PhongShading.normal_mapped: the fast kernel)",
+            "low-poly {} triangles, high-poly {} triangles, normal map 512 × 256 (Q14, IncrementalPhongShading.normal_mapped)",
             low.triangle_count(),
             high_c.tris.len()
         )],
@@ -272,7 +277,7 @@ pub fn bump_displacement() -> Image {
     const HL: u8 = 8;
     let heights = height_map(WL, HL);
     let mut bumps = vec![[0i16; 3]; heights.len()];
-    bump_to_normals(&heights, WL, HL, Wrap::Repeat, 0.016, &mut bumps).unwrap();
+    NormalMap::from_bump(&heights, WL, HL, Wrap::Repeat, 0.016, &mut bumps).unwrap();
     let map = NormalMap::new(&bumps, WL, HL, Wrap::Repeat).unwrap();
     // a dense textured sphere for the displacement
     const D: (usize, usize) = textured_sphere_counts(96, 192);
@@ -298,7 +303,7 @@ pub fn bump_displacement() -> Image {
     let displaced = Mesh::new(&pos, &nrm, dmesh.triangles(), 13).unwrap();
     let cam = camera(SIDE, 3.6);
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new(
-        key_light(),
+        [key_light()],
         Material::new(&material([0.35, 0.55, 0.8], 0.4, 30.0)).unwrap(),
     )
     .eye_space();
@@ -308,17 +313,21 @@ pub fn bump_displacement() -> Image {
     let a = panel(
         low,
         &t_low,
-        Shader::<_, _, _, Rgb888>::new(PhongShading, &lighting, Linear),
+        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear),
     );
     let b = panel(
         low,
         &t_low,
-        Shader::<_, _, _, Rgb888>::new(GeneralPhongShading.normal_mapped(map), &lighting, Linear),
+        Shader::<_, _, _, Rgb888>::new(
+            IncrementalPhongShading.normal_mapped(map),
+            &lighting,
+            Linear,
+        ),
     );
     let c = panel(
         displaced,
         &t_d,
-        Shader::<_, _, _, Rgb888>::new(PhongShading, &lighting, Linear),
+        Shader::<_, _, _, Rgb888>::new(IncrementalPhongShading, &lighting, Linear),
     );
     let (width, height, pixels) = frame_of(vec![a, b, c]);
     Image {

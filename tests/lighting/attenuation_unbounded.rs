@@ -15,6 +15,7 @@
 use fixshade::error::ParamError;
 use fixshade::lighting::gl::{GlLight, GlLightModel, GlMaterial, GlScene};
 use fixshade::lighting::LinearFog;
+use fixshade::lighting::Viewed;
 use fixshade::lighting::{AnyLight, LightDesc};
 use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
@@ -23,7 +24,7 @@ use fixshade::reference::{FogDesc, ModelDesc, Reference, ViewerDesc};
 
 /// What `GlScene::lighting` builds here: up to 8 lights of any kind, OpenGL's
 /// Blinn-Phong model, a viewer at infinity.
-type SceneLighting<S> = Lighting<S, fixshade::heapless::Vec<AnyLight<S>, 8>>;
+type SceneLighting<S> = Viewed<Lighting<S, fixshade::heapless::Vec<AnyLight<S>, 8>>>;
 
 /// Tiny coefficients: every decade from 10⁻⁴⁵ (a subnormal) to 10⁻³, and the
 /// smallest normal `f32`.
@@ -215,7 +216,6 @@ fn unbounded_attenuation_range_errors() {
         let lighting = |lights: [LightDesc; 2], ambient: f32| {
             let l = lights.map(|d| AnyLight::<S>::signed(&d).unwrap());
             Lighting::<S, _, Lambert>::new(l, mat)
-                .eye_space()
                 .with_global_ambient(fixshade::color::Rgb::from_f32([ambient; 3]))
         };
         let unbounded = [0.0, 1.0, 0.0];

@@ -16,12 +16,13 @@
 use fixshade_testkit::seeded;
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
+use fixshade::color::{Dithered, Encoder};
 use fixshade::color::{GammaTable, Transfer};
 use fixshade::lighting::{BlinnPhong, Lambert, Model, Phong, Specular};
 use fixshade::lighting::{LightColors, LightDesc, LightKind};
 use fixshade::prelude::*;
 use fixshade::reference::{normalize, to_u8, ModelDesc, Reference, ViewerDesc};
-use fixshade::shade::{Dithered, Encoder, ModeState, QuadraticPhongShading, Shader};
+use fixshade::shade::{Mode, QuadraticPhongShading, Shader};
 use proptest::prelude::*;
 
 /// The kernel's bound (8-bit steps) for a tier, the model's specular term and
@@ -176,8 +177,8 @@ where
     M: Model,
     C: OutputColor + Default,
     E: Encoder<C>,
-    QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; K], M>, C>,
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; K], M>, E, C>:
+    QuadraticPhongShading: Mode<Viewed<Lighting<S, [DirectionalLight<S>; K], M>>, C>,
+    for<'a> Shader<'a, QuadraticPhongShading, Viewed<Lighting<S, [DirectionalLight<S>; K], M>>, E, C>:
         Kernel<Color = C, Varyings = [i32; N], Triangle = ()>,
 {
     let (lights, mat, _) = reference(c, ModelDesc::of::<M>());
@@ -193,14 +194,16 @@ where
         .unwrap()
     });
     let lighting = Lighting::<S, _, M>::new(dl, Material::new(&mat).ok()?)
-        .eye_space()
-        .with_global_ambient_f32([0.0; 3]);
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space();
     let dirs: Vec<[f32; 3]> = lighting
+        .lighting()
         .lights()
         .iter()
         .map(|l| l.direction().to_f32())
         .collect();
     let seconds: Vec<[f32; 3]> = lighting
+        .lighting()
         .lights()
         .iter()
         .map(|l| match M::SPECULAR {
@@ -213,7 +216,7 @@ where
     let mut out = vec![C::default(); c.len];
     // Q26 → Q14 with ATTR_FRAC bits (Q28), what the pipeline's interpolation
     // hands `Kernel::span` (exact: the kernel shifts them back)
-    let q28 = |v: [i32; N]| v.map(|x| x << (fixshade::raster::ATTR_FRAC - 12));
+    let q28 = |v: [i32; N]| v.map(|x| x << (fixshade::num::ATTR_FRAC - 12));
     Shader::<_, _, _, C>::new(QuadraticPhongShading, &lighting, enc).span(
         &(),
         &q28(start),
@@ -242,9 +245,14 @@ fn check888<S, const K: usize, const N: usize, M>(tier: &str, c: &Case) -> Resul
 where
     S: Scalar,
     M: Model,
-    QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; K], M>, Rgb888>,
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; K], M>, Linear, Rgb888>:
-        Kernel<Color = Rgb888, Varyings = [i32; N], Triangle = ()>,
+    QuadraticPhongShading: Mode<Viewed<Lighting<S, [DirectionalLight<S>; K], M>>, Rgb888>,
+    for<'a> Shader<
+        'a,
+        QuadraticPhongShading,
+        Viewed<Lighting<S, [DirectionalLight<S>; K], M>>,
+        Linear,
+        Rgb888,
+    >: Kernel<Color = Rgb888, Varyings = [i32; N], Triangle = ()>,
 {
     let Some((px, normals)) = run::<S, K, N, M, Rgb888, Linear>(c, Linear) else {
         return Ok(());
@@ -321,16 +329,26 @@ fn check_encoded<S, const N: usize, M>(tier: &str, c: &Case) -> Result<(), TestC
 where
     S: Scalar,
     M: Model,
-    QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb565>
-        + ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Gray8>,
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb565>:
-        Kernel<Color = Rgb565, Varyings = [i32; N], Triangle = ()>,
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Dithered, Rgb565>:
-        Kernel<Color = Rgb565, Varyings = [i32; N], Triangle = ()>,
+    QuadraticPhongShading: Mode<Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Rgb565>
+        + Mode<Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Gray8>,
+    for<'a> Shader<
+        'a,
+        QuadraticPhongShading,
+        Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>,
+        Linear,
+        Rgb565,
+    >: Kernel<Color = Rgb565, Varyings = [i32; N], Triangle = ()>,
+    for<'a> Shader<
+        'a,
+        QuadraticPhongShading,
+        Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>,
+        Dithered,
+        Rgb565,
+    >: Kernel<Color = Rgb565, Varyings = [i32; N], Triangle = ()>,
     for<'a, 't> Shader<
         'a,
         QuadraticPhongShading,
-        Lighting<S, [DirectionalLight<S>; 1], M>,
+        Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>,
         &'t GammaTable<1024>,
         Gray8,
     >: Kernel<Color = Gray8, Varyings = [i32; N], Triangle = ()>,
@@ -437,9 +455,14 @@ fn span_error<S, const K: usize, const N: usize, M>(c: &Case) -> Option<(f64, u3
 where
     S: Scalar,
     M: Model,
-    QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; K], M>, Rgb888>,
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; K], M>, Linear, Rgb888>:
-        Kernel<Color = Rgb888, Varyings = [i32; N], Triangle = ()>,
+    QuadraticPhongShading: Mode<Viewed<Lighting<S, [DirectionalLight<S>; K], M>>, Rgb888>,
+    for<'a> Shader<
+        'a,
+        QuadraticPhongShading,
+        Viewed<Lighting<S, [DirectionalLight<S>; K], M>>,
+        Linear,
+        Rgb888,
+    >: Kernel<Color = Rgb888, Varyings = [i32; N], Triangle = ()>,
 {
     let (px, normals) = run::<S, K, N, M, Rgb888, Linear>(c, Linear)?;
     let (lights, mat, model) = reference(c, ModelDesc::of::<M>());
@@ -546,9 +569,14 @@ fn targeted<S, M>(band: (u32, u32), seed: u64) -> (u32, Option<Case>)
 where
     S: Scalar,
     M: Model,
-    QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb888>,
-    for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb888>:
-        Kernel<Color = Rgb888, Varyings = [i32; 5], Triangle = ()>,
+    QuadraticPhongShading: Mode<Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Rgb888>,
+    for<'a> Shader<
+        'a,
+        QuadraticPhongShading,
+        Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>,
+        Linear,
+        Rgb888,
+    >: Kernel<Color = Rgb888, Varyings = [i32; 5], Triangle = ()>,
 {
     let starts = targeted_cases(band, 24, seed);
     let w = worst_case::climb(
@@ -570,9 +598,14 @@ fn targeted_worst_case_search() {
     where
         S: Scalar,
         M: Model,
-        QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb888>,
-        for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb888>:
-            Kernel<Color = Rgb888, Varyings = [i32; 5], Triangle = ()>,
+        QuadraticPhongShading: Mode<Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Rgb888>,
+        for<'a> Shader<
+            'a,
+            QuadraticPhongShading,
+            Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>,
+            Linear,
+            Rgb888,
+        >: Kernel<Color = Rgb888, Varyings = [i32; 5], Triangle = ()>,
     {
         let (e, c) = targeted::<S, M>(band, seed);
         let b = bound(tier, M::SPECULAR, band.1);
@@ -608,9 +641,14 @@ fn targeted_worst_case_search_heavy() {
     where
         S: Scalar,
         M: Model,
-        QuadraticPhongShading: ModeState<Lighting<S, [DirectionalLight<S>; 1], M>, Rgb888>,
-        for<'a> Shader<'a, QuadraticPhongShading, Lighting<S, [DirectionalLight<S>; 1], M>, Linear, Rgb888>:
-            Kernel<Color = Rgb888, Varyings = [i32; 5], Triangle = ()>,
+        QuadraticPhongShading: Mode<Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>, Rgb888>,
+        for<'a> Shader<
+            'a,
+            QuadraticPhongShading,
+            Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>,
+            Linear,
+            Rgb888,
+        >: Kernel<Color = Rgb888, Varyings = [i32; 5], Triangle = ()>,
     {
         let worst = (0..6)
             .map(|k| {

@@ -8,6 +8,7 @@
 //! check fails, which the last test asserts. And `Lighting::new` has
 //! OpenGL's global ambient light (issue 20 item 3).
 
+use fixshade::lighting::Illuminate;
 use fixshade::lighting::{
     AmbientSource, AnyLight, BlinnPhong, DirectionalLight, LightDesc, LightKind, Lighting,
     Material, MaterialDesc,
@@ -95,7 +96,7 @@ fn worst(view_lights: bool) -> (u32, String) {
         let lit = if view_lights {
             world.viewed(&view).unwrap()
         } else {
-            world
+            world.eye_space()
         };
         // the viewer at infinity behind the camera, in world coordinates
         let back = [view.m[2][0], view.m[2][1], view.m[2][2]];
@@ -212,15 +213,13 @@ fn lighting_new_has_opengls_global_ambient() {
     check::<fixshade::num::Q30>("Q30");
 }
 
-/// World coordinates are the default, and the renderer refuses lights that
-/// were not seen through the camera instead of drawing them lit from the
-/// wrong side: `MeshDraw::new` and `draw_triangle` return
-/// `RenderError::WorldLights` for a `Lighting::new` used as it is, and draw
-/// after `viewed` (a camera circling the sphere: the lit side follows the
-/// world's lamp) or `eye_space`.
+/// World coordinates are the default, and only a lighting seen from the eye
+/// reaches a shader (drawing `Lighting::new` as it is does not compile: the
+/// `compile_fail` example of `Lighting::new`): after `viewed` (a camera
+/// circling the sphere) the lit side follows the world's lamp; after
+/// `eye_space` the lamp moves with the camera.
 #[test]
-fn the_renderer_refuses_lights_not_seen_through_the_camera() {
-    use fixshade::error::RenderError;
+fn viewed_lights_follow_the_world_and_eye_space_ones_the_camera() {
     use fixshade::prelude::*;
     const N: (usize, usize) = uv_sphere_counts(16, 24);
     static SPHERE: MeshData<{ N.0 }, { N.1 }> = MeshData::uv_sphere(16, 24, 14);
@@ -228,11 +227,10 @@ fn the_renderer_refuses_lights_not_seen_through_the_camera() {
     let lamp = DirectionalLight::<Q14>::white([1.0, 0.0, 0.0]).unwrap();
     let mat = MaterialDesc::classic([1.0; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
     let world = Lighting::<Q14, _, Lambert>::new(lamp, Material::new(&mat).unwrap());
-    assert!(!world.is_eye_space());
     let vp = Viewport::new(0, 0, 64, 64).unwrap();
     // one frame seen from `eye` with `lit`: the number of lit pixels and
     // their mean column
-    let frame = |eye: [f32; 3], lit: &Lighting<Q14, DirectionalLight<Q14>, Lambert>| {
+    let frame = |eye: [f32; 3], lit: &Viewed<Lighting<Q14, DirectionalLight<Q14>, Lambert>>| {
         let camera = Camera::orthographic(-1.2, 1.2, -1.2, 1.2, 1.0, 10.0, vp)
             .unwrap()
             .with_view(Mat4::look_at(eye, [0.0; 3], [0.0, 1.0, 0.0]).unwrap());
@@ -240,69 +238,43 @@ fn the_renderer_refuses_lights_not_seen_through_the_camera() {
         let layout = Layout::full(64, 64).unwrap();
         let mut buffers: MeshBuffers<_, { N.0 }, { bins_len(N.1, 1) }, 1> = MeshBuffers::new();
         let shader = Shader::new(GouraudShading, lit, Linear);
-        let mut sphere = match MeshDraw::new(layout, SPHERE.mesh(), &t, shader, buffers.memory()) {
-            Err(e) => return Err(e),
-            Ok(s) => s,
-        };
+        let mut sphere = MeshDraw::new(
+            layout,
+            SPHERE.mesh(),
+            &t,
+            shader,
+            buffers.memory(),
+            DrawOptions::default(),
+        )
+        .unwrap();
         let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 64], [0u16; 64 * 64]);
         let mut fb = FullFrame::new(64, 64, &mut color, Some(&mut depth)).unwrap();
         fb.render(Rgb565::BLACK, &mut [&mut sphere]).unwrap();
         let lit: Vec<usize> = (0..64 * 64).filter(|&i| fb.pixels()[i].g() > 20).collect();
         let mean = lit.iter().map(|i| (i % 64) as f32).sum::<f32>() / lit.len().max(1) as f32;
-        Ok((lit.len(), mean))
+        (lit.len(), mean)
     };
     let front = [0.0, 0.0, 5.0]; // the lamp on the camera's right
     let right = [5.0, 0.0, 0.0]; // the lamp behind the camera: the front lit
     let left = [-5.0, 0.0, 0.0]; // the lamp behind the sphere: unlit from here
-    assert_eq!(frame(front, &world), Err(RenderError::WorldLights));
     let view = |eye: [f32; 3]| Mat4::look_at(eye, [0.0; 3], [0.0, 1.0, 0.0]).unwrap();
-    let (n, x) = frame(front, &world.viewed(&view(front)).unwrap()).unwrap();
+    let (n, x) = frame(front, &world.viewed(&view(front)).unwrap());
     assert!(
         n > 500 && x > 40.0,
         "the lamp on the right: {n} lit, mean column {x}"
     );
-    let (n, x) = frame(right, &world.viewed(&view(right)).unwrap()).unwrap();
+    let (n, x) = frame(right, &world.viewed(&view(right)).unwrap());
     assert!(
         n > 1500 && (x - 31.5).abs() < 2.0,
         "the lamp behind the camera: {n} lit, mean column {x}"
     );
-    let (n, _) = frame(left, &world.viewed(&view(left)).unwrap()).unwrap();
+    let (n, _) = frame(left, &world.viewed(&view(left)).unwrap());
     assert_eq!(n, 0, "the lamp behind the sphere");
     // eye coordinates by choice: the lamp moves with the camera (on its right)
     let eye = world.eye_space();
-    let (n, x) = frame(right, &eye).unwrap();
+    let (n, x) = frame(right, &eye);
     assert!(
         n > 500 && x > 40.0,
         "eye-space lamp on the right: {n} lit, mean column {x}"
     );
-    // the per-triangle front refuses the same lighting
-    let shader = Shader::new(GouraudShading, &world, Linear);
-    assert_eq!(shader.check(), Err(RenderError::WorldLights));
-    struct One<'s>(
-        Shader<'s, GouraudShading, Lighting<Q14, DirectionalLight<Q14>, Lambert>, Linear, Rgb565>,
-        Vec<Result<(), RenderError>>,
-    );
-    impl fixshade::render::DrawBand<Rgb565> for One<'_> {
-        fn draw_band(&mut self, band: &mut fixshade::render::BandView<'_, Rgb565>) {
-            let corner = |x: i32, y: i32| fixshade::render::Corner {
-                clip: fixshade::camera::Clip {
-                    x: x << 4,
-                    y: y << 4,
-                    z: 100,
-                    w: 1,
-                },
-                vertex: fixshade::shade::VertexIn::new([0, 0, 16384], [0; 3]),
-            };
-            let tri = [corner(0, 0), corner(0, 8), corner(8, 4)];
-            let space = fixshade::camera::ClipSpace::SCREEN;
-            let r = fixshade::render::draw_triangle(band, &space, &self.0, &tri, Cull::None);
-            self.1.push(r);
-        }
-    }
-    let mut one = One(shader, Vec::new());
-    let (mut color, mut depth) = ([Rgb565::BLACK; 64], [0u16; 64]);
-    let mut fb = FullFrame::new(8, 8, &mut color, Some(&mut depth)).unwrap();
-    fb.render(Rgb565::BLACK, &mut [&mut one]).unwrap();
-    assert_eq!(one.1, [Err(RenderError::WorldLights)]);
-    assert!(fb.pixels().iter().all(|&c| c == Rgb565::BLACK));
 }

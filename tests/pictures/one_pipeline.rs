@@ -7,13 +7,13 @@
 //! depth-plane regression: a back face never wins over the front surface.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use fixshade::camera::{Camera, Mat4, MeshTransform, Projection, Viewport};
+use fixshade::camera::{Camera, MeshTransform, Projection, Viewport};
+use fixshade::color::Linear;
 use fixshade::mesh::Mesh;
+use fixshade::num::Mat4;
 use fixshade::num::Q14;
 use fixshade::raster::Cull;
-use fixshade::shade::{
-    FlatShading, GeneralPhongShading, GouraudShading, Kernel, Linear, PhongShading, Shader,
-};
+use fixshade::shade::{FlatShading, GouraudShading, Kernel, PhongShading, Shader};
 use fixshade::standard::{self, SPHERE};
 use fixshade_testkit::support::mesh_frame;
 
@@ -120,7 +120,7 @@ fn standard_scene_meshdraw_equals_draw_triangle_in_every_mode() {
             8,
             SPHERE.mesh(),
             &t,
-            Shader::new(GeneralPhongShading, &blinn, Linear),
+            Shader::new(PhongShading, &blinn, Linear),
             cull,
         );
     }
@@ -241,7 +241,7 @@ fn random_meshes_meshdraw_equals_draw_triangle_both_projections() {
             8,
             mesh.mesh(),
             &t,
-            Shader::new(GeneralPhongShading, &blinn_f32, Linear),
+            Shader::new(PhongShading, &blinn_f32, Linear),
             cull,
         );
         // perspective: the eye at the origin looking down −z, near plane at
@@ -293,7 +293,7 @@ fn random_meshes_meshdraw_equals_draw_triangle_both_projections() {
             8,
             mesh.mesh(),
             &t,
-            Shader::new(GeneralPhongShading, &blinn_f32, Linear),
+            Shader::new(PhongShading, &blinn_f32, Linear),
             cull,
         );
     }
@@ -360,13 +360,13 @@ fn no_back_face_wins_over_the_front_surface() {
     let t = standard::transform().unwrap();
     let blinn = standard::blinn::<Q14>().unwrap();
     let blinn_f32 = standard::blinn::<f32>().unwrap();
-    let (bad, n) = back_faces_hidden(W, &t, Shader::new(GeneralPhongShading, &blinn, Linear));
+    let (bad, n) = back_faces_hidden(W, &t, Shader::new(PhongShading, &blinn, Linear));
     assert!(n > 32_000, "{n}");
     assert_eq!(
         bad, 0,
         "general phong (Q14): {bad} of {n} front pixels show a back face"
     );
-    let (bad, n) = back_faces_hidden(W, &t, Shader::new(GeneralPhongShading, &blinn_f32, Linear));
+    let (bad, n) = back_faces_hidden(W, &t, Shader::new(PhongShading, &blinn_f32, Linear));
     assert_eq!(
         bad, 0,
         "general phong (f32): {bad} of {n} front pixels show a back face"
@@ -416,7 +416,7 @@ fn no_back_face_wins_over_the_front_surface_in_perspective() {
         bad, 0,
         "perspective phong: {bad} of {n} front pixels show a back face"
     );
-    let (bad, n) = back_faces_hidden(W, &t, Shader::new(GeneralPhongShading, &blinn, Linear));
+    let (bad, n) = back_faces_hidden(W, &t, Shader::new(PhongShading, &blinn, Linear));
     assert_eq!(
         bad, 0,
         "perspective general phong: {bad} of {n} front pixels show a back face"

@@ -5,7 +5,8 @@
 use std::cell::Cell;
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
-use fixshade::render::{Corner, DrawBand};
+use fixshade::framebuffer::DrawBand;
+use fixshade::render::Corner;
 use fixshade::shade::{Kernel, VertexIn};
 use fixshade_testkit::support::{corner, full, Tris, S};
 
@@ -126,7 +127,7 @@ fn sliver_depth_within_its_corners() {
     let mut depth = vec![0u16; 240 * 240];
     let paint = Paint(255, Cell::new(0));
     let mut item = Tris::screen(&paint, vec![tri]);
-    fixshade::render::FullFrame::new(240, 240, &mut px, Some(&mut depth))
+    fixshade::framebuffer::FullFrame::new(240, 240, &mut px, Some(&mut depth))
         .unwrap()
         .render(Gray8::new(0), &mut [&mut item])
         .unwrap();

@@ -5,11 +5,10 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
 use fixshade::framebuffer::Checksum;
+use fixshade::framebuffer::{Bands, DrawBand, FullFrame, Layout};
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
-};
-use fixshade::shade::{GeneralPhongShading, Kernel};
+use fixshade::render::{bins_len, CachedVertex, Carry, MeshDraw, MeshMemory};
+use fixshade::shade::{Kernel, PhongShading};
 use fixshade::standard;
 
 const W: u32 = standard::SIZE;
@@ -30,7 +29,7 @@ fn render<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> (Vec<Rgb565>,
         bins: &mut bins,
         carry: &mut carry,
     };
-    let mut draw = MeshDraw::new(layout, mesh, &t, kernel, memory).unwrap();
+    let mut draw = MeshDraw::new(layout, mesh, &t, kernel, memory, DrawOptions::default()).unwrap();
     let mut strip = vec![Rgb565::BLACK; (W * band_rows) as usize];
     let mut depth = vec![0u16; (W * band_rows) as usize];
     let mut bands = Bands::new(layout, &mut strip, Some(&mut depth)).unwrap();
@@ -82,8 +81,8 @@ fn bands_equal_full_frame_bit_for_bit() {
         let p = render(Shader::new(PhongShading, &lit, Linear), rows);
         let p_full = render(Shader::new(PhongShading, &lit, Linear), 240);
         assert_eq!(p.0, p_full.0, "phong, {rows}-row bands");
-        let q = render(Shader::new(GeneralPhongShading, &lit, Linear), rows);
-        let q_full = render(Shader::new(GeneralPhongShading, &lit, Linear), 240);
+        let q = render(Shader::new(PhongShading, &lit, Linear), rows);
+        let q_full = render(Shader::new(PhongShading, &lit, Linear), 240);
         assert_eq!(q.0, q_full.0, "general phong, {rows}-row bands");
     }
     let (px, _) = render(Shader::new(GouraudShading, &lit, Linear), 8);
@@ -119,7 +118,15 @@ fn render_near<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> Vec<Rgb5
         bins: &mut bins,
         carry: &mut carry,
     };
-    let mut draw = MeshDraw::new(layout, standard::SPHERE.mesh(), &t, kernel, memory).unwrap();
+    let mut draw = MeshDraw::new(
+        layout,
+        standard::SPHERE.mesh(),
+        &t,
+        kernel,
+        memory,
+        DrawOptions::default(),
+    )
+    .unwrap();
     let mut strip = vec![Rgb565::BLACK; (W * band_rows) as usize];
     let mut depth = vec![0u16; (W * band_rows) as usize];
     let mut bands = Bands::new(layout, &mut strip, Some(&mut depth)).unwrap();
@@ -170,7 +177,7 @@ fn full_frame_target_matches_bands() {
         carry: &mut [],
     };
     let shader = Shader::new(GouraudShading, &lit, Linear);
-    let mut draw = MeshDraw::new(layout, mesh, &t, shader, memory).unwrap();
+    let mut draw = MeshDraw::new(layout, mesh, &t, shader, memory, DrawOptions::default()).unwrap();
     let mut color = vec![Rgb565::BLACK; (W * W) as usize];
     let mut depth = vec![0u16; (W * W) as usize];
     let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth)).unwrap();

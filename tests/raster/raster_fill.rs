@@ -5,8 +5,9 @@
 
 use embedded_graphics_core::pixelcolor::Gray8;
 use fixshade::camera::{Clip, ClipSpace};
+use fixshade::num::ATTR_FRAC;
 use fixshade::raster::interp::VARYING_LIMIT;
-use fixshade::raster::{Cull, ATTR_FRAC};
+use fixshade::raster::Cull;
 use fixshade::render::Corner;
 use fixshade_testkit::support::{
     clip_corner, corner, counts, exact_plane, full, lumas, plane_bound, Count, Record,

@@ -6,8 +6,9 @@
 //! screen-linear interpolation.
 
 use embedded_graphics_core::pixelcolor::Gray8;
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::camera::{Clip, ClipSpace};
-use fixshade::raster::{ATTR_FRAC, SUBPIXEL_BITS};
+use fixshade::num::ATTR_FRAC;
 use fixshade::render::Corner;
 use fixshade_testkit::support::{
     clip_corner, full, plane_bound, Record, Run, Tris, PERSPECTIVE_SPAN,

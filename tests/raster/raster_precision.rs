@@ -14,8 +14,8 @@
 //! maximises the ratio of the error to it.
 
 use embedded_graphics_core::pixelcolor::Gray8;
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::raster::interp::VARYING_LIMIT;
-use fixshade::raster::SUBPIXEL_BITS;
 use fixshade_testkit::support::{corner, exact_plane, full, plane_bound, Record, Rng, Tris};
 
 const W: u32 = 200;

@@ -13,19 +13,21 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
-use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Projection, Viewport};
+use fixshade::camera::{Camera, MeshTransform, Perspective, Projection, Viewport};
+use fixshade::color::Linear;
+use fixshade::error::RenderError;
 use fixshade::framebuffer::BandSink;
+use fixshade::framebuffer::{Bands, DrawBand, Layout};
+use fixshade::lighting::Viewed;
 use fixshade::lighting::{BlinnPhong, Lighting, Material};
 use fixshade::mesh::Mesh;
+use fixshade::num::Mat4;
 use fixshade::num::Q14;
 use fixshade::raster::Cull;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, Layout, MeshDraw, MeshMemory,
-    RenderError,
-};
+use fixshade::render::{bins_len, CachedVertex, Carry, DrawOptions, MeshDraw, MeshMemory};
 use fixshade::shade::{
-    FlatShading, GeneralPhongShading, GouraudShading, IncrementalPhongShading, Kernel, Linear,
-    PhongShading, QuadraticPhongShading, Shader,
+    FlatShading, GouraudShading, IncrementalPhongShading, Kernel, PhongShading,
+    QuadraticPhongShading, Shader,
 };
 use fixshade::standard::{self, SPHERE};
 use fixshade_testkit::support::Collect;
@@ -102,7 +104,18 @@ fn alone<K: Kernel<Color = Rgb565> + Copy, P: Projection>(
                 bins,
                 carry,
             };
-            MeshDraw::with_options(layout, mesh, t, k, DrawOptions { cull }, memory).unwrap()
+            MeshDraw::new(
+                layout,
+                mesh,
+                t,
+                k,
+                memory,
+                DrawOptions {
+                    cull,
+                    ..DrawOptions::default()
+                },
+            )
+            .unwrap()
         })
         .collect();
     let mut items: Vec<&mut dyn DrawBand<Rgb565>> = draws
@@ -140,7 +153,7 @@ where
                     let mut mine: Vec<MeshDraw<'_, K, P>> = draws
                         .iter()
                         .zip(&mut carry)
-                        .map(|(d, c)| d.share(c).unwrap())
+                        .map(|(d, c)| d.share(c))
                         .collect();
                     let mut items: Vec<&mut dyn DrawBand<Rgb565>> = mine
                         .iter_mut()
@@ -198,8 +211,18 @@ fn assert_split<K: Kernel<Color = Rgb565> + Copy + Sync, P: Projection + Sync>(
                         bins,
                         carry: &mut [],
                     };
-                    MeshDraw::with_options(layout, mesh, t, k, DrawOptions { cull }, memory)
-                        .unwrap()
+                    MeshDraw::new(
+                        layout,
+                        mesh,
+                        t,
+                        k,
+                        memory,
+                        DrawOptions {
+                            cull,
+                            ..DrawOptions::default()
+                        },
+                    )
+                    .unwrap()
                 })
                 .collect();
             for (name, renderers, owner) in splits(layout.bands()) {
@@ -231,7 +254,7 @@ fn two_and_four_renderers_draw_the_frame_of_one_in_every_mode() {
     let ts = transforms(&t, &moved());
     let blinn = standard::blinn::<Q14>().unwrap();
     let lambert = standard::lambert::<Q14>().unwrap();
-    let array: Lighting<Q14, [_; 1], BlinnPhong> = Lighting::new(
+    let array: Viewed<Lighting<Q14, [_; 1], BlinnPhong>> = Lighting::new(
         [standard::light::<Q14>().unwrap()],
         Material::new(&standard::material()).unwrap(),
     )
@@ -242,7 +265,7 @@ fn two_and_four_renderers_draw_the_frame_of_one_in_every_mode() {
     assert_split(
         "general phong",
         &ts,
-        Shader::new(GeneralPhongShading, &blinn, Linear),
+        Shader::new(PhongShading, &blinn, Linear),
     );
     assert_split(
         "incremental phong",
@@ -312,8 +335,18 @@ fn vertex_stage_in_halves_on_two_threads_gives_the_same_frame() {
         bins: &mut m.bins[0],
         carry: &mut carry,
     };
-    let mut draw =
-        MeshDraw::with_lit_vertices(layout, mesh, &t, k, DrawOptions::default(), memory).unwrap();
+    let mut draw = MeshDraw::new(
+        layout,
+        mesh,
+        &t,
+        k,
+        memory,
+        DrawOptions {
+            lit: true,
+            ..DrawOptions::default()
+        },
+    )
+    .unwrap();
     let n = (W * 8) as usize;
     let (mut strip, mut z) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
     let mut bands = Bands::new(layout, &mut strip, Some(&mut z)).unwrap();
@@ -380,7 +413,7 @@ fn a_second_strip_is_drawn_while_a_deferred_sink_holds_the_first() {
             bins: &mut m.bins[0],
             carry: &mut carry,
         };
-        let mut draw = MeshDraw::new(layout, mesh, &t, k, memory).unwrap();
+        let mut draw = MeshDraw::new(layout, mesh, &t, k, memory, DrawOptions::default()).unwrap();
         let (mut a, mut b, mut z) = (vec![Rgb565::BLACK; n], vec![Rgb565::BLACK; n], vec![0; n]);
         let mut bands = Bands::new(layout, &mut a, Some(&mut z)).unwrap();
         if second {
@@ -436,7 +469,7 @@ fn short_records_and_strips_are_errors() {
     };
     // a mesh prepared without records of its own is drawn through shares;
     // drawn itself, it is an error before anything is drawn
-    let mut draw = MeshDraw::new(layout, mesh, &t, k, memory).unwrap();
+    let mut draw = MeshDraw::new(layout, mesh, &t, k, memory, DrawOptions::default()).unwrap();
     let mut strip = vec![Rgb565::BLACK; (W * 8) as usize];
     let mut sink = Collect::new(W, W, Rgb565::CYAN);
     let e = Bands::new(layout, &mut strip, None).unwrap().render(
@@ -461,8 +494,14 @@ fn short_records_and_strips_are_errors() {
     );
     let need = draw.carry_needed();
     let mut few = vec![Carry::ZERO; need - 1];
+    let mut short_share = draw.share(&mut few);
+    let mut strip = vec![Rgb565::BLACK; (W * 8) as usize];
     assert!(matches!(
-        draw.share(&mut few),
+        Bands::new(layout, &mut strip, None).unwrap().render(
+            &mut sink,
+            Rgb565::BLACK,
+            &mut [&mut short_share]
+        ),
         Err(RenderError::BufferTooSmall { which: "carry", .. })
     ));
     let mut strip = vec![Rgb565::BLACK; (W * 8) as usize];

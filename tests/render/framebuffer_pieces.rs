@@ -14,13 +14,16 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use fixshade::camera::Viewport;
-use fixshade::camera::{Camera, Mat4, MeshTransform, Orthographic, Perspective, Projection};
+use fixshade::camera::{Camera, MeshTransform, Orthographic, Perspective, Projection};
+use fixshade::color::Linear;
 use fixshade::color::{GammaTable, Transfer};
+use fixshade::lighting::Viewed;
 use fixshade::lighting::{
     AmbientSource, AnyLight, BlinnPhong, LightDesc, LightKind, Lighting, Material, MaterialDesc,
 };
+use fixshade::num::Mat4;
 use fixshade::raster::Cull;
-use fixshade::shade::{GouraudShading, Kernel, Linear, PhongShading, Shader};
+use fixshade::shade::{GouraudShading, Kernel, PhongShading, Shader};
 use fixshade::standard::SPHERE;
 use fixshade_testkit::support::mesh_frame;
 
@@ -29,7 +32,7 @@ const W: u32 = 240;
 type Lights = heapless::Vec<AnyLight<f32>, 4>;
 
 /// Red plastic under four point lights around the sphere (at (0, 0, −5)).
-fn lighting() -> Lighting<f32, Lights, BlinnPhong> {
+fn lighting() -> Viewed<Lighting<f32, Lights, BlinnPhong>> {
     let centre = [0.0f32, 0.0, -5.0];
     let point = |dx: f32, dy: f32, dz: f32, k: f32| LightDesc {
         kind: LightKind::Point {
@@ -51,8 +54,8 @@ fn lighting() -> Lighting<f32, Lights, BlinnPhong> {
     .collect();
     let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.5, 32.0);
     Lighting::new(lights, Material::new(&red).unwrap())
-        .eye_space()
         .with_global_ambient_f32([0.1; 3])
+        .eye_space()
 }
 
 fn ortho() -> MeshTransform<Orthographic> {
@@ -158,7 +161,7 @@ fn fast_per_pixel_kernels_same_pixels_however_the_frame_is_split() {
     use fixshade::num::Q14;
     use fixshade::shade::{IncrementalPhongShading, QuadraticPhongShading};
     let blinn = fixshade::standard::blinn::<Q14>().unwrap();
-    let array: Lighting<Q14, [_; 1], BlinnPhong> = Lighting::new(
+    let array: Viewed<Lighting<Q14, [_; 1], BlinnPhong>> = Lighting::new(
         [fixshade::standard::light::<Q14>().unwrap()],
         Material::new(&fixshade::standard::material()).unwrap(),
     )

@@ -5,10 +5,13 @@
 
 use core::f32::consts::FRAC_PI_2;
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
-use fixshade::camera::{Camera, Mat4, MeshTransform, Perspective, Viewport};
+use fixshade::camera::SUBPIXEL_BITS;
+use fixshade::camera::{Camera, MeshTransform, Perspective, Viewport};
+use fixshade::framebuffer::Layout;
 use fixshade::mesh::{icosphere, icosphere_counts, Mesh};
-use fixshade::raster::{Cull, SUBPIXEL_BITS};
-use fixshade::render::{bins_len, CachedVertex, DrawOptions, Layout, MeshDraw, MeshMemory};
+use fixshade::num::Mat4;
+use fixshade::raster::Cull;
+use fixshade::render::{bins_len, CachedVertex, DrawOptions, MeshDraw, MeshMemory};
 use fixshade_testkit::support::{clip_corner, full, lumas, Count, Record, Tris};
 
 const W: i32 = 64;
@@ -65,8 +68,18 @@ fn draw(t: &MeshTransform<Perspective>, m: &Owned, cull: Cull) -> (usize, u32, u
         bins: &mut bins,
         carry: &mut [],
     };
-    let mut d =
-        MeshDraw::with_options(layout, m.mesh(), t, Count, DrawOptions { cull }, memory).unwrap();
+    let mut d = MeshDraw::new(
+        layout,
+        m.mesh(),
+        t,
+        Count,
+        memory,
+        DrawOptions {
+            cull,
+            ..DrawOptions::default()
+        },
+    )
+    .unwrap();
     let px = lumas(&full(
         W as u32,
         H as u32,

@@ -9,16 +9,14 @@ use fixshade_testkit::seeded;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
-use fixshade::camera::{
-    Camera, Mat4, MeshTransform, Orthographic, Perspective, Projection, Viewport,
-};
+use fixshade::camera::{Camera, MeshTransform, Orthographic, Perspective, Projection, Viewport};
+use fixshade::framebuffer::{Bands, DrawBand, FullFrame, Layout};
 use fixshade::mesh::{textured_sphere_counts, uv_sphere_counts, Mesh, MeshData, TexturedMeshData};
+use fixshade::num::Mat4;
 use fixshade::prelude::*;
 use fixshade::raster::Cull;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, DrawOptions, FullFrame, Layout, MeshDraw,
-    MeshMemory, RefineMemory, RefineStats,
-};
+use fixshade::render::refine::{RefineMemory, RefineStats};
+use fixshade::render::{bins_len, CachedVertex, Carry, DrawOptions, MeshDraw, MeshMemory};
 use proptest::prelude::*;
 
 const BG: Rgb565 = Rgb565::MAGENTA;
@@ -140,22 +138,34 @@ fn render_cull<P: Projection>(
     };
     let mut refs = Refs::new(nv, e);
     let mut draw = match budget {
-        Some((_, tau)) => MeshDraw::with_refinement(
+        Some((_, tau)) => MeshDraw::new(
             layout,
             mesh,
             t,
             shader,
-            DrawOptions { cull },
             memory,
-            fixshade::render::Refine {
+            DrawOptions {
+                cull,
+                ..DrawOptions::default()
+            }
+            .with_refine(fixshade::render::refine::Refine {
                 memory: refs.memory(),
                 threshold: tau,
+            }),
+        )
+        .unwrap(),
+        None => MeshDraw::new(
+            layout,
+            mesh,
+            t,
+            shader,
+            memory,
+            DrawOptions {
+                cull,
+                ..DrawOptions::default()
             },
         )
         .unwrap(),
-        None => {
-            MeshDraw::with_options(layout, mesh, t, shader, DrawOptions { cull }, memory).unwrap()
-        }
     };
     let stats = draw.refine_stats();
     let n = (size * size) as usize;

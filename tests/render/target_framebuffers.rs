@@ -10,10 +10,9 @@ use embedded_graphics_core::pixelcolor::{Gray8, GrayColor, Rgb565, RgbColor};
 use embedded_graphics_core::Pixel;
 use embedded_graphics_simulator::SimulatorDisplay;
 use fixshade::error::{Error, RenderError};
+use fixshade::framebuffer::{Bands, DrawBand, FullFrame, Layout};
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
-};
+use fixshade::render::{bins_len, CachedVertex, Carry, MeshDraw, MeshMemory};
 use fixshade_testkit::support::{corner, full, Solid, Tris, S};
 
 /// The largest frame width and height the renderer accepts (documented on
@@ -215,6 +214,7 @@ fn a_mesh_prepared_for_another_layout_is_refused() {
         &t,
         shader,
         memory,
+        DrawOptions::default(),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     let mut color = vec![Rgb565::RED; 240 * 240];
@@ -257,7 +257,7 @@ fn missing_texture_coordinates_and_a_short_cache_are_refused() {
     let mesh = fixshade::standard::SPHERE.mesh();
     assert!(mesh.texcoords().is_empty());
     assert!(matches!(
-        MeshDraw::new(layout, mesh, &t, shader, memory),
+        MeshDraw::new(layout, mesh, &t, shader, memory, DrawOptions::default()),
         Err(RenderError::MissingAttribute(_))
     ));
     let shader: Shader<'_, _, _, _, Rgb565> = Shader::new(GouraudShading, &lighting, Linear);
@@ -267,7 +267,7 @@ fn missing_texture_coordinates_and_a_short_cache_are_refused() {
         bins: &mut bins,
         carry: &mut [],
     };
-    match MeshDraw::new(layout, mesh, &t, shader, memory) {
+    match MeshDraw::new(layout, mesh, &t, shader, memory, DrawOptions::default()) {
         Err(RenderError::BufferTooSmall { which, needed, got }) => {
             assert_eq!((which, needed, got), ("vertex cache", nv, nv - 1));
         }

@@ -2,9 +2,10 @@
 //! (overflow checks are on in this profile, as in the fuzz build).
 
 use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::camera::{Clip, ClipSpace};
-use fixshade::raster::SUBPIXEL_BITS;
-use fixshade::render::{Corner, FullFrame};
+use fixshade::framebuffer::FullFrame;
+use fixshade::render::Corner;
 use fixshade_testkit::support::{clip_corner, Solid, Tris};
 
 /// One triangle drawn white into a 16 × 16 frame with a depth buffer; the
@@ -96,7 +97,8 @@ fn a_vertex_at_the_far_plane() {
 /// values, no overflow.
 #[test]
 fn orthographic_transform_rounding_at_i32_max() {
-    use fixshade::camera::{Camera, Mat4, Viewport};
+    use fixshade::camera::{Camera, Viewport};
+    use fixshade::num::Mat4;
     let vp = Viewport::new(0, 0, 64, 64).unwrap();
     let view = Mat4 {
         m: [
@@ -131,7 +133,7 @@ fn orthographic_transform_rounding_at_i32_max() {
 // of the fuzz package), so that a kept input replays here exactly as in the fuzzer.
 
 /// fuzz target `surface`, crash-4a9262f7: a 1 × 1 normal map of
-/// `normalize_texels([i16::MIN; 3])` = `[−9459; 3]` (a unit normal facing
+/// `NormalMap::normalize_texels([i16::MIN; 3])` = `[−9459; 3]` (a unit normal facing
 /// into the surface) on the seamed 6 × 8 sphere turned by `f32::MAX` radians,
 /// a 12-pixel frame, through the fast normal-map kernel (then `FastNormalMapShader`) (`Q14<1>`, Blinn-Phong):
 /// "attempt to multiply with overflow" in the fast path's `n·L` (normalmap.rs
@@ -155,7 +157,7 @@ fn mesh_incremental_phong_extreme_normals() {
 }
 
 /// fuzz target `surface`, crash-569c613a: a 1 × 1 map of
-/// `normalize_texels([0, i16::MIN, i16::MIN])` on the sphere turned by
+/// `NormalMap::normalize_texels([0, i16::MIN, i16::MIN])` on the sphere turned by
 /// `−f32::MAX` radians, the fast normal-map kernel (`Q14<1>`): the Newton update
 /// of `1/|H|` after a span's last pixel, from `|H|²` stepped beyond the span
 /// (wrapped, never used), overflowed ("attempt to multiply with overflow",

@@ -105,7 +105,6 @@ fn shade_all<S: Raw, L: LightSet<S> + Copy, V: Viewer<S>, F: FogModel<S>>(
         n: Vec3<S>,
     ) {
         let lit = Lighting::<S, L, M>::new(lights, m)
-            .eye_space()
             .with_global_ambient(Rgb::splat(S::from_f32(0.2)))
             .with_viewer(viewer)
             .with_fog(fog);

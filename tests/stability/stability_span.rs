@@ -17,15 +17,17 @@
 use fixshade_testkit::seeded;
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::camera::{Clip, ClipSpace};
+use fixshade::color::Linear;
 use fixshade::color::Rgb;
 use fixshade::lighting::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{BlinnPhong, Lighting, LinearFog, LocalViewer};
 use fixshade::lighting::{Material, MaterialDesc};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
-use fixshade::raster::{Cull, SUBPIXEL_BITS};
+use fixshade::raster::Cull;
 use fixshade::render::Corner;
-use fixshade::shade::{FlatShading, GeneralPhongShading, GouraudShading, Linear, Shader, VertexIn};
+use fixshade::shade::{FlatShading, GouraudShading, PhongShading, Shader, VertexIn};
 use fixshade_testkit::support::{full, Tris};
 use proptest::prelude::*;
 
@@ -63,10 +65,10 @@ fn draw_all<S: Scalar>(pos: [[f32; 3]; 3], light: [f32; 3], flat: bool) -> Vec<R
     .unwrap();
     let fog = LinearFog::<S>::new(1.0, 50_000.0, [0.2, 0.3, 0.4]).unwrap();
     let lit = Lighting::<S, _, BlinnPhong>::new(lights, m)
-        .eye_space()
         .with_global_ambient(Rgb::splat(S::from_f32(0.1)))
         .with_viewer(LocalViewer::<S>::new([0.0; 3]).unwrap())
-        .with_fog(fog);
+        .with_fog(fog)
+        .eye_space();
     // a triangle covering most of the 64 × 64 frame: runs of up to 60 pixels
     let scr = [[2, 2], [62, 5], [10, 62]]
         .map(|[x, y]: [i32; 2]| [x << SUBPIXEL_BITS, y << SUBPIXEL_BITS]);
@@ -132,7 +134,7 @@ fn draw_all<S: Scalar>(pos: [[f32; 3]; 3], light: [f32; 3], flat: bool) -> Vec<R
         run!(GouraudShading);
         // (`PhongShading` picks this kernel for a point light; generic
         // code over the tier names it)
-        let p = run!(GeneralPhongShading);
+        let p = run!(PhongShading);
         if !persp {
             phong = p;
         }

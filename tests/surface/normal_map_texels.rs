@@ -11,13 +11,12 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
 use fixshade::error::TextureError;
+use fixshade::framebuffer::{Bands, DrawBand, FullFrame, Layout};
 use fixshade::lighting::{Illuminate, Model};
 use fixshade::prelude::*;
-use fixshade::render::{
-    bins_len, Bands, CachedVertex, Carry, DrawBand, FullFrame, Layout, MeshDraw, MeshMemory,
-};
-use fixshade::shade::{GeneralPhongShading, IncrementalModel, Kernel, PhongShading};
-use fixshade::texture::{normal_texel, normalize_texels, NormalMap, Wrap};
+use fixshade::render::{bins_len, CachedVertex, Carry, MeshDraw, MeshMemory};
+use fixshade::shade::{IncrementalModel, IncrementalPhongShading, Kernel, PhongShading};
+use fixshade::texture::{NormalMap, Wrap};
 
 /// The tolerance `NormalMap::new` documents: `|x² + y² + z² − 2^28| ≤ 2^15`.
 const UNIT_TOLERANCE: u32 = 1 << 15;
@@ -107,7 +106,7 @@ where
         bins: &mut bins,
         carry: &mut carry,
     };
-    let mut draw = MeshDraw::new(layout, mesh, &t, kernel, memory).unwrap();
+    let mut draw = MeshDraw::new(layout, mesh, &t, kernel, memory, DrawOptions::default()).unwrap();
     match band_rows {
         None => {
             let mut color = vec![Rgb565::BLACK; (W * W) as usize];
@@ -140,24 +139,25 @@ where
 
 fn fast<const NW: u8, M: IncrementalModel>(map: NormalMap<'_>, what: &str) -> usize {
     let light = DirectionalLight::<Q14<NW>>::white([-0.3, 0.5, 0.8]).unwrap();
-    // one directional light: `PhongShading.normal_mapped` picks the fast kernel
-    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(&standard::material()).unwrap())
-        .eye_space();
+    // one directional light: the incremental kernel
+    let lit =
+        Lighting::<Q14<NW>, _, M>::new([light], Material::new(&standard::material()).unwrap())
+            .eye_space();
     both(
-        Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &lit, Linear),
+        Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading.normal_mapped(map), &lit, Linear),
         what,
     )
 }
 
 fn general<S: Scalar, M: Model>(map: NormalMap<'_>, what: &str) -> usize
 where
-    Lighting<S, [DirectionalLight<S>; 1], M>: Illuminate<Scalar = S>,
+    Viewed<Lighting<S, [DirectionalLight<S>; 1], M>>: Illuminate<Scalar = S>,
 {
     let light = DirectionalLight::<S>::white([-0.3, 0.5, 0.8]).unwrap();
     let lit = Lighting::<S, _, M>::new([light], Material::new(&standard::material()).unwrap())
         .eye_space();
     both(
-        Shader::new(GeneralPhongShading.normal_mapped(map), &lit, Linear),
+        Shader::new(PhongShading.normal_mapped(map), &lit, Linear),
         what,
     )
 }
@@ -215,7 +215,7 @@ fn hostile_maps() -> Vec<(String, Vec<[i16; 3]>, u8)> {
                 if (i + k) % 5 == 0 {
                     r
                 } else {
-                    normal_texel(r.map(|c| f32::from(c) + 0.5)).unwrap()
+                    NormalMap::unit_texel(r.map(|c| f32::from(c) + 0.5)).unwrap()
                 }
             })
             .collect();
@@ -248,12 +248,12 @@ fn normalized_hostile_maps_render() {
     for (what, mut texels, log2) in hostile_maps() {
         if texels.contains(&[0; 3]) {
             assert_eq!(
-                normalize_texels(&mut texels),
+                NormalMap::normalize_texels(&mut texels),
                 Err(TextureError::Degenerate("texel"))
             );
             continue;
         }
-        normalize_texels(&mut texels).unwrap();
+        NormalMap::normalize_texels(&mut texels).unwrap();
         let map = NormalMap::new(&texels, log2, log2, Wrap::Repeat).unwrap();
         render_everywhere(map, &what);
     }
@@ -269,7 +269,7 @@ fn accepted_extremes_render() {
     for k in 0..64u32 {
         let (a, b) = (k as f64 * 0.41, (k % 8) as f64 * 0.45 - 1.6);
         let d = [a.cos() * b.cos(), a.sin() * b.cos(), b.sin()];
-        let t = normal_texel(d.map(|c| c as f32)).unwrap();
+        let t = NormalMap::unit_texel(d.map(|c| c as f32)).unwrap();
         let len2 = |t: [i16; 3]| t.iter().map(|&c| i64::from(c) * i64::from(c)).sum::<i64>();
         // push each component away from zero (then towards it, not across)
         // while the texel is still accepted

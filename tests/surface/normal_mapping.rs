@@ -1,6 +1,6 @@
-//! Normal mapping (`PhongShading.normal_mapped(…)`, `GeneralPhongShading.normal_mapped(…)`):
+//! Normal mapping (`PhongShading.normal_mapped(…)`, `IncrementalPhongShading.normal_mapped(…)`):
 //! a flat map shades exactly like the general per-pixel kernel
-//! (`GeneralPhongShading`); the general path (every tier, light kind and
+//! (`PhongShading`); the general path (every tier, light kind and
 //! specular model) and the Q14 fast path against an f64 reference of the
 //! same method (the same interpolation, evaluated in f64), worst cases
 //! searched; the mesh renderer's kernels, and which kernel `PhongShading`
@@ -16,17 +16,18 @@
 #![allow(clippy::needless_range_loop)] // index loops over [_; 3] read as the formulas
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::camera::{Clip, ClipSpace};
 use fixshade::color::OutputColor;
+use fixshade::framebuffer::{BandView, DrawBand};
 use fixshade::lighting::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{Illuminate, Model};
 use fixshade::mesh::TEXCOORD_FRAC;
 use fixshade::prelude::*;
-use fixshade::raster::SUBPIXEL_BITS;
 use fixshade::reference::{self, ModelDesc, Reference, ViewerDesc, V3};
-use fixshade::render::{draw_triangle, BandView, Corner, DrawBand};
-use fixshade::shade::{GeneralPhongShading, VertexIn};
-use fixshade::texture::{bump_to_normals, normal_texel, NormalMap, Wrap};
+use fixshade::render::{draw_triangle, Corner};
+use fixshade::shade::{IncrementalPhongShading, PhongShading, VertexIn};
+use fixshade::texture::{NormalMap, Wrap};
 
 const FB: u32 = 64;
 
@@ -200,8 +201,7 @@ impl<K: Kernel> DrawBand<K::Color> for One<K> {
             &self.kernel,
             &self.corners,
             Cull::None,
-        )
-        .expect("the kernel draws (Kernel::check)");
+        );
     }
 }
 
@@ -283,7 +283,7 @@ fn bumpy_texels() -> Vec<[i16; 3]> {
         })
         .collect();
     let mut out = vec![[0i16; 3]; 256];
-    bump_to_normals(&heights, 4, 4, Wrap::Repeat, 0.05, &mut out).unwrap();
+    NormalMap::from_bump(&heights, 4, 4, Wrap::Repeat, 0.05, &mut out).unwrap();
     out
 }
 
@@ -295,7 +295,7 @@ fn extreme_texels() -> Vec<[i16; 3]> {
             let a = i as f32 * 0.71;
             let z = [0.02, 0.1, 0.3, 0.7, 0.95, 1.0, 0.05, 0.5][i % 8];
             let r = (1.0f32 - z * z).max(0.0).sqrt();
-            normal_texel([r * a.cos(), r * a.sin(), z]).unwrap()
+            NormalMap::unit_texel([r * a.cos(), r * a.sin(), z]).unwrap()
         })
         .collect()
 }
@@ -345,18 +345,18 @@ fn light_descs() -> Vec<(&'static str, LightDesc)> {
 fn flat_equals_phong<S: Scalar, M: Model>(desc: &LightDesc, tris: &[Tri]) -> usize {
     let light = AnyLight::<S>::new(desc).unwrap();
     let lit = Lighting::<S, _, M>::new([light], Material::new(&material()).unwrap())
-        .eye_space()
-        .with_global_ambient_f32([0.0; 3]);
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space();
     let flat = [NormalMap::FLAT; 4];
     let map = NormalMap::new(&flat, 1, 1, Wrap::Repeat).unwrap();
     let mut compared = 0;
     for t in tris {
         let (a, da) = draw(
-            Shader::<_, _, _, Rgb565>::new(GeneralPhongShading, &lit, Linear),
+            Shader::<_, _, _, Rgb565>::new(PhongShading, &lit, Linear),
             t,
         );
         let (b, db) = draw(
-            Shader::<_, _, _, Rgb565>::new(GeneralPhongShading.normal_mapped(map), &lit, Linear),
+            Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &lit, Linear),
             t,
         );
         assert_eq!(da, db, "the same pixels drawn");
@@ -397,8 +397,8 @@ fn general_error<S: Scalar, M: Model>(
 ) -> (u32, usize) {
     let light = AnyLight::<S>::new(desc).unwrap();
     let lit = Lighting::<S, _, M>::new([light], Material::new(mat).unwrap())
-        .eye_space()
-        .with_global_ambient_f32([0.0; 3]);
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space();
     let map = NormalMap::new(texels, log2, log2, Wrap::Repeat).unwrap();
     let lights = [*desc];
     let reference = Reference {
@@ -412,7 +412,7 @@ fn general_error<S: Scalar, M: Model>(
     let (mut worst, mut count) = (0u32, 0usize);
     for t in tris {
         let (px, depth) = draw(
-            Shader::<_, _, _, Rgb888>::new(GeneralPhongShading.normal_mapped(map), &lit, Linear),
+            Shader::<_, _, _, Rgb888>::new(PhongShading.normal_mapped(map), &lit, Linear),
             t,
         );
         // the quantised inputs: unit normal and tangent of the Q14 values
@@ -588,19 +588,22 @@ fn fast_error<const NW: u8, M: fixshade::shade::IncrementalModel>(
         diffuse: [1.0; 3],
         specular: [1.0; 3],
     };
-    // one directional light (not an array): `PhongShading.normal_mapped` picks
-    // the fast kernel
+    // one directional light: `IncrementalPhongShading.normal_mapped`
     let light = DirectionalLight::<Q14<NW>>::white(dir).unwrap();
-    let lit = Lighting::<Q14<NW>, _, M>::new(light, Material::new(mat).unwrap())
-        .eye_space()
-        .with_global_ambient_f32([0.0; 3]);
+    let lit = Lighting::<Q14<NW>, _, M>::new([light], Material::new(mat).unwrap())
+        .with_global_ambient_f32([0.0; 3])
+        .eye_space();
     let map = NormalMap::new(texels, log2, log2, wrap).unwrap();
     let (a, d, s, l, h) = coefficients::<M>(&desc, mat);
     let spec = M::SPECULAR == fixshade::lighting::Specular::BlinnPhong;
     let (mut worst, mut count) = (0u32, 0usize);
     for t in tris {
         let (px, depth) = draw(
-            Shader::<_, _, _, Rgb888>::new(PhongShading.normal_mapped(map), &lit, Linear),
+            Shader::<_, _, _, Rgb888>::new(
+                IncrementalPhongShading.normal_mapped(map),
+                &lit,
+                Linear,
+            ),
             t,
         );
         // per vertex L, H in the tangent frame of the quantised inputs
@@ -750,7 +753,8 @@ fn fast_path_against_the_reference_worst_cases() {
 
 mod mesh {
     use super::*;
-    use fixshade::render::{bins_len, CachedVertex, FullFrame, Layout, MeshDraw, MeshMemory};
+    use fixshade::framebuffer::{FullFrame, Layout};
+    use fixshade::render::{bins_len, CachedVertex, MeshDraw, MeshMemory};
     use fixshade::shade::Kernel;
     use fixshade::standard;
 
@@ -803,7 +807,8 @@ mod mesh {
             bins: &mut bins,
             carry: &mut [],
         };
-        let mut draw = MeshDraw::new(layout, mesh, &t, kernel, memory).unwrap();
+        let mut draw =
+            MeshDraw::new(layout, mesh, &t, kernel, memory, DrawOptions::default()).unwrap();
         let mut color = vec![Rgb565::BLACK; (W * W) as usize];
         let mut depth = vec![0u16; (W * W) as usize];
         let mut frame = FullFrame::new(W, W, &mut color, Some(&mut depth)).unwrap();
@@ -822,9 +827,9 @@ mod mesh {
         let (uv, tg) = uv_tangents();
         let flat = [NormalMap::FLAT; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
-        let a = render(Shader::new(GeneralPhongShading, lit, Linear), &uv, &tg);
+        let a = render(Shader::new(PhongShading, lit, Linear), &uv, &tg);
         let b = render(
-            Shader::new(GeneralPhongShading.normal_mapped(map), lit, Linear),
+            Shader::new(PhongShading.normal_mapped(map), lit, Linear),
             &uv,
             &tg,
         );
@@ -840,29 +845,29 @@ mod mesh {
         for (_, d) in light_descs() {
             let light = AnyLight::<Q14>::new(&d).unwrap();
             let lit = Lighting::<Q14, _, Phong>::new([light], Material::new(&material()).unwrap())
-                .eye_space()
-                .with_global_ambient_f32([0.0; 3]);
+                .with_global_ambient_f32([0.0; 3])
+                .eye_space();
             flat_mesh(&lit);
         }
     }
 
-    /// The fast path in the mesh renderer (`PhongShading.normal_mapped` with a
-    /// `Q14` lighting of one `DirectionalLight`) with a flat map against
+    /// The fast path in the mesh renderer (`IncrementalPhongShading.normal_mapped`
+    /// with a `Q14` lighting of one `DirectionalLight`) with a flat map against
     /// `IncrementalPhongShading` (the same light as a one-element array; the
     /// normal interpolated instead of L and H in the tangent frame: not the
     /// same method, so only close), and with a bumpy map against the general
-    /// Q14 path (`GeneralPhongShading.normal_mapped`).
+    /// Q14 path (`PhongShading.normal_mapped`).
     #[test]
     fn fast_mesh_kernel_is_close_to_the_general_one() {
         let (uv, tg) = uv_tangents();
         let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
         let mat = || Material::new(&standard::material()).unwrap();
         let lit = Lighting::<Q14, _, BlinnPhong>::new(light, mat())
-            .eye_space()
-            .with_global_ambient_f32([0.0; 3]);
+            .with_global_ambient_f32([0.0; 3])
+            .eye_space();
         let array = Lighting::<Q14, _, BlinnPhong>::new([light], mat())
-            .eye_space()
-            .with_global_ambient_f32([0.0; 3]);
+            .with_global_ambient_f32([0.0; 3])
+            .eye_space();
         let flat = [NormalMap::FLAT; 1];
         let map = NormalMap::new(&flat, 0, 0, Wrap::Repeat).unwrap();
         let inc = render(
@@ -871,7 +876,7 @@ mod mesh {
             &tg,
         );
         let fast = render(
-            Shader::new(PhongShading.normal_mapped(map), &lit, Linear),
+            Shader::new(IncrementalPhongShading.normal_mapped(map), &array, Linear),
             &uv,
             &tg,
         );
@@ -886,12 +891,12 @@ mod mesh {
         let texels = bumpy_texels();
         let map = NormalMap::new(&texels, 4, 4, Wrap::Repeat).unwrap();
         let general = render(
-            Shader::new(GeneralPhongShading.normal_mapped(map), &lit, Linear),
+            Shader::new(PhongShading.normal_mapped(map), &lit, Linear),
             &uv,
             &tg,
         );
         let fast = render(
-            Shader::new(PhongShading.normal_mapped(map), &lit, Linear),
+            Shader::new(IncrementalPhongShading.normal_mapped(map), &array, Linear),
             &uv,
             &tg,
         );
@@ -908,51 +913,8 @@ mod mesh {
         assert!(mean < 0.05, "{mean}");
         assert_ne!(
             general, fast,
-            "PhongShading.normal_mapped took the general kernel"
+            "the incremental kernel drew the general one's pixels"
         );
-    }
-
-    /// `PhongShading.normal_mapped` lets the lighting pick: the general
-    /// kernel (exactly `GeneralPhongShading.normal_mapped`'s pixels) for a
-    /// lighting the fast path does not serve: a one-light array, a point
-    /// light, the Phong `R·V` model, the `Q30` and `f32` tiers.
-    #[test]
-    fn phong_shading_normal_mapped_picks_the_general_kernel_otherwise() {
-        let (uv, tg) = uv_tangents();
-        let texels = bumpy_texels();
-        let map = NormalMap::new(&texels, 4, 4, Wrap::Repeat).unwrap();
-        // (a macro: the trait that picks the kernel is not nameable in bounds)
-        macro_rules! same {
-            ($lit:expr) => {{
-                let lit = $lit;
-                let a = render(
-                    Shader::new(PhongShading.normal_mapped(map), &lit, Linear),
-                    &uv,
-                    &tg,
-                );
-                let b = render(
-                    Shader::new(GeneralPhongShading.normal_mapped(map), &lit, Linear),
-                    &uv,
-                    &tg,
-                );
-                assert!(a.iter().filter(|p| **p != Rgb565::BLACK).count() > 20_000);
-                assert_eq!(a, b, "{}", stringify!($lit));
-            }};
-        }
-        let mat = || Material::new(&standard::material()).unwrap();
-        let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new([light], mat())
-            .eye_space()
-            .with_global_ambient_f32([0.0; 3]));
-        same!(Lighting::<Q14, _, Phong>::new(light, mat())
-            .eye_space()
-            .with_global_ambient_f32([0.0; 3]));
-        let point = AnyLight::<Q14>::new(&light_descs()[1].1).unwrap();
-        same!(Lighting::<Q14, _, BlinnPhong>::new(point, mat())
-            .eye_space()
-            .with_global_ambient_f32([0.0; 3]));
-        same!(standard::blinn::<Q30>().unwrap());
-        same!(standard::blinn::<f32>().unwrap());
     }
 }
 

@@ -8,15 +8,16 @@
 use core::cell::Cell;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use embedded_graphics_core::prelude::*;
+use fixshade::camera::SUBPIXEL_BITS;
 use fixshade::camera::{Clip, ClipSpace, MeshTransform, Orthographic, Perspective, Projection};
+use fixshade::framebuffer::{BandView, Bands, DrawBand, FullFrame, Layout};
 use fixshade::lighting::{LightDesc, LightKind};
 use fixshade::mesh::TEXCOORD_FRAC;
+use fixshade::num::ATTR_FRAC;
 use fixshade::prelude::*;
-use fixshade::raster::{ATTR_FRAC, SUBPIXEL_BITS};
 use fixshade::reference::{ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{
-    bins_len, draw_triangle, BandView, Bands, CachedVertex, Carry, Corner, DrawBand, FullFrame,
-    Layout, MeshDraw, MeshMemory,
+    bins_len, draw_triangle, CachedVertex, Carry, Corner, MeshDraw, MeshMemory,
 };
 use fixshade::shade::{Textured, VertexIn};
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
@@ -71,7 +72,7 @@ fn texture_of(words: Vec<u16>, lw: u8, lh: u8, wrap: Wrap) -> Texture<'static> {
 }
 
 /// Fully lit, no specular: a white material lit head-on (primary = 1).
-fn full_light() -> Lighting<Q14, DirectionalLight<Q14>, Lambert> {
+fn full_light() -> Viewed<Lighting<Q14, DirectionalLight<Q14>, Lambert>> {
     let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
     let m = MaterialDesc::classic([1.0; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
     Lighting::new(light, Material::new(&m).unwrap()).eye_space()
@@ -83,12 +84,12 @@ fn lambert_material() -> MaterialDesc {
     MaterialDesc::classic([0.9, 0.6, 0.3], AmbientSource::Object, 0.15, 0.8, 0.0, 1.0)
 }
 
-fn lambert() -> Lighting<Q14, DirectionalLight<Q14>, Lambert> {
+fn lambert() -> Viewed<Lighting<Q14, DirectionalLight<Q14>, Lambert>> {
     let light = DirectionalLight::<Q14>::white(LAMBERT_DIR).unwrap();
     Lighting::new(light, Material::new(&lambert_material()).unwrap()).eye_space()
 }
 
-fn blinn(kd: f32) -> Lighting<Q14, DirectionalLight<Q14>, BlinnPhong> {
+fn blinn(kd: f32) -> Viewed<Lighting<Q14, DirectionalLight<Q14>, BlinnPhong>> {
     let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
     let ka = if kd == 0.0 { 0.0 } else { 0.1 };
     let m = MaterialDesc::classic([0.9, 0.6, 0.3], AmbientSource::Object, ka, kd, 0.7, 8.0);
@@ -200,8 +201,11 @@ fn render<K: Kernel<Color = Rgb565>, P: Projection>(
         bins: &mut bins,
         carry: &mut carry,
     };
-    let opts = fixshade::render::DrawOptions { cull: Cull::None };
-    let mut draw = MeshDraw::with_options(layout, mesh, t, kernel, opts, memory).unwrap();
+    let opts = fixshade::render::DrawOptions {
+        cull: Cull::None,
+        ..DrawOptions::default()
+    };
+    let mut draw = MeshDraw::new(layout, mesh, t, kernel, memory, opts).unwrap();
     let mut strip = vec![Rgb565::BLACK; (W * rows) as usize];
     let mut depth = vec![0u16; (W * rows) as usize];
     let mut bands = Bands::new(layout, &mut strip, Some(&mut depth)).unwrap();
@@ -301,8 +305,7 @@ struct Tris<K> {
 impl<K: Kernel> DrawBand<K::Color> for Tris<K> {
     fn draw_band(&mut self, band: &mut BandView<'_, K::Color>) {
         for t in &self.tris {
-            draw_triangle(band, &self.space, &self.kernel, t, Cull::None)
-                .expect("the kernel draws (Kernel::check)");
+            draw_triangle(band, &self.space, &self.kernel, t, Cull::None);
         }
     }
 }
@@ -423,7 +426,7 @@ fn separate_specular_adds_after_modulation() {
     // Gouraud does, or per pixel, as OpenGL's separate specular does, agree)
     let light = DirectionalLight::<Q14>::white([-0.3, 0.5, 0.8]).unwrap();
     let m = MaterialDesc::classic([0.9, 0.6, 0.3], AmbientSource::Object, 0.1, 0.5, 0.4, 8.0);
-    let soft: Lighting<Q14, _, BlinnPhong> =
+    let soft: Viewed<Lighting<Q14, _, BlinnPhong>> =
         Lighting::new(light, Material::new(&m).unwrap()).eye_space();
     let white = texture_of(vec![0xFFFF; 16], 2, 2, Wrap::Repeat);
     let sum = render(Shader::new(GouraudShading, &soft, Linear), &g, &ortho(), W);
@@ -460,7 +463,7 @@ fn modulation_is_within_one_step_of_the_f64_product() {
     for level in [0.0f32, 0.1, 0.33, 0.5, 0.77, 0.9, 1.0] {
         let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
         let m = MaterialDesc::classic([level; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
-        let lit: Lighting<Q14, _, Lambert> =
+        let lit: Viewed<Lighting<Q14, _, Lambert>> =
             Lighting::new(light, Material::new(&m).unwrap()).eye_space();
         for filter in [Filter::Nearest, Filter::Bilinear] {
             let px = render(tex_shader(&lit, tex, filter), &g, &ortho(), W);
@@ -920,8 +923,11 @@ fn draw_one<K: Kernel<Color = Rgb565>>(
         carry: &mut [],
     };
     let layout = Layout::full(SIDE, SIDE).unwrap();
-    let opts = fixshade::render::DrawOptions { cull: Cull::None };
-    let mut draw = MeshDraw::with_options(layout, mesh, t, kernel, opts, memory).unwrap();
+    let opts = fixshade::render::DrawOptions {
+        cull: Cull::None,
+        ..DrawOptions::default()
+    };
+    let mut draw = MeshDraw::new(layout, mesh, t, kernel, memory, opts).unwrap();
     FullFrame::new(SIDE, SIDE, px, None)
         .unwrap()
         .render(Rgb565::BLACK, &mut [&mut draw])
@@ -1247,7 +1253,7 @@ fn targeted_modulation_search() {
                 DirectionalLight::<Q14>::white([tilt.sin() as f32, 0.0, tilt.cos() as f32]).ok()?;
             let m =
                 MaterialDesc::classic([level as f32; 3], AmbientSource::Object, 0.0, 1.0, 0.0, 1.0);
-            let lit: Lighting<Q14, _, Lambert> =
+            let lit: Viewed<Lighting<Q14, _, Lambert>> =
                 Lighting::new(light, Material::new(&m).ok()?).eye_space();
             let px = render(tex_shader(&lit, tex, filter), &g, &ortho(), W);
             // the primary level the lighting gives (exactly: N = (0, 0, 1))

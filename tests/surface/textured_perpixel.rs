@@ -1,14 +1,14 @@
 //! Per-pixel modes composed with a colour texture and a normal map
 //! (issue 18 item 4): `PhongShading.textured(…)`,
-//! `GeneralPhongShading.textured(…)`, `….normal_mapped(map).textured(…)`,
+//! `PhongShading.textured(…)`, `….normal_mapped(map).textured(…)`,
 //! through the mesh renderer. Neutral maps give the plain pixels; a texture
 //! modulates the primary colour and leaves the specular alone.
 
 use fixshade::mesh::{textured_sphere_counts, TexturedMeshData};
 use fixshade::prelude::*;
 use fixshade::render::{CachedVertex, MeshMemory};
-use fixshade::shade::GeneralPhongShading;
 use fixshade::shade::Kernel;
+use fixshade::shade::PhongShading;
 use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
 
 const N: (usize, usize) = textured_sphere_counts(12, 16);
@@ -44,6 +44,7 @@ fn draw<K: Kernel<Color = Rgb565>>(kernel: K) -> Vec<Rgb565> {
             bins: &mut bins,
             carry: &mut [],
         },
+        DrawOptions::default(),
     )
     .unwrap();
     let mut color = vec![Rgb565::BLACK; (W * W) as usize];
@@ -100,7 +101,7 @@ fn flat() -> NormalMap<'static> {
 #[test]
 fn neutral_maps_give_the_plain_pixels() {
     let lighting = fixshade::standard::lambert::<Q14>().unwrap();
-    let plain = draw(Shader::new(GeneralPhongShading, &lighting, Linear));
+    let plain = draw(Shader::new(PhongShading, &lighting, Linear));
     assert!(plain.iter().filter(|&&c| c != Rgb565::BLACK).count() > 1500);
     let tex = draw(Shader::new(
         PhongShading.textured(white(), Filter::Nearest),
@@ -110,13 +111,13 @@ fn neutral_maps_give_the_plain_pixels() {
     near(&tex, &plain, "textured");
     let white_tex = tex;
     let tex = draw(Shader::new(
-        GeneralPhongShading.textured(white(), Filter::Bilinear),
+        PhongShading.textured(white(), Filter::Bilinear),
         &lighting,
         Linear,
     ));
     same(&tex, &white_tex, "textured bilinear");
     let mapped = draw(Shader::new(
-        GeneralPhongShading.normal_mapped(flat()),
+        PhongShading.normal_mapped(flat()),
         &lighting,
         Linear,
     ));
@@ -139,7 +140,7 @@ fn black_texture_keeps_the_specular() {
     static BLACK: [u16; 16] = [0; 16];
     let black = Texture::new(Texels::Rgb565(&BLACK), 2, 2, Wrap::Repeat).unwrap();
     let lighting = fixshade::standard::blinn::<Q14>().unwrap();
-    let plain = draw(Shader::new(GeneralPhongShading, &lighting, Linear));
+    let plain = draw(Shader::new(PhongShading, &lighting, Linear));
     let spec = draw(Shader::new(
         PhongShading.textured(black, Filter::Nearest),
         &lighting,

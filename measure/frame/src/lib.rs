@@ -160,7 +160,7 @@ where
         .map_err(Fail::from)
 }
 
-/// [`draw_full`] with silhouette refinement (`MeshDraw::with_refinement`,
+/// [`draw_full`] with silhouette refinement (`DrawOptions::with_refine`,
 /// threshold 0: the edges whose vertex normals straddle `N·V = 0`).
 #[inline(never)]
 pub fn draw_full_refine<K, D>(

@@ -10,7 +10,7 @@
 //!   `count(n) − count(0)` is the cost of `n` pixels.
 //! * `tri_<tier>_<shading>_<lights>(scale, out) -> pixels` builds the same lighting
 //!   and shader and the three vertices, then (for `scale > 0`) draws one triangle
-//!   with legs of `scale` pixels through `Shading::draw` into a 64×64 Rgb565
+//!   with legs of `scale` pixels through a one-triangle `MeshDraw` into a 64×64 Rgb565
 //!   framebuffer at `out`. `scale = 0` returns before the draw call: the baseline
 //!   that `count(scale) − count(0)` removes.
 //!

@@ -30,12 +30,14 @@
 //! (`python3 measure/frontier.py` runs it and joins the costs of frame.json.)
 
 use fixshade::camera::{Camera, FixedCamera, MeshTransform, Orthographic, Pose};
+use fixshade::error::RenderError;
 use fixshade::lighting::{LightDesc, LightKind};
 use fixshade::mesh::uv_sphere_counts;
 use fixshade::prelude::*;
 use fixshade::reference::{ModelDesc, Reference, ViewerDesc};
-use fixshade::render::{CachedVertex, DrawOptions, MeshMemory, Refine, RefineBuffers, RenderError};
-use fixshade::shade::{GeneralPhongShading, Kernel};
+use fixshade::render::refine::{Refine, RefineBuffers};
+use fixshade::render::{CachedVertex, DrawOptions, MeshMemory};
+use fixshade::shade::{Kernel, PhongShading};
 use fixshade::standard;
 use serde_json::{json, Map, Value};
 
@@ -98,12 +100,19 @@ where
             memory: store.memory(),
             threshold: 0,
         };
-        let mut draw =
-            MeshDraw::with_refinement(layout, mesh, t, kernel, DrawOptions::default(), memory, r)
-                .expect("draw");
+        let mut draw = MeshDraw::new(
+            layout,
+            mesh,
+            t,
+            kernel,
+            memory,
+            DrawOptions::default().with_refine(r),
+        )
+        .expect("draw");
         finish(&mut draw, &mut color, &mut depth)
     } else {
-        let mut draw = MeshDraw::new(layout, mesh, t, kernel, memory).expect("draw");
+        let mut draw =
+            MeshDraw::new(layout, mesh, t, kernel, memory, DrawOptions::default()).expect("draw");
         finish(&mut draw, &mut color, &mut depth)
     }
     .expect("frame");
@@ -147,12 +156,7 @@ fn configs<const NV: usize>(
         (
             "blinn_phong",
             true,
-            render::<_, NV>(
-                mesh,
-                t,
-                Shader::new(GeneralPhongShading, &bq, Linear),
-                false,
-            ),
+            render::<_, NV>(mesh, t, Shader::new(PhongShading, &bq, Linear), false),
         ),
         (
             "blinn_phong_inc",
