@@ -539,6 +539,7 @@ impl<'a> GlScene<'a> {
     /// assert!(scene.lighting::<Q14, [AnyLight<Q14>; 2], BlinnPhong, InfiniteViewer<Q14>>().is_err());
     /// # Ok::<(), ParamError>(())
     /// ```
+    #[allow(clippy::type_complexity)]
     pub fn lighting<S, L, M, V>(&self) -> Result<Viewed<Lighting<S, L, M, V, NoFog>>, ParamError>
     where
         S: Scalar,
@@ -574,6 +575,7 @@ impl<'a> GlScene<'a> {
         }
     }
 
+    #[allow(clippy::type_complexity)]
     fn face_lighting<S, L, M, V>(
         &self,
         material: &GlMaterial,

@@ -464,11 +464,14 @@ pub fn prepare(scene: &Scene) -> Vec<Vec<[Vert; 3]>> {
 /// The lightings of a scene's objects in tier `S`, one list per model type
 /// (the shaders borrow them).
 struct Lightings<S: Scalar> {
-    lam: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Lambert>>>,
-    bri: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, Terms<0, true, false, false>>>>,
-    pho: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, PhongSpec>>>,
-    bli: Vec<Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, BlinnPhong>>>,
+    lam: Vec<SceneLighting<S, Lambert>>,
+    bri: Vec<SceneLighting<S, Terms<0, true, false, false>>>,
+    pho: Vec<SceneLighting<S, PhongSpec>>,
+    bli: Vec<SceneLighting<S, BlinnPhong>>,
 }
+
+/// A scene object's lighting: up to 4 lights of any kind, seen from the eye.
+type SceneLighting<S, M> = Viewed<Lighting<S, heapless::Vec<AnyLight<S>, 4>, M>>;
 
 impl<S: Scalar> Lightings<S> {
     fn new(scene: &Scene) -> Self {
