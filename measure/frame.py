@@ -20,7 +20,7 @@ is not part of a frame's count (`transform_instr` reports its cost).
 
 Two cores (issue 23, section `m0_2core`, the M0 image): entries `frame_<config>_2core_{v0,v1,
 bins,c0,c1}` run the parts of one frame as two RP2040 cores would: each core half of the vertex
-stage (`MeshDraw::light_vertices`), core 0 the bins (`with_lit_vertices`), then each core half
+stage (`MeshDraw::light_vertices`), core 0 the bins (`MeshDraw::new` with `DrawOptions { lit: true, .. }`), then each core half
 of the 8-row bands (`MeshDraw::share`, `Bands::render_bands`: core 0 the upper 15, core 1 the
 lower 15) with its own strip, depth strip and records, into one checksum display. The frame =
 the slower vertex half + the bins + the slower core's bands; `--check` requires it within

@@ -11,7 +11,7 @@
 //! 1. Core 0 builds the transform and lends core 1 the upper half of the
 //!    vertex cache (`LIGHT`); both cores run half of the vertex stage
 //!    (`MeshDraw::light_vertices`); core 1 answers `LIT`.
-//! 2. Core 0 bins the triangles (`MeshDraw::with_lit_vertices`); core 1
+//! 2. Core 0 bins the triangles (`MeshDraw::new` with `lit: true`); core 1
 //!    waits.
 //! 3. Core 0 lends core 1 the prepared mesh (`DRAW`); each core draws its run
 //!    of bands (core 0 bands 0..15, core 1 bands 15..30) through its own
