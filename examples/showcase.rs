@@ -23,7 +23,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use fixshade::num::{Scalar, Q14, Q30};
-use fixshade::reference::V3;
+use fixshade_testkit::reference::V3;
 use fixshade_testkit::render::{
     compare, compare_mesh, reference_rgb888, render_mesh, render_reference, render_tier,
     render_triangles, scenes, Scene,

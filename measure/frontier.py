@@ -151,7 +151,7 @@ def markdown(doc: dict) -> str:
           if "error_vs_blinn_phong" in r]
     L.append(
         "**Error** (`measure/accuracy/src/bin/frontier.rs`): each configuration's host frame (its checksum equals frame.json's)"
-        " against the *exact image*: the same scene lit per pixel by `fixshade::reference` in `f64` at pixel"
+        " against the *exact image*: the same scene lit per pixel by `fixshade_testkit::reference` in `f64` at pixel"
         " centres, with the mesh's vertex normals interpolated there and normalised (Blinn-Phong for the Blinn"
         " configurations, Lambert for the Lambert ones), rounded to the nearest 5-6-5 colour; the shading"
         " method's error and the tier's together, in 8-bit LSBs of the worst channel (one 5-bit step = 8.2,"

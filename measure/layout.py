@@ -27,7 +27,7 @@ ROOT = Path(__file__).resolve().parent.parent
 SRC = ROOT / "src"
 
 # the stages in the order of lib.rs's table; a module may import from the ones before it
-ORDER = ["num", "color", "lighting", "mesh", "texture", "camera", "raster", "shade", "span",
+ORDER = ["num", "color", "lighting", "texture", "mesh", "camera", "raster", "shade", "span",
          "render", "framebuffer"]
 # who may import what despite the order: (importer, imported)
 ALLOWED = {

@@ -15,8 +15,8 @@
 //! | numbers | [`num`] | the tiers ([`Q14`](num::Q14), [`Q30`](num::Q30), `f32`, [`F32Fast`](num::F32Fast)), vectors, matrices, and the one copy of each table-driven operation (reciprocal, inverse square root, powers) |
 //! | colour | [`color`] | linear RGB, output pixel formats, encoders (rounding, ordered dithering, gamma tables) |
 //! | lighting | [`lighting`] | what a point reflects: lights, material, reflection model, viewer, fog, the equation once; lights placed in world coordinates and seen from the eye ([`Viewed`](lighting::Viewed)); OpenGL 1.x parameter sets in [`lighting::gl`] |
-//! | mesh | [`mesh`] | meshes in flash (`i16` positions, Q14 normals, optional Q12 texture coordinates and tangents, `u16` triangles), `const fn` generators |
 //! | texture | [`texture`] | colour textures and normal maps over borrowed texels, and their sampling |
+//! | mesh | [`mesh`] | meshes in flash (`i16` positions, Q14 normals, optional Q12 texture coordinates and tangents, `u16` triangles), `const fn` generators |
 //! | camera | [`camera`] | projection (a type: [`Orthographic`](camera::Orthographic) or [`Perspective`](camera::Perspective)), view, viewport; [`MeshTransform`](camera::MeshTransform) takes model space to clip space in fixed point, [`Camera::clip`](camera::Camera::clip) a program's `f32` points |
 //! | clip, set-up, interpolation | [`raster`] | the one clip-space clipper (near plane and set-up window), 32-bit set-up, exact edge walking with a top-left rule, screen-linear or perspective-correct values ([`raster::interp`]) |
 //! | shading | [`shade`] | the kernels that compute colours, one a file, named by the mode the user writes ([`FlatShading`](shade::FlatShading), [`GouraudShading`](shade::GouraudShading), [`PhongShading`](shade::PhongShading), [`IncrementalPhongShading`](shade::IncrementalPhongShading), [`QuadraticPhongShading`](shade::QuadraticPhongShading), `.textured(…)`, `.normal_mapped(…)`) and the one trait they implement, [`Kernel`](shade::Kernel) |
@@ -32,8 +32,8 @@
 //!
 //! What a pixel reflects — the lighting equation, written once, generic over
 //! the number tier and over which terms exist — lives in [`lighting`]. The
-//! `f64` reference model ([`reference`], feature `reference`) evaluates the
-//! same equations plainly; the tests compare every tier with it.
+//! tests compare every tier with an `f64` model of the same equations, written
+//! plainly (`testkit/src/reference.rs`).
 //!
 //! # Example: a lit sphere in 8-row bands
 //!
@@ -126,8 +126,6 @@ pub mod lighting;
 pub mod mesh;
 pub mod num;
 pub mod raster;
-#[cfg(feature = "reference")]
-pub mod reference;
 pub mod render;
 pub mod shade;
 mod span;

@@ -68,11 +68,11 @@ use fixshade::mesh::Mesh;
 use fixshade::num::Mat4;
 use fixshade::num::{point_from_f32, Point3, Scalar, Vec3, Q14, Q30};
 use fixshade::raster::Cull;
-use fixshade::reference::{self, ModelDesc, Reference, VertexOptions, ViewerDesc, V3};
 use fixshade::render::{
     bins_len, draw_triangle, CachedVertex, Corner, DrawOptions, MeshDraw, MeshMemory,
 };
 use fixshade::shade::{GouraudShading, Kernel, PhongShading, Shader, VertexIn};
+use fixshade_testkit::reference::{self, ModelDesc, Reference, VertexOptions, ViewerDesc, V3};
 use fixshade_testkit::support::Solid;
 use serde_json::{json, Value};
 

@@ -194,6 +194,102 @@ where
 /// # let _ = shader;
 /// # Ok::<(), fixshade::error::Error>(())
 /// ```
+///
+/// Every mode refuses a [`Lighting`] that was not seen from the eye: each of
+/// these fails to compile with "`Lighting<…>` does not light a shader: it is
+/// not a lighting in eye coordinates" (`.viewed(view)?` or `.eye_space()` makes
+/// each compile).
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # let _ = (tex, map);
+/// Shader::<_, _, _, Rgb565>::new(FlatShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # let _ = (tex, map);
+/// Shader::<_, _, _, Rgb565>::new(GouraudShading.textured(tex, Filter::Nearest), &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # let _ = (tex, map);
+/// Shader::<_, _, _, Rgb565>::new(PhongShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # let _ = (tex, map);
+/// Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # let _ = (tex, map);
+/// Shader::<_, _, _, Rgb565>::new(QuadraticPhongShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # let _ = (tex, map);
+/// Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # use fixshade::texture::{Filter, NormalMap, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # let _ = (tex, map);
+/// Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading.normal_mapped(map), &world, Linear);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Viewed<L>(L);
 

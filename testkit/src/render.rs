@@ -21,6 +21,7 @@
 
 #![allow(dead_code)]
 
+use crate::reference::{normalize, ModelDesc, Reference, ViewerDesc, V3};
 use core::cell::RefCell;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use fixshade::camera::{Camera, Clip, ClipSpace, MeshTransform, Orthographic, Viewport};
@@ -34,7 +35,6 @@ use fixshade::mesh::{uv_sphere_counts, Mesh, MeshData};
 use fixshade::num::Mat4;
 use fixshade::num::Scalar;
 use fixshade::raster::Cull;
-use fixshade::reference::{normalize, ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{
     bins_len, draw_triangle, CachedVertex, Carry, Corner, DrawOptions, MeshDraw, MeshMemory,
 };

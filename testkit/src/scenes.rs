@@ -5,12 +5,12 @@
 
 #![allow(dead_code)]
 
+use crate::reference::{to_u8, FogDesc, ModelDesc, Reference, ViewerDesc};
 use fixshade::color::Rgb;
 use fixshade::lighting::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{InfiniteViewer, Lighting, LinearFog, LocalViewer, Model};
 use fixshade::lighting::{Material, MaterialDesc};
 use fixshade::num::{point_from_f32, Scalar, Vec3};
-use fixshade::reference::{to_u8, FogDesc, ModelDesc, Reference, ViewerDesc};
 use proptest::prelude::*;
 
 /// The lighting term a sample isolates (all others off or zero).

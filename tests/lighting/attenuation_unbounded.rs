@@ -20,7 +20,7 @@ use fixshade::lighting::{AnyLight, LightDesc};
 use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
 use fixshade::prelude::*;
-use fixshade::reference::{FogDesc, ModelDesc, Reference, ViewerDesc};
+use fixshade_testkit::reference::{FogDesc, ModelDesc, Reference, ViewerDesc};
 
 /// What `GlScene::lighting` builds here: up to 8 lights of any kind, OpenGL's
 /// Blinn-Phong model, a viewer at infinity.

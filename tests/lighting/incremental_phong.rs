@@ -145,7 +145,7 @@ proptest! {
         l in [-1.0f32..1.0, -1.0f32..1.0, 0.1f32..1.0],
     ) {
         use fixshade::lighting::{LightDesc, LightKind};
-        use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
+        use fixshade_testkit::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
         let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, n);
         let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
         let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).unwrap()).with_global_ambient_f32([0.0; 3]).eye_space();
@@ -163,10 +163,10 @@ proptest! {
             fog: None,
             model: ModelDesc::of::<BlinnPhong>(),
         };
-        let lf = fixshade::reference::normalize(l.map(|c| c as f64));
+        let lf = fixshade_testkit::reference::normalize(l.map(|c| c as f64));
         for (k, f) in fast.iter().enumerate() {
             let nk = [0, 1, 2].map(|i| start[i] as f64 + k as f64 * step[i] as f64);
-            let nl = fixshade::reference::normalize(nk).iter().zip(lf).map(|(a, b)| a * b).sum::<f64>();
+            let nl = fixshade_testkit::reference::normalize(nk).iter().zip(lf).map(|(a, b)| a * b).sum::<f64>();
             if nl.abs() < 2.0e-3 {
                 continue;
             }
@@ -185,7 +185,7 @@ proptest! {
 fn negative_base_colour_clamps_to_black() {
     use fixshade::color::Rgb;
     use fixshade::lighting::{LightDesc, LightKind};
-    use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
+    use fixshade_testkit::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
     let l = [0.3f32, 0.4, 0.8];
     let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, 16.0);
     let light = DirectionalLight::<Q14<2>>::white(l).unwrap();
@@ -206,7 +206,7 @@ fn negative_base_colour_clamps_to_black() {
         fog: None,
         model: ModelDesc::of::<BlinnPhong>(),
     };
-    let lf = fixshade::reference::normalize(l.map(|c| c as f64));
+    let lf = fixshade_testkit::reference::normalize(l.map(|c| c as f64));
     let (mut black, mut lit) = (0, 0);
     for (a, b) in [
         ([-0.9f32, -0.3, 0.3], [0.3, 0.4, 0.8]),
@@ -221,7 +221,7 @@ fn negative_base_colour_clamps_to_black() {
         span(&lighting, &start, &step, &mut fast);
         for (k, f) in fast.iter().enumerate() {
             let nk = [0, 1, 2].map(|i| start[i] as f64 + k as f64 * step[i] as f64);
-            let nl = fixshade::reference::normalize(nk)
+            let nl = fixshade_testkit::reference::normalize(nk)
                 .iter()
                 .zip(lf)
                 .map(|(a, b)| a * b)
@@ -392,7 +392,7 @@ struct Span {
 /// LSBs, pixels within 2·10⁻³ of `N·L = 0` skipped (as the random test).
 fn span_error(s: &Span) -> Option<(f64, u32)> {
     use fixshade::lighting::{LightDesc, LightKind};
-    use fixshade::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
+    use fixshade_testkit::reference::{to_u8, ModelDesc, Reference, ViewerDesc};
     let desc = MaterialDesc::classic([0.9, 0.5, 0.2], AmbientSource::Object, 0.1, 0.6, 0.7, s.n);
     let light = DirectionalLight::<Q14<2>>::white(s.l).ok()?;
     let lighting = Lighting::<Q14<2>, _, BlinnPhong>::new([light], Material::new(&desc).ok()?)

@@ -202,7 +202,7 @@ fn worst_case_search_heavy() {
 fn phong_highlight_on_an_interpolated_normal() {
     use fixshade::lighting::MaterialDesc;
     use fixshade::lighting::{LightDesc, LightKind};
-    use fixshade::reference::ViewerDesc;
+    use fixshade_testkit::reference::ViewerDesc;
     use fixshade_testkit::scenes::ModelKind;
     let s = Sample {
         lights: vec![LightDesc {

@@ -11,7 +11,7 @@ use fixshade::lighting::{BlinnPhong, Full, Lighting, LocalViewer, Phong};
 use fixshade::lighting::{Material, MaterialDesc};
 use fixshade::num::{point_from_f32, Vec3};
 use fixshade::num::{F32Fast, Scalar, Q14, Q30};
-use fixshade::reference::ViewerDesc;
+use fixshade_testkit::reference::ViewerDesc;
 use fixshade_testkit::scenes::{lsb_error, reference_u8, sample, tier_u8, Band, Sample, Term};
 use proptest::prelude::*;
 

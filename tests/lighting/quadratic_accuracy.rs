@@ -21,8 +21,8 @@ use fixshade::color::{GammaTable, Transfer};
 use fixshade::lighting::{BlinnPhong, Lambert, Model, Phong, Specular};
 use fixshade::lighting::{LightColors, LightDesc, LightKind};
 use fixshade::prelude::*;
-use fixshade::reference::{normalize, to_u8, ModelDesc, Reference, ViewerDesc};
 use fixshade::shade::{Mode, QuadraticPhongShading, Shader};
+use fixshade_testkit::reference::{normalize, to_u8, ModelDesc, Reference, ViewerDesc};
 use proptest::prelude::*;
 
 /// The kernel's bound (8-bit steps) for a tier, the model's specular term and

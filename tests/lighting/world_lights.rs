@@ -14,7 +14,7 @@ use fixshade::lighting::{
     Material, MaterialDesc,
 };
 use fixshade::num::{point_from_f32, Mat4, Vec3, Q14};
-use fixshade::reference::{ModelDesc, Reference, ViewerDesc};
+use fixshade_testkit::reference::{ModelDesc, Reference, ViewerDesc};
 
 type V3 = [f64; 3];
 
@@ -78,7 +78,7 @@ fn directions() -> Vec<[f32; 3]> {
 }
 
 fn to_u8(c: V3) -> [u8; 3] {
-    c.map(fixshade::reference::to_u8)
+    c.map(fixshade_testkit::reference::to_u8)
 }
 
 /// The largest channel difference, in 8-bit steps, of the tier's colour at

@@ -13,7 +13,7 @@ use fixshade::lighting::LinearFog;
 use fixshade::lighting::MaterialDesc;
 use fixshade::lighting::{Attenuation, LightDesc, LightKind};
 use fixshade::num::{F32Fast, Geo16, Scalar, Q14, Q30};
-use fixshade::reference::{FogDesc, ViewerDesc};
+use fixshade_testkit::reference::{FogDesc, ViewerDesc};
 use fixshade_testkit::scenes::{lsb_error, reference_u8, tier_u8, ModelKind, Rng, Sample};
 
 /// A tier with the tolerances its documentation states (`Scalar::geo_inv_quadratic`,

@@ -24,10 +24,10 @@ use fixshade::lighting::{AnyLight, LightDesc, LightKind};
 use fixshade::lighting::{Illuminate, Model};
 use fixshade::mesh::TEXCOORD_FRAC;
 use fixshade::prelude::*;
-use fixshade::reference::{self, ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{draw_triangle, Corner};
 use fixshade::shade::{IncrementalPhongShading, PhongShading, VertexIn};
 use fixshade::texture::{NormalMap, Wrap};
+use fixshade_testkit::reference::{self, ModelDesc, Reference, ViewerDesc, V3};
 
 const FB: u32 = 64;
 

@@ -15,12 +15,12 @@ use fixshade::lighting::{LightDesc, LightKind};
 use fixshade::mesh::TEXCOORD_FRAC;
 use fixshade::num::ATTR_FRAC;
 use fixshade::prelude::*;
-use fixshade::reference::{ModelDesc, Reference, ViewerDesc, V3};
 use fixshade::render::{
     bins_len, draw_triangle, CachedVertex, Carry, Corner, MeshDraw, MeshMemory,
 };
 use fixshade::shade::{Textured, VertexIn};
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
+use fixshade_testkit::reference::{ModelDesc, Reference, ViewerDesc, V3};
 
 /// The sub-spans a run is cut into under a perspective projection: 8 pixels
 /// (the `raster::interp` docs), so a kernel shades at most 8 pixels a call.
@@ -561,7 +561,7 @@ fn f64_textured<P: Projection>(
         fog: None,
         model: ModelDesc::of::<Lambert>(),
     };
-    let o = fixshade::reference::VertexOptions::default();
+    let o = fixshade_testkit::reference::VertexOptions::default();
     let sub = f64::from(1u32 << SUBPIXEL_BITS);
     let vert = |i: usize| {
         let p = t.project(g.pos[i]).expect("in front of the camera");

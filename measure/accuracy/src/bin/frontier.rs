@@ -4,7 +4,7 @@
 //! `f32` tier's lambert_gouraud_f32, blinn_gouraud_f32, blinn_phong_f32,
 //! flat_f32) rendered on the host as one whole 240 × 240 `Rgb565` frame, and
 //! compared with the *exact image*: the same scene lit per pixel in `f64` by
-//! [`fixshade::reference`] at pixel centres (Blinn-Phong for the Blinn
+//! [`fixshade_testkit::reference`] at pixel centres (Blinn-Phong for the Blinn
 //! configurations, the Lambert model for the Lambert ones), rounded to the
 //! nearest 5-6-5 colour as the `Linear` encoder does.
 //!
@@ -34,11 +34,11 @@ use fixshade::error::RenderError;
 use fixshade::lighting::{LightDesc, LightKind};
 use fixshade::mesh::uv_sphere_counts;
 use fixshade::prelude::*;
-use fixshade::reference::{ModelDesc, Reference, ViewerDesc};
 use fixshade::render::refine::{Refine, RefineBuffers};
 use fixshade::render::{CachedVertex, DrawOptions, MeshMemory};
 use fixshade::shade::{Kernel, PhongShading};
 use fixshade::standard;
+use fixshade_testkit::reference::{ModelDesc, Reference, ViewerDesc};
 use serde_json::{json, Map, Value};
 
 const W: usize = standard::SIZE as usize;
@@ -348,7 +348,7 @@ fn scene<const NV: usize>(
     let blinn = exact(&mesh, camera, &reference(ModelDesc::of::<BlinnPhong>()));
     let lambert = exact(&mesh, camera, &reference(ModelDesc::of::<Lambert>()));
     // the highlight's nearest vertex: (N·H)^32 there says what Gouraud can see
-    let h = fixshade::reference::normalize([
+    let h = fixshade_testkit::reference::normalize([
         1.0 / 3f64.sqrt(),
         1.0 / 3f64.sqrt(),
         1.0 + 1.0 / 3f64.sqrt(),
@@ -356,7 +356,7 @@ fn scene<const NV: usize>(
     let best = (0..mesh.vertex_count())
         .filter_map(|i| mesh.normal(i))
         .map(|n| {
-            let n = fixshade::reference::normalize(n.map(f64::from));
+            let n = fixshade_testkit::reference::normalize(n.map(f64::from));
             n[0] * h[0] + n[1] * h[1] + n[2] * h[2]
         })
         .fold(f64::NEG_INFINITY, f64::max);

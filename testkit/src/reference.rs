@@ -1,11 +1,10 @@
-//! The `f64` reference model: the same equations as [`crate::lighting`], written
-//! plainly for reading, from the same `f32` descriptions. Tests and benchmarks
-//! compare every tier against it; firmware never uses it (enable the `reference`
-//! feature to get it).
+//! The `f64` reference model: the same equations as [`fixshade::lighting`], written
+//! plainly for reading, from the same `f32` descriptions. Tests, benchmarks and
+//! the host harnesses compare every tier against it; firmware never uses it.
 
-use crate::lighting::MaterialDesc;
-use crate::lighting::{ColorMaterial, Specular};
-use crate::lighting::{LightDesc, LightKind};
+use fixshade::lighting::MaterialDesc;
+use fixshade::lighting::{ColorMaterial, Specular};
+use fixshade::lighting::{LightDesc, LightKind};
 
 /// A 3-vector of `f64`.
 pub type V3 = [f64; 3];
@@ -65,7 +64,7 @@ pub struct FogDesc {
     pub color: [f32; 3],
 }
 
-/// The terms to evaluate (the reference's counterpart of [`crate::lighting::Model`]).
+/// The terms to evaluate (the reference's counterpart of [`fixshade::lighting::Model`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ModelDesc {
     /// Specular model.
@@ -79,8 +78,8 @@ pub struct ModelDesc {
 }
 
 impl ModelDesc {
-    /// The description of a [`crate::lighting::Model`] type.
-    pub fn of<M: crate::lighting::Model>() -> Self {
+    /// The description of a [`fixshade::lighting::Model`] type.
+    pub fn of<M: fixshade::lighting::Model>() -> Self {
         Self {
             specular: M::SPECULAR,
             brilliance: M::BRILLIANCE,
