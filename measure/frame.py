@@ -744,33 +744,33 @@ def two_core_check(res: dict) -> tuple[int, int, list[str]]:
 # the clear *is* the clear and counts there.
 # Stage pairs one function holds (by design, not by inlining): `tri::classify` (the
 # facing test and the row bounds, twice per triangle from `bins::sort`) counts as
-# cull + set-up; `Linear::run` (a run's start values) as rows; `depth_runs` (cutting a
+# cull + set-up; `Affine::run` (a run's start values) as rows; `depth_runs` (cutting a
 # row into passing runs) as spans.
 STAGES = [
     ("clear", r"fixshade::framebuffer::(fill|clear)\w*$|fixshade::render::fill$"),
     ("vertex", r"fixshade::render::vertex::(stage|window)$|(^|<)fixshade::shade::.*::vertex$"),
     # (not `Refined::replaced`: the binning's test whether a triangle was replaced)
     ("refine", r"fixshade::render::refine::(?!Refined<.*>::replaced$)|render::draw::refinement::"),
-    ("clip", r"(MeshDraw|Prepared)<K,P>::clipped$|render::tri::(draw_clipped|pieces|clipped_bounds|outline|convex)$"
+    ("clip", r"(MeshDraw|Binned)<K,P>::clipped$|render::tri::(draw_clipped|pieces|clipped_bounds|outline|convex)$"
              r"|fixshade::raster::clip::"),
     ("setup", r"render::tri::(classify|draw|front|draw_triangle)$"
               r"|fixshade::raster::setup::Setup::|fixshade::raster::setup::Plane::(skip_rows|absolute)$"
               r"|fixshade::raster::interp::(within|oriented|corner|inverse_w)$"
-              r"|fixshade::raster::interp::(Linear|Persp)<V>::(new|skip_rows)$"
+              r"|fixshade::raster::interp::(Affine|Persp)<V>::(new|skip_rows)$"
               r"|fixshade::raster::edge::Walker::(new|resume|unpositioned|edge_near|edge_from|place)$"
               r"|fixshade::raster::edge::Edge::(new|guess)$"
               r"|(^|<)fixshade::shade::.*::triangle$"),
-    ("rows", r"render::tri::(draw_rows|perspective_run)$|fixshade::render::tri::Runs<K>>::"
+    ("rows", r"fixshade::span::rows::(rows|draw_rows|perspective_run)$|fixshade::span::rows::Runs<K>>::"
              r"|fixshade::raster::edge::Walker::(next|switch_row|more|snapshot)$"
-             r"|fixshade::raster::interp::(Linear|Persp)<V>::(next_row|run|at)$"
+             r"|fixshade::raster::interp::(Affine|Persp)<V>::(next_row|run|at)$"
              r"|fixshade::raster::setup::Plane::(next_row|clamped\w*)$"),
-    ("spans", r"fixshade::shade::depth_\w+$"
+    ("spans", r"fixshade::span::depth::\w+$"
               r"|(^|<)fixshade::shade::.*::(span\w*|shade_run|run|fill\w*|pixel|walk\w*)$"),
     ("flush", r"fixshade::framebuffer::checksum::Checksum<C>::fill_contiguous\w*$"
               r"|Checksum<C> as embedded_graphics_core::draw_target::DrawTarget>::(fill_contiguous|draw_iter"
               r"|fill_solid|clear)$|fixshade::framebuffer::FullFrame<C>::flush$"
               r"|as fixshade::framebuffer::BandSink<C>>::(start|finish)$"),
-    ("loop", r"fixshade::render::bins::|fixshade::render::draw::(MeshDraw|Prepared)<K,P>::"
+    ("loop", r"fixshade::render::bins::|fixshade::render::draw::(MeshDraw|Binned)<K,P>::"
              r"|as fixshade::framebuffer::DrawBand<.*>>::draw_band$"
              r"|fixshade::framebuffer::(Bands<C>::render(_bands)?|FullFrame<C>::render|Buffers<C>::draw|check_items)$"),
     ("scene", r"^fixshade::standard::|^fixshade_frame::|^frame_\w+$|^init$|fixshade::shade::Shader<.*>::new$"
