@@ -106,11 +106,13 @@ pub(crate) fn sort<'a>(
             got: 2 * head_len + indices.len(),
         });
     }
-    // the largest number of triangles carried over one boundary
-    let mut open = 0i32;
-    let mut crossing = 0i32;
+    // the largest number of triangles carried over one boundary: the running
+    // sum of the differences is a count in 0..=n ≤ 65535, so the wrapping u16
+    // sum is exact (an entry alone can exceed i16, a sum never exceeds u16)
+    let mut open = 0u16;
+    let mut crossing = 0u16;
     for c in cross.iter() {
-        open += i32::from(*c as i16);
+        open = open.wrapping_add(*c);
         crossing = crossing.max(open);
     }
     // offsets: heads[b] = first index of band b (exclusive prefix sums)
@@ -156,7 +158,7 @@ pub(crate) fn sort<'a>(
     Ok(Bins {
         heads,
         indices,
-        crossing: crossing.max(0) as usize,
+        crossing: usize::from(crossing),
     })
 }
 

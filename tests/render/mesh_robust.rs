@@ -250,3 +250,64 @@ proptest! {
         }
     }
 }
+
+/// More than 32 767 triangles crossing one band boundary (the bins count
+/// crossings in `u16`; summed as `i16` they wrapped, `carry_needed` said 0 and
+/// the bands below the first lost the triangles): 40 000 copies of one
+/// triangle over a 32 × 32 orthographic view in 8-row bands draw the whole
+/// frame's pixels, and the records needed are counted exactly.
+#[test]
+fn forty_thousand_triangles_across_one_boundary_are_all_carried() {
+    const N: usize = 40_000;
+    let pos = [[-900i16, 900, 0], [900, 900, 0], [-900, -900, 0]];
+    let nrm = [[0i16, 0, NORMAL_ONE]; 3];
+    let tris = vec![[0u16, 1, 2]; N];
+    let mesh = Mesh::new(&pos, &nrm, &tris, 10).unwrap();
+    let vp = Viewport::new(0, 0, 32, 32).unwrap();
+    let t = Camera::orthographic(-1.0, 1.0, -1.0, 1.0, 0.1, 100.0, vp)
+        .unwrap()
+        .with_view(Mat4::translate([0.0, 0.0, -2.0]))
+        .mesh_transform(&Mat4::IDENTITY, 10)
+        .unwrap();
+    let frame = |rows: u32| {
+        let layout = Layout::banded(32, 32, rows).unwrap();
+        let mut cache = vec![CachedVertex::<()>::default(); pos.len()];
+        let mut bins = vec![0u16; bins_len(N, layout.bands() as usize)];
+        let mut carry = vec![Carry::default(); 2 * N];
+        let memory = MeshMemory {
+            vertices: &mut cache,
+            bins: &mut bins,
+            carry: &mut carry,
+        };
+        let options = DrawOptions {
+            cull: Cull::None,
+            ..DrawOptions::default()
+        };
+        let mut d = MeshDraw::new(
+            layout,
+            mesh,
+            &t,
+            support::Solid(Gray8::new(200)),
+            memory,
+            options,
+        )
+        .unwrap();
+        let need = d.carry_needed();
+        let px = if rows == 32 {
+            full(32, 32, Gray8::new(0), false, &mut [&mut d])
+        } else {
+            support::banded(32, 32, rows, Gray8::new(0), false, &mut [&mut d])
+        };
+        (need, lumas(&px))
+    };
+    let (_, whole) = frame(32);
+    let lit = whole.iter().filter(|&&l| l == 200).count();
+    assert!(
+        lit > 300,
+        "the triangle covers most of half the view: {lit} pixels"
+    );
+    let (need, banded) = frame(8);
+    // every copy crosses the first boundaries: two records per crossing triangle
+    assert_eq!(need, 2 * N, "resume records needed");
+    assert_eq!(banded, whole, "8-row bands differ from the whole frame");
+}
