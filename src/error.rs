@@ -144,7 +144,9 @@ impl fmt::Display for ParamError {
             Self::NotFinite(p) => write!(f, "{p}: NaN or infinite"),
             Self::Negative(p) => write!(f, "{p}: negative"),
             Self::ZeroDirection(p) => write!(f, "{p}: zero-length direction"),
-            Self::CutoffOutOfRange => f.write_str("spot cutoff: outside 0..=90 degrees (or 180)"),
+            Self::CutoffOutOfRange => f.write_str(
+                "spot cutoff: outside 0..=90 degrees (180, no cone, is a point light: PointLight)",
+            ),
             Self::AttenuationAllZero => f.write_str("attenuation: all coefficients are zero"),
             Self::ExponentOutOfRange(p) => write!(f, "{p}: exponent out of range"),
             Self::OutOfRange(p) => write!(f, "{p}: out of range"),

@@ -392,8 +392,9 @@ impl<'a, C: PixelColor> Bands<'a, C> {
         self.render_bands(sink, clear, items, 0..bands)
     }
 
-    /// Renders the bands `bands` (increasing indices; those beyond the layout
-    /// skipped): for each, clears the strip to `clear` and the depth strip to
+    /// Renders the bands `bands` (in any order; consecutive increasing bands are
+    /// cheapest, see [`MeshDraw::share`](crate::render::MeshDraw::share); those
+    /// beyond the layout skipped): for each, clears the strip to `clear` and the depth strip to
     /// `u16::MAX`, lets every item draw, and hands the band to `sink` (with a
     /// second strip and a non-blocking sink, the next band is drawn meanwhile;
     /// the last transfer has ended on return). The other bands are other

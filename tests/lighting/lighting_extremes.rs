@@ -101,7 +101,7 @@ fn bad_parameters_are_typed_errors() {
     // every error has a message
     assert_eq!(
         ParamError::CutoffOutOfRange.to_string(),
-        "spot cutoff: outside 0..=90 degrees (or 180)"
+        "spot cutoff: outside 0..=90 degrees (180, no cone, is a point light: PointLight)"
     );
 }
 

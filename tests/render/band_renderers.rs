@@ -130,7 +130,8 @@ fn alone<K: Kernel<Color = Rgb565> + Copy, P: Projection>(
     sink.px
 }
 
-/// The frame drawn by `renderers` threads, band `b` by `owner[b]`, each with
+/// The frame drawn by `renderers` threads, band `b` by `owner[b]` (the odd
+/// renderers' bands in decreasing order), each with
 /// its own strip, depth strip, records and display; the displays' bands put
 /// together.
 fn together<K: Kernel<Color = Rgb565> + Copy + Sync, P: Projection + Sync>(
@@ -163,7 +164,13 @@ where
                     let mut bands =
                         Bands::new(layout, &mut strip, depth.then_some(&mut z[..])).unwrap();
                     let mut sink = Collect::new(W, W, Rgb565::CYAN);
-                    let which = (0..layout.bands()).filter(|&b| owner[b as usize] == r);
+                    // odd renderers draw their bands bottom up: any order works
+                    let mut which: Vec<u32> = (0..layout.bands())
+                        .filter(|&b| owner[b as usize] == r)
+                        .collect();
+                    if r % 2 == 1 {
+                        which.reverse();
+                    }
                     bands
                         .render_bands(&mut sink, Rgb565::BLACK, &mut items, which)
                         .unwrap();
