@@ -30,9 +30,7 @@ fn tier<S: Scalar>(inp: &mut Input) {
     let _ = Rgb::<S>::try_from_f32_signed("c", inp.f3());
     let (p, n) = (point_from_f32::<S>(inp.f3()), Vec3::<S>::from_f32(inp.f3()));
     if let (Ok(m), Ok(l)) = (m, l) {
-        let lit = Lighting::<S, _, Full>::new([l], m)
-            .with_global_ambient_f32(inp.f3())
-            .eye_space();
+        let lit = Lighting::<S, _, Full>::new([l], m).with_global_ambient_f32(inp.f3());
         check_color(lit.shade(&p, n), "shade");
         if let (Ok(v), Ok(f)) = (local, fog) {
             check_color(

@@ -28,8 +28,7 @@ fn shade<S: Scalar, M: Model, V: Viewer<S>, F: FogModel<S>>(
     let lit = Lighting::<S, _, M>::new(lights, m)
         .with_global_ambient(amb)
         .with_viewer(viewer)
-        .with_fog(fog)
-        .eye_space();
+        .with_fog(fog);
     check_color(lit.shade(p, n), "shade");
     check_color(lit.shade_normalizing(p, n), "shade_normalizing");
 }

@@ -215,7 +215,7 @@ impl<K: Kernel<Color = Rgb565>> DrawBand<Rgb565> for One<'_, K> {
         let r = band.rows();
         self.kernel.bounds.rows.set((r.start, r.end));
         self.kernel.bounds.hits.borrow_mut().fill(0);
-        draw_triangle(band, &self.space, &self.kernel, &self.tri, self.cull).ok();
+        draw_triangle(band, &self.space, &self.kernel, &self.tri, self.cull);
     }
 }
 
@@ -344,15 +344,15 @@ fn shaded<S: Scalar>(inp: &mut Input) {
     let Ok(m) = Material::<S>::new(&inp.material()) else {
         return;
     };
-    let mut lit = Lighting::<S, _, BlinnPhong>::new(lights, m).eye_space();
+    let mut lit = Lighting::<S, _, BlinnPhong>::new(lights, m);
     if let Ok(v) = LocalViewer::<S>::new(inp.f3()) {
         if let Ok(fog) = LinearFog::<S>::new(inp.f32(), inp.f32(), inp.f3()) {
-            return draw_modes(inp, &f, &lit.with_viewer(v).with_fog(fog));
+            return draw_modes(inp, &f, &lit.with_viewer(v).with_fog(fog).eye_space());
         }
-        return draw_modes(inp, &f, &lit.with_viewer(v));
+        return draw_modes(inp, &f, &lit.with_viewer(v).eye_space());
     }
     lit = lit.with_global_ambient_f32(inp.f3());
-    draw_modes(inp, &f, &lit);
+    draw_modes(inp, &f, &lit.eye_space());
 }
 
 fn draw_modes<S: Scalar, I: fixshade::lighting::Illuminate<Scalar = S>>(
