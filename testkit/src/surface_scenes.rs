@@ -4,8 +4,9 @@
 //! texture mapping.
 //!
 //! Lit by one `DirectionalLight` in `Q14<2>` (as firmware writes it):
-//! `IncrementalPhongShading` draws it per pixel, and
-//! `IncrementalPhongShading.normal_mapped` with a normal map.
+//! `IncrementalPhongShading` draws it per pixel,
+//! `IncrementalPhongShading.normal_mapped` with the baked normal map and
+//! `PhongShading.normal_mapped` (the general kernel) with the bump map.
 
 #![allow(dead_code)]
 
@@ -21,7 +22,7 @@ use fixshade::num::Mat4;
 use fixshade::prelude::*;
 use fixshade::render::refine::RefineBuffers;
 use fixshade::render::{bins_len, CachedVertex, Carry, MeshDraw, MeshMemory};
-use fixshade::shade::{IncrementalPhongShading, Kernel};
+use fixshade::shade::{IncrementalPhongShading, Kernel, PhongShading};
 use fixshade::texture::NormalMap;
 use fixshade::texture::{Filter, Texels, Texture, Wrap};
 
@@ -318,11 +319,7 @@ pub fn bump_displacement() -> Image {
     let b = panel(
         low,
         &t_low,
-        Shader::<_, _, _, Rgb888>::new(
-            IncrementalPhongShading.normal_mapped(map),
-            &lighting,
-            Linear,
-        ),
+        Shader::<_, _, _, Rgb888>::new(PhongShading.normal_mapped(map), &lighting, Linear),
     );
     let c = panel(
         displaced,
