@@ -14,6 +14,69 @@ use crate::num::{Exponent, Point3, Scalar, Vec3};
 /// [`BackFaces`] and [`SeparateSpecular`] around one (one type parameter for
 /// the shading modes instead of five). A lighting of your own implements
 /// `shade` (and `shade_parts` if it keeps a specular part apart).
+///
+/// Every mode refuses a [`Lighting`] whose lights were never seen from the eye
+/// ([`Viewed`]): each of these fails to compile with "`Lighting<…>` does not
+/// light a shader: it is not a lighting in eye coordinates" (with
+/// `&world.eye_space()` each compiles).
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// Shader::<_, _, _, Rgb565>::new(FlatShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # use fixshade::texture::{Filter, Texels, Texture, Wrap};
+/// # static TEX: [u16; 1] = [0xffff];
+/// # let tex = Texture::new(Texels::Rgb565(&TEX), 0, 0, Wrap::Repeat).unwrap();
+/// Shader::<_, _, _, Rgb565>::new(GouraudShading.textured(tex, Filter::Nearest), &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// Shader::<_, _, _, Rgb565>::new(PhongShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// Shader::<_, _, _, Rgb565>::new(QuadraticPhongShading, &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # use fixshade::texture::{NormalMap, Wrap};
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// Shader::<_, _, _, Rgb565>::new(PhongShading.normal_mapped(map), &world, Linear);
+/// ```
+///
+/// ```compile_fail,E0277
+/// # use fixshade::prelude::*;
+/// # let light = DirectionalLight::<Q14>::white([0.0, 0.0, 1.0]).unwrap();
+/// # let world = Lighting::<Q14, _, BlinnPhong>::new([light], Material::new(&MaterialDesc::default()).unwrap());
+/// # use fixshade::texture::{NormalMap, Wrap};
+/// # static MAP: [[i16; 3]; 1] = [NormalMap::FLAT];
+/// # let map = NormalMap::new(&MAP, 0, 0, Wrap::Repeat).unwrap();
+/// Shader::<_, _, _, Rgb565>::new(IncrementalPhongShading.normal_mapped(map), &world, Linear);
+/// ```
 #[diagnostic::on_unimplemented(
     message = "`{Self}` does not light a shader: it is not a lighting in eye coordinates",
     label = "not a lighting seen from the eye",
