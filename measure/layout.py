@@ -35,7 +35,7 @@ ALLOWED = {
     ("render", "framebuffer"),  # the drawing stage hands bands to the framebuffer
 }
 # modules outside the pipeline: the errors (every stage names them), the standard
-# scene and the f64 reference (they use the whole crate; nothing imports them)
+# scene (it uses the whole crate; nothing imports it)
 SHARED = {"error"}
 TOP = {"standard", "lib", "test_rng", "prelude"}
 
