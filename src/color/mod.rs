@@ -5,7 +5,7 @@ pub(crate) mod encode;
 
 pub use encode::{Dithered, Encoder, Linear};
 
-use crate::error::{finite, non_negative3, ParamError};
+use crate::error::{finite_all, non_negative3, ParamError};
 use crate::num::Scalar;
 use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888};
 
@@ -64,10 +64,7 @@ impl<S: Scalar> Rgb<S> {
     /// Converts `f32` channels of any sign (OpenGL's colours may be negative),
     /// rejecting NaN and infinities. Values beyond the tier's range saturate.
     pub fn try_from_f32_signed(name: &'static str, c: [f32; 3]) -> Result<Self, ParamError> {
-        for v in c {
-            finite(name, v)?;
-        }
-        Ok(Self::from_f32(c))
+        finite_all(name, c).map(Self::from_f32)
     }
 
     /// The channels as `f32`.

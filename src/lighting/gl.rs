@@ -40,7 +40,7 @@
 //! stores light positions after `glLightfv`.
 
 use crate::color::Rgb;
-use crate::error::{finite, ParamError};
+use crate::error::{finite, finite_all, ParamError};
 use crate::lighting::{
     AnyLight, DirectionalLight, LightColors, LightDesc, LightKind, LightSet, PointLight, SpotLight,
 };
@@ -139,10 +139,7 @@ impl GlLight {
     /// negative attenuation (when the light is built); also non-finite values.
     /// Colours are taken as given (any sign).
     pub fn to_desc(&self) -> Result<LightDesc, ParamError> {
-        for c in self.position {
-            finite("GL_POSITION", c)?;
-        }
-        let [x, y, z, w] = self.position;
+        let [x, y, z, w] = finite_all("GL_POSITION", self.position)?;
         let attenuation = [
             self.constant_attenuation,
             self.linear_attenuation,
@@ -589,10 +586,7 @@ impl<'a> GlScene<'a> {
     {
         let lights = L::from_gl_lights(self.lights)?;
         let material = material.to_material::<S>()?;
-        let ambient = rgb(self.model.ambient);
-        for c in ambient {
-            finite("GL_LIGHT_MODEL_AMBIENT", c)?;
-        }
+        let ambient = finite_all("GL_LIGHT_MODEL_AMBIENT", rgb(self.model.ambient))?;
         Lighting::build(
             lights,
             material,

@@ -6,7 +6,7 @@
 //! kinds at run time; arrays, `heapless::Vec`s and tuples of lights are light sets.
 
 use crate::color::Rgb;
-use crate::error::{direction, finite, non_negative, non_negative3, ParamError};
+use crate::error::{direction, finite, finite_all, non_negative, non_negative3, ParamError};
 use crate::lighting::{AnyLight, Material};
 use crate::num::{point_from_f32, point_sub, Mat4, Point3, Vec3};
 use crate::num::{Exponent, GeoScalar, Scalar};
@@ -54,16 +54,10 @@ impl<S: Scalar> LightColors<S> {
         diffuse: [f32; 3],
         specular: [f32; 3],
     ) -> Result<Self, ParamError> {
-        let f = |name, c: [f32; 3]| -> Result<[f32; 3], ParamError> {
-            for v in c {
-                finite(name, v)?;
-            }
-            Ok(c)
-        };
         Ok(Self {
-            ambient: f("light ambient", ambient)?,
-            diffuse: f("light diffuse", diffuse)?,
-            specular: f("light specular", specular)?,
+            ambient: finite_all("light ambient", ambient)?,
+            diffuse: finite_all("light diffuse", diffuse)?,
+            specular: finite_all("light specular", specular)?,
             tier: PhantomData,
         })
     }
@@ -223,10 +217,7 @@ fn transform_direction<S: Scalar>(
 /// Position `p` through `m` (divided by the homogeneous `w`).
 fn transform_position<S: Scalar>(p: Point3<S>, m: &Mat4) -> Result<Point3<S>, ParamError> {
     let [x, y, z, w] = m.transform_point([p.x, p.y, p.z].map(S::geo_to_f32));
-    let q = [x / w, y / w, z / w];
-    for c in q {
-        finite("position", c)?;
-    }
+    let q = finite_all("position", [x / w, y / w, z / w])?;
     Ok(point_from_f32::<S>(q))
 }
 
@@ -588,11 +579,8 @@ impl<S: Scalar> PointLight<S> {
         attenuation: Attenuation<S::Geo>,
         colors: LightColors<S>,
     ) -> Result<Self, ParamError> {
-        for c in position {
-            finite("position", c)?;
-        }
         Ok(Self {
-            pos: point_from_f32::<S>(position),
+            pos: point_from_f32::<S>(finite_all("position", position)?),
             att: attenuation,
             colors,
             pre: Prepared::default(),

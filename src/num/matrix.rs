@@ -4,7 +4,7 @@
 
 use core::ops::{Add, Mul, Sub};
 
-use crate::error::{finite, ParamError};
+use crate::error::{finite, finite_all, ParamError};
 
 /// A 4×4 matrix in `f32`, row-major (`m[row][col]`), applied to column vectors:
 /// `p' = M·p`. [`Mat4::mul`] composes so that `a.mul(&b)` applies `b` first, as
@@ -142,15 +142,9 @@ impl Mat4 {
     /// # Ok::<(), fixshade::error::ParamError>(())
     /// ```
     pub fn look_at(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Result<Self, ParamError> {
-        for v in eye {
-            finite("eye", v)?;
-        }
-        for v in target {
-            finite("target", v)?;
-        }
-        for v in up {
-            finite("up", v)?;
-        }
+        finite_all("eye", eye)?;
+        finite_all("target", target)?;
+        finite_all("up", up)?;
         let f = unit3(sub3(target, eye)).ok_or(ParamError::ZeroDirection("eye/target"))?;
         let s = unit3(cross3(f, up)).ok_or(ParamError::ZeroDirection("up"))?;
         let u = cross3(s, f);
