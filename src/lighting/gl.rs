@@ -55,6 +55,14 @@ fn rgb(c: [f32; 4]) -> [f32; 3] {
     [c[0], c[1], c[2]]
 }
 
+/// [`ParamError::LightCount`] for `lights` in a set of `capacity`.
+fn count_error(lights: &[GlLight], capacity: usize) -> ParamError {
+    ParamError::LightCount {
+        lights: lights.len(),
+        capacity,
+    }
+}
+
 /// One OpenGL light's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GlLight {
@@ -235,7 +243,7 @@ impl<S: Scalar> FromGlLight for AnyLight<S> {
 }
 
 macro_rules! from_gl_kind {
-    ($ty:ident, $variant:ident, $msg:expr) => {
+    ($($ty:ident, $variant:ident, $msg:expr;)*) => {$(
         impl<S: Scalar> FromGlLight for $ty<S> {
             fn from_gl_light(light: &GlLight) -> Result<Self, ParamError> {
                 match AnyLight::<S>::from_gl_light(light)? {
@@ -244,23 +252,13 @@ macro_rules! from_gl_kind {
                 }
             }
         }
-    };
+    )*};
 }
-from_gl_kind!(
-    DirectionalLight,
-    Directional,
-    "a DirectionalLight needs GL_POSITION w = 0"
-);
-from_gl_kind!(
-    PointLight,
-    Point,
-    "a PointLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF 180"
-);
-from_gl_kind!(
-    SpotLight,
-    Spot,
-    "a SpotLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF in 0..=90"
-);
+from_gl_kind! {
+    DirectionalLight, Directional, "a DirectionalLight needs GL_POSITION w = 0";
+    PointLight, Point, "a PointLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF 180";
+    SpotLight, Spot, "a SpotLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF in 0..=90";
+}
 
 macro_rules! gl_light_set_single {
     ($($ty:ident),*) => {$(
@@ -268,7 +266,7 @@ macro_rules! gl_light_set_single {
             fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError> {
                 match lights {
                     [l] => l.to_light(),
-                    _ => Err(ParamError::LightCount { lights: lights.len(), capacity: 1 }),
+                    _ => Err(count_error(lights, 1)),
                 }
             }
         }
@@ -279,16 +277,10 @@ gl_light_set_single!(DirectionalLight, PointLight, SpotLight, AnyLight);
 impl<S: Scalar, L: FromGlLight + LightSet<S>, const K: usize> GlLightSet<S> for [L; K] {
     fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError> {
         if lights.len() != K {
-            return Err(ParamError::LightCount {
-                lights: lights.len(),
-                capacity: K,
-            });
+            return Err(count_error(lights, K));
         }
         let v: heapless::Vec<L, K> = GlLightSet::<S>::from_gl_lights(lights)?;
-        v.into_array().map_err(|_| ParamError::LightCount {
-            lights: lights.len(),
-            capacity: K,
-        })
+        v.into_array().map_err(|_| count_error(lights, K))
     }
 }
 
@@ -298,10 +290,7 @@ impl<S: Scalar, L: FromGlLight + LightSet<S>, const K: usize> GlLightSet<S>
     fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError> {
         let mut v = heapless::Vec::new();
         for l in lights {
-            v.push(l.to_light()?).map_err(|_| ParamError::LightCount {
-                lights: lights.len(),
-                capacity: K,
-            })?;
+            v.push(l.to_light()?).map_err(|_| count_error(lights, K))?;
         }
         Ok(v)
     }
@@ -318,24 +307,22 @@ pub trait GlViewer<S: Scalar>: Viewer<S> + Sized {
 impl<S: Scalar> GlViewer<S> for InfiniteViewer<S> {
     fn from_light_model(model: &GlLightModel) -> Result<Self, ParamError> {
         if model.local_viewer {
-            Err(ParamError::Viewer(
+            return Err(ParamError::Viewer(
                 "GL_LIGHT_MODEL_LOCAL_VIEWER is set: use LocalViewer",
-            ))
-        } else {
-            Ok(Self::default())
+            ));
         }
+        Ok(Self::default())
     }
 }
 
 impl<S: Scalar> GlViewer<S> for LocalViewer<S> {
     fn from_light_model(model: &GlLightModel) -> Result<Self, ParamError> {
-        if model.local_viewer {
-            LocalViewer::new([0.0; 3])
-        } else {
-            Err(ParamError::Viewer(
+        if !model.local_viewer {
+            return Err(ParamError::Viewer(
                 "GL_LIGHT_MODEL_LOCAL_VIEWER is not set: use InfiniteViewer",
-            ))
+            ));
         }
+        LocalViewer::new([0.0; 3])
     }
 }
 
