@@ -148,9 +148,7 @@ impl<S: Scalar> Rgb<S> {
     /// [`Dithered`] encodes.
     #[inline]
     pub fn to_rgb565_dithered(self, x: i32, y: i32) -> Rgb565 {
-        let t = BAYER4[(y & 3) as usize][(x & 3) as usize] as u32;
-        // threshold in 16-bit units: (2t + 1)/32 of a step
-        let d = ((2 * t + 1) << 16) / 32;
+        let d = encode::BAYER[(y & 3) as usize][(x & 3) as usize];
         let q = |v: S, max: u32| (((v.to_unorm(16) * max) + d) >> 16) as u8;
         Rgb565::new(q(self.r, 31), q(self.g, 63), q(self.b, 31))
     }
@@ -170,9 +168,6 @@ impl<S: Scalar> Rgb<S> {
             .add(self.b.mul(S::from_f32(0.0722)))
     }
 }
-
-/// The 4×4 Bayer threshold matrix (values 0..16).
-const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
 
 /// An embedded-graphics colour that linear RGB converts to: up to three integer
 /// channels with maxima [`OutputColor::CHANNEL_MAX`] (grey: the first, the
