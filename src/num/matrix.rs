@@ -265,11 +265,9 @@ impl Mat4 {
 
     /// `Ok(self)` when every element is finite.
     fn checked(self, name: &'static str) -> Result<Self, ParamError> {
-        if self.is_finite() {
-            Ok(self)
-        } else {
-            Err(ParamError::NotFinite(name))
-        }
+        self.is_finite()
+            .then_some(self)
+            .ok_or(ParamError::NotFinite(name))
     }
 
     /// Whether every element is finite.
