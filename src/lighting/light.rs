@@ -208,17 +208,13 @@ fn transform_direction<S: Scalar>(
     d: Vec3<S>,
     m: &Mat4,
 ) -> Result<Vec3<S>, ParamError> {
-    Ok(Vec3::from_f32(direction(
-        name,
-        m.transform_vector(d.to_f32()),
-    )?))
+    direction(name, m.transform_vector(d.to_f32())).map(Vec3::from_f32)
 }
 
 /// Position `p` through `m` (divided by the homogeneous `w`).
 fn transform_position<S: Scalar>(p: Point3<S>, m: &Mat4) -> Result<Point3<S>, ParamError> {
     let [x, y, z, w] = m.transform_point([p.x, p.y, p.z].map(S::geo_to_f32));
-    let q = finite_all("position", [x / w, y / w, z / w])?;
-    Ok(point_from_f32::<S>(q))
+    finite_all("position", [x / w, y / w, z / w]).map(point_from_f32::<S>)
 }
 
 /// What receives each light's [`Incident`] from [`LightSet::for_each`] (a trait

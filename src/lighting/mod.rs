@@ -308,8 +308,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The lighting of `self`'s parts, prepared again (after a part changed).
     fn rebuilt(self) -> Self {
-        let (viewer, fog) = (self.viewer, self.fog);
-        self.remade(viewer, fog)
+        self.with_model()
     }
 
     /// The same lighting with its lights taken as given, in eye coordinates
