@@ -48,8 +48,7 @@ use crate::lighting::{
     BackFaces, ColorMaterial, InfiniteViewer, Lighting, LocalViewer, Model, NoFog, Viewer,
 };
 use crate::lighting::{Material, MaterialDesc, Viewed};
-use crate::num::Mat4;
-use crate::num::Scalar;
+use crate::num::{cof3, dot3, Mat4, Scalar};
 
 fn rgb(c: [f32; 4]) -> [f32; 3] {
     [c[0], c[1], c[2]]
@@ -621,19 +620,16 @@ impl GlNormals {
     pub fn eye_normal(self, modelview: &Mat4, n: [f32; 3]) -> [f32; 3] {
         let m: [[f64; 3]; 3] =
             core::array::from_fn(|r| core::array::from_fn(|c| f64::from(modelview.m[r][c])));
-        let cof = |r: usize, c: usize| {
-            let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
-            m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]
-        };
-        let det = m[0][0] * cof(0, 0) + m[0][1] * cof(0, 1) + m[0][2] * cof(0, 2);
+        let cof = cof3(m);
+        let det = dot3(m[0], cof[0]);
         if det == 0.0 || !det.is_finite() {
             return [0.0; 3];
         }
         // M⁻ᵀ = cof(M)/det; M⁻¹ = cof(M)ᵀ/det
         let nd = n.map(f64::from);
         let t: [f64; 3] =
-            core::array::from_fn(|r| (0..3).map(|c| cof(r, c) * nd[c]).sum::<f64>() / det);
-        let len = |v: [f64; 3]| libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            core::array::from_fn(|r| (0..3).map(|c| cof[r][c] * nd[c]).sum::<f64>() / det);
+        let len = |v: [f64; 3]| libm::sqrt(dot3(v, v));
         let k = match self {
             GlNormals::AsGiven => 1.0,
             GlNormals::Normalize => {
@@ -646,7 +642,7 @@ impl GlNormals {
             }
             GlNormals::Rescale => {
                 // row 3 of M⁻¹ is column 3 of cof(M), divided by det
-                let row3 = [cof(0, 2), cof(1, 2), cof(2, 2)].map(|v| v / det);
+                let row3 = [cof[0][2], cof[1][2], cof[2][2]].map(|v| v / det);
                 1.0 / len(row3)
             }
         };
