@@ -145,10 +145,7 @@ impl<S: Scalar> Prepared<S> {
             diffuse: Rgb::from_f32(t.diffuse),
             specular: Rgb::from_f32(t.specular),
             transmission: Rgb::from_f32(t.transmission),
-            half: match (l, v) {
-                (Some(l), Some(v)) => Some(S::normalize_nearest_unit(l.add(v))),
-                _ => None,
-            },
+            half: l.zip(v).map(|(l, v)| S::normalize_nearest_unit(l.add(v))),
         }
     }
 }
@@ -176,8 +173,7 @@ pub struct Incident<'a, S> {
 pub trait LightSource<S: Scalar> {
     /// Whether the light needs the surface position (point and spot lights).
     const NEEDS_POSITION: bool;
-    /// Multiplies colours with the material and precomputes what is constant for a
-    /// viewer direction `view` (`None` for a local viewer).
+    /// [`LightSet::prepare`] for this light.
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>);
     /// The ambient contribution that does not depend on the surface point, if any.
     fn constant_ambient(&self) -> Option<Rgb<S>>;

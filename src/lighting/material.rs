@@ -84,7 +84,6 @@ impl MaterialDesc {
             AmbientSource::Object => object.map(|c| ka * c),
         };
         Self {
-            emission: [0.0; 3],
             ambient,
             diffuse: object.map(|c| kd * c),
             specular: [ks; 3],
