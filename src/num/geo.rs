@@ -5,8 +5,7 @@
 //! The fixed tiers' distances are Q16.16 ([`Geo16`]), but `c = 10⁻⁶` or a fog
 //! range of 10⁵ has no useful Q16.16 value: the coefficients keep their `f32`
 //! mantissa and exponent, and products with the distance are formed in
-//! floating-point-like integers (normalised distance, one product per term, a
-//! shift by the summed exponents).
+//! floating-point-like integers (`Q14`/`Q30::geo_inv_quadratic`).
 
 use super::Geo16;
 use core::fmt::Debug;
