@@ -188,6 +188,17 @@ pub(crate) fn finite(name: &'static str, v: f32) -> Result<f32, ParamError> {
     finite_or(name, v, ParamError::NotFinite)
 }
 
+/// Checks every component with [`finite`].
+pub(crate) fn finite_all<const N: usize>(
+    name: &'static str,
+    v: [f32; N],
+) -> Result<[f32; N], ParamError> {
+    for c in v {
+        finite(name, c)?;
+    }
+    Ok(v)
+}
+
 /// `Ok` when `got ≥ needed` (a `const fn`: [`Mesh`](crate::mesh::Mesh)'s
 /// constructors use it).
 pub(crate) const fn check_len(
@@ -214,20 +225,17 @@ pub(crate) fn non_negative(name: &'static str, v: f32) -> Result<f32, ParamError
 
 /// Checks every component with [`non_negative`].
 pub(crate) fn non_negative3(name: &'static str, v: [f32; 3]) -> Result<[f32; 3], ParamError> {
-    Ok([
-        non_negative(name, v[0])?,
-        non_negative(name, v[1])?,
-        non_negative(name, v[2])?,
-    ])
+    for c in v {
+        non_negative(name, c)?;
+    }
+    Ok(v)
 }
 
 /// Checks that a direction is finite and has a usable length; returns it
 /// normalised in `f32`, not `f64` (no soft double arithmetic linked): relative
 /// error ≈ 10⁻⁷, under 1 LSB of 8-bit output even in Q30.
 pub(crate) fn direction(name: &'static str, v: [f32; 3]) -> Result<[f32; 3], ParamError> {
-    for c in v {
-        finite(name, c)?;
-    }
+    finite_all(name, v)?;
     // scale by the largest component first so that squaring neither overflows nor
     // underflows for any finite input
     let m = v[0].abs().max(v[1].abs()).max(v[2].abs());

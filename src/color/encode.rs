@@ -110,7 +110,7 @@ impl<C: OutputColor> Encoder<C> for Linear {
 pub struct Dithered;
 
 /// Bayer thresholds `(2k + 1)/32` of a channel step, in 2^−16 units.
-const BAYER: [[u32; 4]; 4] = {
+pub(crate) const BAYER: [[u32; 4]; 4] = {
     const K: [[u32; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
     let mut t = [[0; 4]; 4];
     let mut i = 0;

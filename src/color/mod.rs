@@ -5,7 +5,7 @@ pub(crate) mod encode;
 
 pub use encode::{Dithered, Encoder, Linear};
 
-use crate::error::{finite, non_negative3, ParamError};
+use crate::error::{finite_all, non_negative3, ParamError};
 use crate::num::Scalar;
 use embedded_graphics_core::pixelcolor::{Gray8, Rgb565, Rgb888};
 
@@ -64,10 +64,7 @@ impl<S: Scalar> Rgb<S> {
     /// Converts `f32` channels of any sign (OpenGL's colours may be negative),
     /// rejecting NaN and infinities. Values beyond the tier's range saturate.
     pub fn try_from_f32_signed(name: &'static str, c: [f32; 3]) -> Result<Self, ParamError> {
-        for v in c {
-            finite(name, v)?;
-        }
-        Ok(Self::from_f32(c))
+        finite_all(name, c).map(Self::from_f32)
     }
 
     /// The channels as `f32`.
@@ -151,9 +148,7 @@ impl<S: Scalar> Rgb<S> {
     /// [`Dithered`] encodes.
     #[inline]
     pub fn to_rgb565_dithered(self, x: i32, y: i32) -> Rgb565 {
-        let t = BAYER4[(y & 3) as usize][(x & 3) as usize] as u32;
-        // threshold in 16-bit units: (2t + 1)/32 of a step
-        let d = ((2 * t + 1) << 16) / 32;
+        let d = encode::BAYER[(y & 3) as usize][(x & 3) as usize];
         let q = |v: S, max: u32| (((v.to_unorm(16) * max) + d) >> 16) as u8;
         Rgb565::new(q(self.r, 31), q(self.g, 63), q(self.b, 31))
     }
@@ -173,9 +168,6 @@ impl<S: Scalar> Rgb<S> {
             .add(self.b.mul(S::from_f32(0.0722)))
     }
 }
-
-/// The 4×4 Bayer threshold matrix (values 0..16).
-const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
 
 /// An embedded-graphics colour that linear RGB converts to: up to three integer
 /// channels with maxima [`OutputColor::CHANNEL_MAX`] (grey: the first, the

@@ -18,21 +18,24 @@ pub enum AnyLight<S: Scalar> {
     Spot(SpotLight<S>),
 }
 
+/// `$e` with `$l` bound to the light `$any` (an [`AnyLight`]) holds.
+macro_rules! each_kind {
+    ($any:expr, $l:ident => $e:expr) => {
+        match $any {
+            AnyLight::Directional($l) => $e,
+            AnyLight::Point($l) => $e,
+            AnyLight::Spot($l) => $e,
+        }
+    };
+}
+
 impl<S: Scalar> LightSource<S> for AnyLight<S> {
     const NEEDS_POSITION: bool = true;
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>) {
-        match self {
-            Self::Directional(l) => LightSource::prepare(l, material, view),
-            Self::Point(l) => LightSource::prepare(l, material, view),
-            Self::Spot(l) => LightSource::prepare(l, material, view),
-        }
+        each_kind!(self, l => LightSource::prepare(l, material, view))
     }
     fn constant_ambient(&self) -> Option<Rgb<S>> {
-        match self {
-            Self::Directional(l) => LightSource::constant_ambient(l),
-            Self::Point(l) => LightSource::constant_ambient(l),
-            Self::Spot(l) => LightSource::constant_ambient(l),
-        }
+        each_kind!(self, l => LightSource::constant_ambient(l))
     }
     #[inline(always)]
     fn incident(&self, p: &Point3<S>) -> Incident<'_, S> {
@@ -43,18 +46,10 @@ impl<S: Scalar> LightSource<S> for AnyLight<S> {
         }
     }
     fn color_terms(&self, material: &Material<S>) -> Option<ColorTerms> {
-        match self {
-            Self::Directional(l) => LightSource::color_terms(l, material),
-            Self::Point(l) => LightSource::color_terms(l, material),
-            Self::Spot(l) => LightSource::color_terms(l, material),
-        }
+        each_kind!(self, l => LightSource::color_terms(l, material))
     }
     fn transform(&mut self, m: &Mat4) -> Result<(), ParamError> {
-        match self {
-            Self::Directional(l) => LightSource::transform(l, m),
-            Self::Point(l) => LightSource::transform(l, m),
-            Self::Spot(l) => LightSource::transform(l, m),
-        }
+        each_kind!(self, l => LightSource::transform(l, m))
     }
 }
 

@@ -40,7 +40,7 @@
 //! stores light positions after `glLightfv`.
 
 use crate::color::Rgb;
-use crate::error::{finite, ParamError};
+use crate::error::{finite, finite_all, ParamError};
 use crate::lighting::{
     AnyLight, DirectionalLight, LightColors, LightDesc, LightKind, LightSet, PointLight, SpotLight,
 };
@@ -48,11 +48,18 @@ use crate::lighting::{
     BackFaces, ColorMaterial, InfiniteViewer, Lighting, LocalViewer, Model, NoFog, Viewer,
 };
 use crate::lighting::{Material, MaterialDesc, Viewed};
-use crate::num::Mat4;
-use crate::num::Scalar;
+use crate::num::{cof3, dot3, Mat4, Scalar};
 
 fn rgb(c: [f32; 4]) -> [f32; 3] {
     [c[0], c[1], c[2]]
+}
+
+/// [`ParamError::LightCount`] for `lights` in a set of `capacity`.
+fn count_error(lights: &[GlLight], capacity: usize) -> ParamError {
+    ParamError::LightCount {
+        lights: lights.len(),
+        capacity,
+    }
 }
 
 /// One OpenGL light's parameters.
@@ -139,10 +146,7 @@ impl GlLight {
     /// negative attenuation (when the light is built); also non-finite values.
     /// Colours are taken as given (any sign).
     pub fn to_desc(&self) -> Result<LightDesc, ParamError> {
-        for c in self.position {
-            finite("GL_POSITION", c)?;
-        }
-        let [x, y, z, w] = self.position;
+        let [x, y, z, w] = finite_all("GL_POSITION", self.position)?;
         let attenuation = [
             self.constant_attenuation,
             self.linear_attenuation,
@@ -238,7 +242,7 @@ impl<S: Scalar> FromGlLight for AnyLight<S> {
 }
 
 macro_rules! from_gl_kind {
-    ($ty:ident, $variant:ident, $msg:expr) => {
+    ($($ty:ident, $variant:ident, $msg:expr;)*) => {$(
         impl<S: Scalar> FromGlLight for $ty<S> {
             fn from_gl_light(light: &GlLight) -> Result<Self, ParamError> {
                 match AnyLight::<S>::from_gl_light(light)? {
@@ -247,23 +251,13 @@ macro_rules! from_gl_kind {
                 }
             }
         }
-    };
+    )*};
 }
-from_gl_kind!(
-    DirectionalLight,
-    Directional,
-    "a DirectionalLight needs GL_POSITION w = 0"
-);
-from_gl_kind!(
-    PointLight,
-    Point,
-    "a PointLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF 180"
-);
-from_gl_kind!(
-    SpotLight,
-    Spot,
-    "a SpotLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF in 0..=90"
-);
+from_gl_kind! {
+    DirectionalLight, Directional, "a DirectionalLight needs GL_POSITION w = 0";
+    PointLight, Point, "a PointLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF 180";
+    SpotLight, Spot, "a SpotLight needs GL_POSITION w ≠ 0 and GL_SPOT_CUTOFF in 0..=90";
+}
 
 macro_rules! gl_light_set_single {
     ($($ty:ident),*) => {$(
@@ -271,7 +265,7 @@ macro_rules! gl_light_set_single {
             fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError> {
                 match lights {
                     [l] => l.to_light(),
-                    _ => Err(ParamError::LightCount { lights: lights.len(), capacity: 1 }),
+                    _ => Err(count_error(lights, 1)),
                 }
             }
         }
@@ -282,16 +276,10 @@ gl_light_set_single!(DirectionalLight, PointLight, SpotLight, AnyLight);
 impl<S: Scalar, L: FromGlLight + LightSet<S>, const K: usize> GlLightSet<S> for [L; K] {
     fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError> {
         if lights.len() != K {
-            return Err(ParamError::LightCount {
-                lights: lights.len(),
-                capacity: K,
-            });
+            return Err(count_error(lights, K));
         }
         let v: heapless::Vec<L, K> = GlLightSet::<S>::from_gl_lights(lights)?;
-        v.into_array().map_err(|_| ParamError::LightCount {
-            lights: lights.len(),
-            capacity: K,
-        })
+        v.into_array().map_err(|_| count_error(lights, K))
     }
 }
 
@@ -301,10 +289,7 @@ impl<S: Scalar, L: FromGlLight + LightSet<S>, const K: usize> GlLightSet<S>
     fn from_gl_lights(lights: &[GlLight]) -> Result<Self, ParamError> {
         let mut v = heapless::Vec::new();
         for l in lights {
-            v.push(l.to_light()?).map_err(|_| ParamError::LightCount {
-                lights: lights.len(),
-                capacity: K,
-            })?;
+            v.push(l.to_light()?).map_err(|_| count_error(lights, K))?;
         }
         Ok(v)
     }
@@ -321,24 +306,22 @@ pub trait GlViewer<S: Scalar>: Viewer<S> + Sized {
 impl<S: Scalar> GlViewer<S> for InfiniteViewer<S> {
     fn from_light_model(model: &GlLightModel) -> Result<Self, ParamError> {
         if model.local_viewer {
-            Err(ParamError::Viewer(
+            return Err(ParamError::Viewer(
                 "GL_LIGHT_MODEL_LOCAL_VIEWER is set: use LocalViewer",
-            ))
-        } else {
-            Ok(Self::default())
+            ));
         }
+        Ok(Self::default())
     }
 }
 
 impl<S: Scalar> GlViewer<S> for LocalViewer<S> {
     fn from_light_model(model: &GlLightModel) -> Result<Self, ParamError> {
-        if model.local_viewer {
-            LocalViewer::new([0.0; 3])
-        } else {
-            Err(ParamError::Viewer(
+        if !model.local_viewer {
+            return Err(ParamError::Viewer(
                 "GL_LIGHT_MODEL_LOCAL_VIEWER is not set: use InfiniteViewer",
-            ))
+            ));
         }
+        LocalViewer::new([0.0; 3])
     }
 }
 
@@ -589,10 +572,7 @@ impl<'a> GlScene<'a> {
     {
         let lights = L::from_gl_lights(self.lights)?;
         let material = material.to_material::<S>()?;
-        let ambient = rgb(self.model.ambient);
-        for c in ambient {
-            finite("GL_LIGHT_MODEL_AMBIENT", c)?;
-        }
+        let ambient = finite_all("GL_LIGHT_MODEL_AMBIENT", rgb(self.model.ambient))?;
         Lighting::build(
             lights,
             material,
@@ -640,19 +620,16 @@ impl GlNormals {
     pub fn eye_normal(self, modelview: &Mat4, n: [f32; 3]) -> [f32; 3] {
         let m: [[f64; 3]; 3] =
             core::array::from_fn(|r| core::array::from_fn(|c| f64::from(modelview.m[r][c])));
-        let cof = |r: usize, c: usize| {
-            let (r1, r2, c1, c2) = ((r + 1) % 3, (r + 2) % 3, (c + 1) % 3, (c + 2) % 3);
-            m[r1][c1] * m[r2][c2] - m[r1][c2] * m[r2][c1]
-        };
-        let det = m[0][0] * cof(0, 0) + m[0][1] * cof(0, 1) + m[0][2] * cof(0, 2);
+        let cof = cof3(m);
+        let det = dot3(m[0], cof[0]);
         if det == 0.0 || !det.is_finite() {
             return [0.0; 3];
         }
         // M⁻ᵀ = cof(M)/det; M⁻¹ = cof(M)ᵀ/det
         let nd = n.map(f64::from);
         let t: [f64; 3] =
-            core::array::from_fn(|r| (0..3).map(|c| cof(r, c) * nd[c]).sum::<f64>() / det);
-        let len = |v: [f64; 3]| libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+            core::array::from_fn(|r| (0..3).map(|c| cof[r][c] * nd[c]).sum::<f64>() / det);
+        let len = |v: [f64; 3]| libm::sqrt(dot3(v, v));
         let k = match self {
             GlNormals::AsGiven => 1.0,
             GlNormals::Normalize => {
@@ -665,7 +642,7 @@ impl GlNormals {
             }
             GlNormals::Rescale => {
                 // row 3 of M⁻¹ is column 3 of cof(M), divided by det
-                let row3 = [cof(0, 2), cof(1, 2), cof(2, 2)].map(|v| v / det);
+                let row3 = [cof[0][2], cof[1][2], cof[2][2]].map(|v| v / det);
                 1.0 / len(row3)
             }
         };

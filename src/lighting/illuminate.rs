@@ -138,9 +138,8 @@ impl<S: Scalar, const K: usize, M: Model> Directional<S, K, M> {
         core::array::from_fn(|j| {
             let light = &l.lights()[j];
             let pre = light.prepared();
-            let dir = light.direction();
             DirectionalTerms {
-                dir,
+                dir: light.direction(),
                 half: pre.half,
                 diffuse: pre.diffuse,
                 specular: if M::SPECULAR == Specular::None {

@@ -6,7 +6,7 @@
 //! kinds at run time; arrays, `heapless::Vec`s and tuples of lights are light sets.
 
 use crate::color::Rgb;
-use crate::error::{direction, finite, non_negative, non_negative3, ParamError};
+use crate::error::{direction, finite, finite_all, non_negative, non_negative3, ParamError};
 use crate::lighting::{AnyLight, Material};
 use crate::num::{point_from_f32, point_sub, Mat4, Point3, Vec3};
 use crate::num::{Exponent, GeoScalar, Scalar};
@@ -54,16 +54,10 @@ impl<S: Scalar> LightColors<S> {
         diffuse: [f32; 3],
         specular: [f32; 3],
     ) -> Result<Self, ParamError> {
-        let f = |name, c: [f32; 3]| -> Result<[f32; 3], ParamError> {
-            for v in c {
-                finite(name, v)?;
-            }
-            Ok(c)
-        };
         Ok(Self {
-            ambient: f("light ambient", ambient)?,
-            diffuse: f("light diffuse", diffuse)?,
-            specular: f("light specular", specular)?,
+            ambient: finite_all("light ambient", ambient)?,
+            diffuse: finite_all("light diffuse", diffuse)?,
+            specular: finite_all("light specular", specular)?,
             tier: PhantomData,
         })
     }
@@ -151,10 +145,7 @@ impl<S: Scalar> Prepared<S> {
             diffuse: Rgb::from_f32(t.diffuse),
             specular: Rgb::from_f32(t.specular),
             transmission: Rgb::from_f32(t.transmission),
-            half: match (l, v) {
-                (Some(l), Some(v)) => Some(S::normalize_nearest_unit(l.add(v))),
-                _ => None,
-            },
+            half: l.zip(v).map(|(l, v)| S::normalize_nearest_unit(l.add(v))),
         }
     }
 }
@@ -182,8 +173,7 @@ pub struct Incident<'a, S> {
 pub trait LightSource<S: Scalar> {
     /// Whether the light needs the surface position (point and spot lights).
     const NEEDS_POSITION: bool;
-    /// Multiplies colours with the material and precomputes what is constant for a
-    /// viewer direction `view` (`None` for a local viewer).
+    /// [`LightSet::prepare`] for this light.
     fn prepare(&mut self, material: &Material<S>, view: Option<Vec3<S>>);
     /// The ambient contribution that does not depend on the surface point, if any.
     fn constant_ambient(&self) -> Option<Rgb<S>>;
@@ -214,20 +204,13 @@ fn transform_direction<S: Scalar>(
     d: Vec3<S>,
     m: &Mat4,
 ) -> Result<Vec3<S>, ParamError> {
-    Ok(Vec3::from_f32(direction(
-        name,
-        m.transform_vector(d.to_f32()),
-    )?))
+    direction(name, m.transform_vector(d.to_f32())).map(Vec3::from_f32)
 }
 
 /// Position `p` through `m` (divided by the homogeneous `w`).
 fn transform_position<S: Scalar>(p: Point3<S>, m: &Mat4) -> Result<Point3<S>, ParamError> {
     let [x, y, z, w] = m.transform_point([p.x, p.y, p.z].map(S::geo_to_f32));
-    let q = [x / w, y / w, z / w];
-    for c in q {
-        finite("position", c)?;
-    }
-    Ok(point_from_f32::<S>(q))
+    finite_all("position", [x / w, y / w, z / w]).map(point_from_f32::<S>)
 }
 
 /// What receives each light's [`Incident`] from [`LightSet::for_each`] (a trait
@@ -588,11 +571,8 @@ impl<S: Scalar> PointLight<S> {
         attenuation: Attenuation<S::Geo>,
         colors: LightColors<S>,
     ) -> Result<Self, ParamError> {
-        for c in position {
-            finite("position", c)?;
-        }
         Ok(Self {
-            pos: point_from_f32::<S>(position),
+            pos: point_from_f32::<S>(finite_all("position", position)?),
             att: attenuation,
             colors,
             pre: Prepared::default(),

@@ -1,7 +1,7 @@
 //! Surface materials: emission, ambient, diffuse (with brilliance), specular,
 //! Fresnel angle factor and transmission coefficients.
 
-use crate::error::{finite, non_negative, non_negative3, ParamError};
+use crate::error::{finite, finite_all, non_negative, non_negative3, ParamError};
 use crate::num::{Exponent, Scalar};
 
 /// A plain `f32` description of a material, shared by the tiers, the OpenGL
@@ -84,7 +84,6 @@ impl MaterialDesc {
             AmbientSource::Object => object.map(|c| ka * c),
         };
         Self {
-            emission: [0.0; 3],
             ambient,
             diffuse: object.map(|c| kd * c),
             specular: [ks; 3],
@@ -164,7 +163,7 @@ impl<S: Scalar> Material<S> {
         }
         let colour = |name: &'static str, c: [f32; 3]| {
             if signed {
-                finite3(name, c)
+                finite_all(name, c)
             } else {
                 non_negative3(name, c)
             }
@@ -182,11 +181,4 @@ impl<S: Scalar> Material<S> {
             eta: S::from_f32(1.0 / n21),
         })
     }
-}
-
-fn finite3(name: &'static str, c: [f32; 3]) -> Result<[f32; 3], ParamError> {
-    for v in c {
-        finite(name, v)?;
-    }
-    Ok(c)
 }

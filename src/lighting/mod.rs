@@ -308,8 +308,7 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
 
     /// The lighting of `self`'s parts, prepared again (after a part changed).
     fn rebuilt(self) -> Self {
-        let (viewer, fog) = (self.viewer, self.fog);
-        self.remade(viewer, fog)
+        self.with_model()
     }
 
     /// The same lighting with its lights taken as given, in eye coordinates
@@ -445,14 +444,10 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
             limit: libm::ceilf(max) as u32,
         };
         let eff = self.color_material.effective(&self.material);
-        // the constant part: emission + global ambient
+        // 0·∞ (a colour 0 under a folded 1/a of ∞) is no light
+        let no_nan = |v: f32| if v.is_nan() { 0.0 } else { v };
         let constant: [f32; 3] = core::array::from_fn(|i| {
-            let v = eff.emission[i] + self.global_ambient[i] * eff.ambient[i];
-            if v.is_nan() {
-                0.0
-            } else {
-                v
-            }
+            no_nan(eff.emission[i] + self.global_ambient[i] * eff.ambient[i])
         });
         let mut pos = constant.map(|v| v.max(0.0));
         let mut neg = constant.map(|v| v.min(0.0));
@@ -467,9 +462,8 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
         ];
         self.lights.for_each_color_terms(&eff, &mut |t| {
             for c in 0..3 {
-                // 0·∞ (a colour 0 under a folded 1/a of ∞) is no light
-                let terms = [t.ambient[c], t.diffuse[c], t.specular[c], t.transmission[c]]
-                    .map(|v| if v.is_nan() { 0.0 } else { v });
+                let terms =
+                    [t.ambient[c], t.diffuse[c], t.specular[c], t.transmission[c]].map(no_nan);
                 for (v, name) in terms.iter().zip(NAMES) {
                     if !(v.abs() < max) {
                         result = Err(err(name));
@@ -503,14 +497,11 @@ impl<S: Scalar, L: LightSet<S>, M: Model, V: Viewer<S>, F: FogModel<S>> Lighting
                 ));
             }
         }
-        if negative || F::NEEDS_DISTANCE {
-            for c in 0..3 {
-                if !(pos[c] < max && neg[c] > -max) {
-                    return Err(err(
-                        "sum of the lighting terms (with negative colours or fog)",
-                    ));
-                }
-            }
+        let sums_fit = (0..3).all(|c| pos[c] < max && neg[c] > -max);
+        if (negative || F::NEEDS_DISTANCE) && !sums_fit {
+            return Err(err(
+                "sum of the lighting terms (with negative colours or fog)",
+            ));
         }
         Ok(self)
     }

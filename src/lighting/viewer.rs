@@ -1,7 +1,7 @@
 //! Where the eye is, and how light fades with viewing distance (fog).
 
 use crate::color::Rgb;
-use crate::error::{finite, ParamError};
+use crate::error::{finite, finite_all, ParamError};
 use crate::num::{point_from_f32, point_sub, Point3, Scalar, Vec3};
 
 /// Where the eye is.
@@ -70,11 +70,8 @@ pub struct LocalViewer<S: Scalar> {
 impl<S: Scalar> LocalViewer<S> {
     /// The eye at `eye` (scene units). Errors: non-finite position.
     pub fn new(eye: [f32; 3]) -> Result<Self, ParamError> {
-        for c in eye {
-            finite("eye", c)?;
-        }
         Ok(Self {
-            eye: point_from_f32::<S>(eye),
+            eye: point_from_f32::<S>(finite_all("eye", eye)?),
         })
     }
 }

@@ -166,7 +166,6 @@ macro_rules! float_tier {
                 $wrap(2.0 * $get(self) * $get(b) - $get(c))
             }
 
-
             #[inline]
             fn div(self, rhs: Self) -> Self {
                 let (a, b) = ($get(self), $get(rhs));

@@ -5,8 +5,7 @@
 //! The fixed tiers' distances are Q16.16 ([`Geo16`]), but `c = 10⁻⁶` or a fog
 //! range of 10⁵ has no useful Q16.16 value: the coefficients keep their `f32`
 //! mantissa and exponent, and products with the distance are formed in
-//! floating-point-like integers (normalised distance, one product per term, a
-//! shift by the summed exponents).
+//! floating-point-like integers (`Q14`/`Q30::geo_inv_quadratic`).
 
 use super::Geo16;
 use core::fmt::Debug;
@@ -127,17 +126,6 @@ impl InvQuadratic16 {
     }
 }
 
-/// Fraction `m ∈ [0.5, 1)` and exponent of a positive finite `f32`, with
-/// `x = m·2^e`.
-fn frexp(x: f32) -> (f32, i32) {
-    libm::frexpf(x)
-}
-
-/// `x·2^e` (saturating to infinity, flushing to zero).
-fn ldexp(x: f32, e: i32) -> f32 {
-    libm::ldexpf(x, e)
-}
-
 /// The linear fog ramp `f(d) = clamp((end − d)/(end − start), 0, 1)` over Q16.16
 /// distances, in a form that holds for any finite `start < end` (either may lie far
 /// beyond the geometry range): with `D` the raw distance and `d0` the raw distance
@@ -166,13 +154,13 @@ impl RampParts {
         // the range R = rm·2^re; end − start overflows for a range beyond f32::MAX
         let r = end - start;
         let (rm, re) = if r.is_finite() {
-            frexp(r)
+            libm::frexpf(r)
         } else {
-            let (m, e) = frexp(end * 0.5 - start * 0.5);
+            let (m, e) = libm::frexpf(end * 0.5 - start * 0.5);
             (m, e + 1)
         };
         // f per raw unit (2^-16 scene units) = 2^(−re−16)/rm; f·(x raw units) below
-        let per_raw = |x: f32| ldexp(x / rm, -re - 16);
+        let per_raw = |x: f32| libm::ldexpf(x / rm, -re - 16);
         let e16 = end * 65536.0; // exact, or ±infinity
         let (d0, g0) = if e16 >= 2_147_483_648.0 {
             // end beyond the range: d0 = (2^31 − 1) raw, f(d0) = (end − d0)/R
@@ -190,18 +178,13 @@ impl RampParts {
             let fl = libm::floorf(e16);
             (fl as i32, per_raw(e16 - fl))
         };
-        if !(g0 < 1.0) {
-            return Self {
-                d0,
-                g0: 1.0,
-                full: u32::MAX,
-                rm,
-                re,
-            };
-        }
-        // the largest Y with g0 + Y·inv < 1: ⌈(1 − g0)·R·2^16⌉ − 1, saturated
-        let y = ldexp((1.0 - g0) * rm, re + 16);
-        let full = (libm::ceilf(y) - 1.0) as u32;
+        // full: the largest Y with g0 + Y·inv < 1, ⌈(1 − g0)·R·2^16⌉ − 1, saturated
+        let (g0, full) = if g0 < 1.0 {
+            let y = libm::ldexpf((1.0 - g0) * rm, re + 16);
+            (g0, (libm::ceilf(y) - 1.0) as u32)
+        } else {
+            (1.0, u32::MAX)
+        };
         Self {
             d0,
             g0,

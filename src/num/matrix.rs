@@ -4,7 +4,7 @@
 
 use core::ops::{Add, Mul, Sub};
 
-use crate::error::{finite, ParamError};
+use crate::error::{finite, finite_all, ParamError};
 
 /// A 4×4 matrix in `f32`, row-major (`m[row][col]`), applied to column vectors:
 /// `p' = M·p`. [`Mat4::mul`] composes so that `a.mul(&b)` applies `b` first, as
@@ -49,6 +49,18 @@ pub(crate) fn cross3<T: Copy + Sub<Output = T> + Mul<Output = T>>(a: [T; 3], b: 
 /// `a·b` for plain `f32` or `f64` 3-vectors.
 pub(crate) fn dot3<T: Copy + Add<Output = T> + Mul<Output = T>>(a: [T; 3], b: [T; 3]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The cofactors of a 3×3 matrix, `cof_ij = (−1)^(i+j)·minor_ij` (written with
+/// cyclic indices), for plain `f32` or `f64` elements: `det = a₀·cof₀` and
+/// `a⁻¹ = cofᵀ/det`.
+pub(crate) fn cof3<T: Copy + Sub<Output = T> + Mul<Output = T>>(a: [[T; 3]; 3]) -> [[T; 3]; 3] {
+    core::array::from_fn(|i| {
+        core::array::from_fn(|j| {
+            let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
+            a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1]
+        })
+    })
 }
 
 /// `v/|v|`, or `None` when `|v|` is zero, tiny or not finite.
@@ -142,15 +154,9 @@ impl Mat4 {
     /// # Ok::<(), fixshade::error::ParamError>(())
     /// ```
     pub fn look_at(eye: [f32; 3], target: [f32; 3], up: [f32; 3]) -> Result<Self, ParamError> {
-        for v in eye {
-            finite("eye", v)?;
-        }
-        for v in target {
-            finite("target", v)?;
-        }
-        for v in up {
-            finite("up", v)?;
-        }
+        finite_all("eye", eye)?;
+        finite_all("target", target)?;
+        finite_all("up", up)?;
         let f = unit3(sub3(target, eye)).ok_or(ParamError::ZeroDirection("eye/target"))?;
         let s = unit3(cross3(f, up)).ok_or(ParamError::ZeroDirection("up"))?;
         let u = cross3(s, f);
@@ -271,11 +277,9 @@ impl Mat4 {
 
     /// `Ok(self)` when every element is finite.
     fn checked(self, name: &'static str) -> Result<Self, ParamError> {
-        if self.is_finite() {
-            Ok(self)
-        } else {
-            Err(ParamError::NotFinite(name))
-        }
+        self.is_finite()
+            .then_some(self)
+            .ok_or(ParamError::NotFinite(name))
     }
 
     /// Whether every element is finite.
@@ -320,23 +324,13 @@ impl Mat4 {
     /// to `M₃` itself for rotations; needs no division, so a singular `M₃` gives
     /// a finite (possibly zero) matrix.
     pub fn normal_matrix(&self) -> [[f32; 3]; 3] {
-        let a = &self.m;
-        // cof_ij = (−1)^(i+j)·minor_ij, written with cyclic indices
-        let mut c = [[0.0f32; 3]; 3];
-        for (i, row) in c.iter_mut().enumerate() {
-            let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
-            for (j, e) in row.iter_mut().enumerate() {
-                let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
-                *e = a[i1][j1] * a[i2][j2] - a[i1][j2] * a[i2][j1];
-            }
+        let a: [[f32; 3]; 3] = core::array::from_fn(|i| [self.m[i][0], self.m[i][1], self.m[i][2]]);
+        let c = cof3(a);
+        if dot3(a[0], c[0]) < 0.0 {
+            c.map(|row| row.map(|e| -e))
+        } else {
+            c
         }
-        let det = a[0][0] * c[0][0] + a[0][1] * c[0][1] + a[0][2] * c[0][2];
-        if det < 0.0 {
-            for e in c.iter_mut().flatten() {
-                *e = -*e;
-            }
-        }
-        c
     }
 }
 

@@ -42,7 +42,7 @@ pub(crate) mod wide;
 pub use float::F32Fast;
 pub(crate) use geo::GeoScalar;
 pub use matrix::Mat4;
-pub(crate) use matrix::{cross3, dot3, sub3};
+pub(crate) use matrix::{cof3, cross3, dot3, sub3};
 pub use pow::Exponent;
 pub use q14::Q14;
 pub use q30::Q30;

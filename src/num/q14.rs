@@ -286,14 +286,6 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
         // round(a / 2^12) without overflow for any a
         Self::from_raw(((a >> 11) + 1) >> 1)
     }
-    #[inline(always)]
-    fn geo_to_attr(g: Geo16) -> i32 {
-        g.to_bits()
-    }
-    #[inline(always)]
-    fn geo_from_attr(a: i32) -> Geo16 {
-        Geo16::from_bits(a)
-    }
 
     #[inline]
     fn normalize_precise(v: Vec3<Self>) -> Vec3<Self> {
@@ -456,9 +448,17 @@ impl<const NEWTON: u8> Scalar for Q14<NEWTON> {
 }
 
 /// The geometry operations of the tiers whose geometry type is [`Geo16`]:
-/// saturating Q16.16 arithmetic (inside an `impl Scalar`).
+/// saturating Q16.16 arithmetic, Q16.16 attributes (inside an `impl Scalar`).
 macro_rules! geo16_ops {
     () => {
+        #[inline(always)]
+        fn geo_to_attr(g: Geo16) -> i32 {
+            g.to_bits()
+        }
+        #[inline(always)]
+        fn geo_from_attr(a: i32) -> Geo16 {
+            Geo16::from_bits(a)
+        }
         #[inline]
         fn geo_from_f32(v: f32) -> Geo16 {
             $crate::num::q14::geo16_from_f32(v)

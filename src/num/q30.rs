@@ -169,14 +169,6 @@ impl<const NEWTON: u8> Scalar for Q30<NEWTON> {
     fn from_attr(a: i32) -> Self {
         Self::from_wide((a as i64) << 4)
     }
-    #[inline(always)]
-    fn geo_to_attr(g: Geo16) -> i32 {
-        g.to_bits()
-    }
-    #[inline(always)]
-    fn geo_from_attr(a: i32) -> Geo16 {
-        Geo16::from_bits(a)
-    }
 
     #[inline]
     fn normalize_precise(v: Vec3<Self>) -> Vec3<Self> {
