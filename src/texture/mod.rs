@@ -56,7 +56,7 @@ pub enum Texels<'a> {
 }
 
 impl Texels<'_> {
-    fn len(&self) -> usize {
+    const fn len(&self) -> usize {
         match self {
             Texels::Rgb565(d) => d.len(),
             Texels::Gray8(d) => d.len(),
@@ -173,23 +173,13 @@ impl<'a> Texture<'a> {
                 log2: if log2_w > log2_h { log2_w } else { log2_h },
             });
         }
-        let needed = 1usize << (log2_w + log2_h);
-        let len = match texels {
-            Texels::Rgb565(d) => d.len(),
-            Texels::Gray8(d) => d.len(),
-            Texels::Palette8 { indices, palette } => {
-                if palette.len() > 256 {
-                    return Err(TextureError::PaletteTooLong);
-                }
-                indices.len()
+        if let Texels::Palette8 { palette, .. } = texels {
+            if palette.len() > 256 {
+                return Err(TextureError::PaletteTooLong);
             }
-        };
-        if len < needed {
-            return Err(TextureError::BufferTooSmall {
-                which: "texels",
-                needed,
-                got: len,
-            });
+        }
+        if let Err(e) = check_len("texels", 1 << (log2_w + log2_h), texels.len()) {
+            return Err(e);
         }
         Ok(Self {
             texels,
@@ -287,6 +277,14 @@ impl<'a> Texture<'a> {
             }
         }
     }
+}
+
+/// `Ok` when `got ≥ needed`, else [`TextureError::BufferTooSmall`] naming `which`.
+const fn check_len(which: &'static str, needed: usize, got: usize) -> Result<(), TextureError> {
+    if got < needed {
+        return Err(TextureError::BufferTooSmall { which, needed, got });
+    }
+    Ok(())
 }
 
 /// An `i64` texel index to `i32` keeping its value modulo 2^16 (enough for
