@@ -155,11 +155,7 @@ impl<'a> NormalMap<'a> {
     /// Texel `(x, y)` (any integers: wrapped or clamped by the map's mode).
     #[inline(always)]
     pub fn texel(&self, x: i32, y: i32) -> [i16; 3] {
-        let s = self.nearest(0);
-        match self.wrap {
-            Wrap::Repeat => s.get::<true>(x, y),
-            Wrap::Clamp => s.get::<false>(x, y),
-        }
+        self.sample_fixed(x, y, 0)
     }
 
     /// The texel containing the point `c` (nearest sampling).
