@@ -261,11 +261,8 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> Default
 /// [`Bands::render`](crate::framebuffer::Bands::render) or
 /// [`FullFrame::render`](crate::framebuffer::FullFrame::render) through [`DrawBand`].
 ///
-/// Memory, all the caller's ([`MeshMemory`] or [`MeshBuffers`]):
-/// - one [`CachedVertex`] per mesh vertex;
-/// - the bins: see [`bins_len`](super::bins_len);
-/// - the resume records: twice the largest number of triangles crossing one
-///   band boundary (none for a full frame); [`MeshDraw::new`] reports the need.
+/// Memory, all the caller's: [`MeshMemory`] (or [`MeshBuffers`]) lists it;
+/// [`MeshDraw::new`] reports the resume records a frame needs.
 ///
 /// The projection `P` comes from the transform's type:
 /// - [`Orthographic`]: values interpolated screen-linearly (exact for an
