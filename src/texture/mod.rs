@@ -4,11 +4,8 @@
 //! A [`Texture`] borrows texel data (`Rgb565` words, 8-bit grey levels, or
 //! 8-bit indices into an `Rgb565` palette) of a power-of-two size, 1 … 32 768
 //! texels a side. [`TexCoord`]s are Q16 (`1 << 16` is one whole texture), so
-//! `u = (i + ½)/w` is the centre of texel column `i`, as in OpenGL.
-//! [`Wrap::Repeat`] takes coordinates modulo the texture (any `i32`),
-//! [`Wrap::Clamp`] clamps to the edge texels (`GL_CLAMP_TO_EDGE`).
-//! [`Filter::Nearest`] returns the texel containing the point,
-//! [`Filter::Bilinear`] blends the four nearest centres with 8-bit weights.
+//! `u = (i + ½)/w` is the centre of texel column `i`, as in OpenGL; so are
+//! the [`Wrap`] modes (`Repeat` for any `i32` coordinate) and [`Filter`]s.
 //! 32-bit integers only (no division, float or table); a sample never panics
 //! and never reads outside the data.
 //!
