@@ -436,15 +436,10 @@ impl NormalRows {
         // Each element is divided by the largest first (|v / max| ≤ 1 even
         // when max is subnormal, where 16384 / max would be infinite)
         let ok = max > 0.0 && max.is_finite();
-        let mut e = [[0i16; 3]; 3];
-        for (er, mr) in e.iter_mut().zip(nm) {
-            for (x, v) in er.iter_mut().zip(mr) {
-                if ok {
-                    *x = libm::roundf((v / max).clamp(-1.0, 1.0) * 16384.0) as i16;
-                }
-            }
+        let q = |v: f32| libm::roundf((v / max).clamp(-1.0, 1.0) * 16384.0) as i16;
+        NormalRows {
+            e: nm.map(|r| r.map(|v| if ok { q(v) } else { 0 })),
         }
-        NormalRows { e }
     }
 
     /// `N·n` for a Q14 normal: components in Q14 (up to √3·2 in magnitude).
