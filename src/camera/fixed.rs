@@ -3,7 +3,6 @@
 //! into the [`MeshTransform`] that [`Camera::mesh_transform`] builds from
 //! `f32` (64-bit products from 16 × 16-bit ones, [`crate::num::wide`]).
 
-use super::SUBPIXEL_BITS;
 use super::{Camera, ClipSpace, EyeRows, MeshTransform, NormalRows, Projection, Row};
 use crate::error::ParamError;
 use crate::num::at3;
@@ -342,10 +341,7 @@ impl<P: Projection> FixedCamera<P> {
         if !pv.is_finite() {
             return Err(ParamError::NotFinite("matrix"));
         }
-        let vp = camera.viewport();
-        let (w8, h8) = (vp.width() as f32 * 8.0, vp.height() as f32 * 8.0);
-        let sub = (1 << SUBPIXEL_BITS) as f32;
-        let (cx, cy) = (vp.x0() as f32 * sub + w8, vp.y0() as f32 * sub + h8);
+        let ([w8, h8], [cx, cy]) = camera.viewport().scale_centre();
         let m = &pv.m;
         let k = |r: [f32; 4], s: f32, c: f32| {
             WideRow::new([r[0] * s, r[1] * s, r[2] * s, r[3] * s + c])

@@ -161,12 +161,7 @@ impl<P: Projection> Camera<P> {
     /// a perspective projection, the near plane in the unit of its `w`.
     pub fn clip_space(&self) -> ClipSpace {
         if P::PERSPECTIVE {
-            let sub = (1 << SUBPIXEL_BITS) as f32;
-            let vp = &self.viewport;
-            let c = [
-                vp.x0() as f32 * sub + vp.width() as f32 * 8.0,
-                vp.y0() as f32 * sub + vp.height() as f32 * 8.0,
-            ];
+            let (_, c) = self.viewport.scale_centre();
             let near = libm::ldexpf(self.near, self.clip_frac());
             ClipSpace::perspective(
                 c.map(|v| v as i32),
@@ -206,8 +201,7 @@ impl<P: Projection> Camera<P> {
         }
         let e = self.view.transform_point(position);
         let c = self.projection.transform_point([e[0], e[1], e[2]]);
-        let vp = &self.viewport;
-        let (w8, h8) = (vp.width() as f32 * 8.0, vp.height() as f32 * 8.0);
+        let ([w8, h8], [cx, cy]) = self.viewport.scale_centre();
         let fit = |v: f32| {
             if v.is_finite() && libm::fabsf(v) < 2.0e9 {
                 Ok(libm::roundf(v) as i32)
@@ -224,10 +218,9 @@ impl<P: Projection> Camera<P> {
                 w: fit(c[3] * k)?,
             })
         } else {
-            let sub = (1 << SUBPIXEL_BITS) as f32;
             Ok(Clip {
-                x: fit(vp.x0() as f32 * sub + w8 + c[0] * w8)?,
-                y: fit(vp.y0() as f32 * sub + h8 - c[1] * h8)?,
+                x: fit(cx + c[0] * w8)?,
+                y: fit(cy - c[1] * h8)?,
                 z: fit(((c[2] + 1.0) * 0.5 * 65535.0).clamp(0.0, 65535.0))?,
                 w: 1,
             })
@@ -283,14 +276,10 @@ impl<P: Projection> Camera<P> {
         if !mvp.is_finite() || !mv.is_finite() {
             return Err(ParamError::NotFinite("matrix"));
         }
-        let vp = &self.viewport;
-        let (w8, h8) = (vp.width() as f32 * 8.0, vp.height() as f32 * 8.0);
-        let sub = (1 << SUBPIXEL_BITS) as f32;
-        let (cx, cy) = (vp.x0() as f32 * sub + w8, vp.y0() as f32 * sub + h8);
+        let ([w8, h8], [cx, cy]) = self.viewport.scale_centre();
         let m = &mvp.m;
         let inv = 1.0 / (1u32 << frac) as f32;
-        let nm = mv.normal_matrix();
-        if P::PERSPECTIVE {
+        let ([x, y, z, w], space) = if P::PERSPECTIVE {
             // clip rows in one unit (so that they compare and divide):
             // x' = 8W·x_c, y' = −8H·y_c (x_sub = cx + x'/w'), z' = z_c, w' = w_c
             let rows = [
@@ -300,20 +289,10 @@ impl<P: Projection> Camera<P> {
                 scaled(m[3], 1.0, inv),
             ];
             let frac = rows.iter().map(Row::natural_frac).min().unwrap_or(0);
-            let [x, y, z, w] = rows.map(|r| Row::with_frac(r, frac));
             // the near plane at w_c = near (gluPerspective: w_c = −z_eye)
             let near_w = libm::roundf(libm::ldexpf(self.near, frac)).clamp(1.0, 1e9) as i32;
-            Ok(MeshTransform {
-                x,
-                y,
-                z,
-                w,
-                space: ClipSpace::perspective([cx as i32, cy as i32], near_w),
-                near: self.near,
-                normal: NormalRows::new(&nm),
-                eye: EyeRows::new(&mv, inv),
-                kind: PhantomData,
-            })
+            let space = ClipSpace::perspective([cx as i32, cy as i32], near_w);
+            (rows.map(|r| Row::with_frac(r, frac)), space)
         } else {
             // w = 1: x_sub = cx + 8W·x_c, y_sub = cy − 8H·y_c, z = (z_c + 1)/2·65535
             let row = |r: [f32; 4], k: f32, c: f32| {
@@ -321,18 +300,21 @@ impl<P: Projection> Camera<P> {
                 e[3] += c;
                 Row::new(e)
             };
-            Ok(MeshTransform {
-                x: row(m[0], w8, cx),
-                y: row(m[1], -h8, cy),
-                z: row(m[2], 65535.0 * 0.5, 65535.0 * 0.5),
-                w: Row::default(),
-                space: ClipSpace::SCREEN,
-                near: self.near,
-                normal: NormalRows::new(&nm),
-                eye: EyeRows::new(&mv, inv),
-                kind: PhantomData,
-            })
-        }
+            let z = row(m[2], 65535.0 * 0.5, 65535.0 * 0.5);
+            let rows = [row(m[0], w8, cx), row(m[1], -h8, cy), z, Row::default()];
+            (rows, ClipSpace::SCREEN)
+        };
+        Ok(MeshTransform {
+            x,
+            y,
+            z,
+            w,
+            space,
+            near: self.near,
+            normal: NormalRows::new(&mv.normal_matrix()),
+            eye: EyeRows::new(&mv, inv),
+            kind: PhantomData,
+        })
     }
 }
 
@@ -386,11 +368,7 @@ impl Row {
             x as i32
         };
         Row {
-            e: [
-                conv(r[0], frac + 16),
-                conv(r[1], frac + 16),
-                conv(r[2], frac + 16),
-            ],
+            e: [r[0], r[1], r[2]].map(|v| conv(v, frac + 16)),
             t: conv(r[3], frac),
             frac,
         }
@@ -458,15 +436,10 @@ impl NormalRows {
         // Each element is divided by the largest first (|v / max| ≤ 1 even
         // when max is subnormal, where 16384 / max would be infinite)
         let ok = max > 0.0 && max.is_finite();
-        let mut e = [[0i16; 3]; 3];
-        for (er, mr) in e.iter_mut().zip(nm) {
-            for (x, v) in er.iter_mut().zip(mr) {
-                if ok {
-                    *x = libm::roundf((v / max).clamp(-1.0, 1.0) * 16384.0) as i16;
-                }
-            }
+        let q = |v: f32| libm::roundf((v / max).clamp(-1.0, 1.0) * 16384.0) as i16;
+        NormalRows {
+            e: nm.map(|r| r.map(|v| if ok { q(v) } else { 0 })),
         }
-        NormalRows { e }
     }
 
     /// `N·n` for a Q14 normal: components in Q14 (up to √3·2 in magnitude).

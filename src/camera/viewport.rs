@@ -1,5 +1,6 @@
 //! The screen rectangle a camera draws into.
 
+use super::SUBPIXEL_BITS;
 use crate::error::ParamError;
 
 /// The largest viewport side and offset: 32768 pixels.
@@ -66,5 +67,17 @@ impl Viewport {
     /// Height in pixels.
     pub const fn height(&self) -> i32 {
         self.height
+    }
+
+    /// In `f32`: the sub-pixels per unit of normalised device coordinates
+    /// (`8·width`, `8·height`: half the viewport's side) and the viewport's
+    /// centre in sub-pixels.
+    pub(crate) fn scale_centre(&self) -> ([f32; 2], [f32; 2]) {
+        let sub = (1 << SUBPIXEL_BITS) as f32;
+        let (w8, h8) = (self.width as f32 * 8.0, self.height as f32 * 8.0);
+        (
+            [w8, h8],
+            [self.x0 as f32 * sub + w8, self.y0 as f32 * sub + h8],
+        )
     }
 }

@@ -21,6 +21,7 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 
 use crate::error::RenderError;
+use crate::render::check_len;
 
 /// The largest frame width and height the renderer accepts: 1024.
 pub(crate) const MAX_SIZE: u32 = 1024;
@@ -196,11 +197,9 @@ impl<'a, C: Copy> Buffers<'a, C> {
         depth: Option<&'a mut [u16]>,
     ) -> Result<Self, RenderError> {
         let needed = layout.width as usize * layout.band_rows as usize;
-        let lens = [Some(color.len()), depth.as_deref().map(<[u16]>::len)];
+        let lens = [color.len(), depth.as_deref().map_or(needed, <[u16]>::len)];
         for (which, got) in names.into_iter().zip(lens) {
-            if let Some(got) = got.filter(|&got| got < needed) {
-                return Err(RenderError::BufferTooSmall { which, needed, got });
-            }
+            check_len(which, needed, got)?;
         }
         Ok(Buffers {
             layout,
@@ -359,14 +358,7 @@ impl<'a, C: PixelColor> Bands<'a, C> {
     ///
     /// [`RenderError::BufferTooSmall`] for a short strip.
     pub fn with_second_strip(mut self, strip: &'a mut [C]) -> Result<Self, RenderError> {
-        let needed = self.buf.needed();
-        if strip.len() < needed {
-            return Err(RenderError::BufferTooSmall {
-                which: "second colour strip",
-                needed,
-                got: strip.len(),
-            });
-        }
+        check_len("second colour strip", self.buf.needed(), strip.len())?;
         self.spare = strip;
         Ok(self)
     }

@@ -172,17 +172,13 @@ impl<'a> Mesh<'a> {
     /// Vertex `i`'s position in model units, as `f32` (for tests and tools).
     pub fn position(&self, i: usize) -> Option<[f32; 3]> {
         let s = 1.0 / (1u32 << self.frac) as f32;
-        self.positions
-            .get(i)
-            .map(|p| [p[0] as f32 * s, p[1] as f32 * s, p[2] as f32 * s])
+        self.positions.get(i).map(|p| p.map(|c| c as f32 * s))
     }
 
     /// Vertex `i`'s normal as `f32`.
     pub fn normal(&self, i: usize) -> Option<[f32; 3]> {
         let s = 1.0 / NORMAL_ONE as f32;
-        self.normals
-            .get(i)
-            .map(|n| [n[0] as f32 * s, n[1] as f32 * s, n[2] as f32 * s])
+        self.normals.get(i).map(|n| n.map(|c| c as f32 * s))
     }
 }
 
@@ -255,11 +251,7 @@ impl<const V: usize, const T: usize> MeshData<V, T> {
             m.put(k, uv.point(k, V), scale);
             k += 1;
         }
-        let mut t = 0;
-        while t < T {
-            m.triangles[t] = uv.triangle(t, V);
-            t += 1;
-        }
+        uv.triangles(&mut m.triangles, V);
         m
     }
 

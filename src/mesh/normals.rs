@@ -20,7 +20,7 @@ pub enum Weighting {
 }
 
 /// Checks every index against `vertices` before anything is written.
-fn check_indices(tris: &[[u16; 3]], vertices: usize) -> Result<(), MeshError> {
+pub(crate) fn check_indices(tris: &[[u16; 3]], vertices: usize) -> Result<(), MeshError> {
     for (triangle, t) in tris.iter().enumerate() {
         for &index in t {
             if usize::from(index) >= vertices {
@@ -31,17 +31,11 @@ fn check_indices(tris: &[[u16; 3]], vertices: usize) -> Result<(), MeshError> {
     Ok(())
 }
 
-fn to64(p: [f32; 3]) -> [f64; 3] {
-    [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])]
-}
-
 /// `(b − a) × (c − a)` in `f64`: exact enough, and finite for any finite `f32`
 /// positions (|component| < 2·(6.8·10³⁸)² ≪ 10³⁰⁸). Non-finite for NaN or
 /// infinite positions.
 fn face_cross(p: &[[f32; 3]], t: [u16; 3]) -> [f64; 3] {
-    let a = to64(p[usize::from(t[0])]);
-    let b = to64(p[usize::from(t[1])]);
-    let c = to64(p[usize::from(t[2])]);
+    let [a, b, c] = t.map(|i| p[usize::from(i)].map(f64::from));
     cross3(sub3(b, a), sub3(c, a))
 }
 
@@ -52,11 +46,7 @@ fn unit_or_zero(v: [f64; 3]) -> [f32; 3] {
         return [0.0; 3];
     }
     let inv = 1.0 / libm::sqrt(len2);
-    [
-        (v[0] * inv) as f32,
-        (v[1] * inv) as f32,
-        (v[2] * inv) as f32,
-    ]
+    v.map(|c| (c * inv) as f32)
 }
 
 /// The unit normal of every triangle, `n̂ = normalize((b − a) × (c − a))`, into
@@ -156,12 +146,9 @@ pub(crate) fn vertex_normals_welded(
     let map = |i: u16| weld.get(usize::from(i)).map_or(0, |&w| usize::from(w));
     vertex_normals_mapped(positions, tris, weighting, map, out)?;
     for (i, &r) in weld.iter().enumerate() {
-        let r = usize::from(r);
-        if r != i {
-            if let Some(&v) = out.get(r) {
-                if let Some(o) = out.get_mut(i) {
-                    *o = v;
-                }
+        if let Some(&v) = out.get(usize::from(r)) {
+            if let Some(o) = out.get_mut(i) {
+                *o = v;
             }
         }
     }
@@ -183,20 +170,16 @@ fn vertex_normals_mapped(
     let out = &mut out[..n];
     out.fill([0.0; 3]);
     // Area: scale = 1 / max |(b − a) × (c − a)|, so every summand is ≤ 1.
-    let mut scale = 1.0f64;
-    if weighting == Weighting::Area {
-        let mut max = 0.0f64;
-        for &t in tris {
-            let c = face_cross(positions, t);
-            let m = c[0].abs().max(c[1].abs()).max(c[2].abs());
-            if m.is_finite() && m > max {
-                max = m;
-            }
-        }
-        if max > 0.0 {
-            scale = 1.0 / max;
-        }
-    }
+    let max = match weighting {
+        Weighting::Area => tris
+            .iter()
+            .map(|&t| face_cross(positions, t).map(f64::abs))
+            .map(|c| c[0].max(c[1]).max(c[2]))
+            .filter(|m| m.is_finite())
+            .fold(0.0, f64::max),
+        Weighting::Angle => 0.0,
+    };
+    let scale = if max > 0.0 { 1.0 / max } else { 1.0 };
     for &t in tris {
         let c = face_cross(positions, t);
         if !(c[0].is_finite() && c[1].is_finite() && c[2].is_finite()) {
@@ -204,10 +187,9 @@ fn vertex_normals_mapped(
         }
         match weighting {
             Weighting::Area => {
-                let w = [c[0] * scale, c[1] * scale, c[2] * scale];
                 for &i in &t {
                     if let Some(o) = out.get_mut(map(i)) {
-                        add(o, w);
+                        add(o, c.map(|x| x * scale));
                     }
                 }
             }
@@ -216,18 +198,17 @@ fn vertex_normals_mapped(
                 if !(len > 0.0 && len.is_finite()) {
                     continue;
                 }
-                let unit = [c[0] / len, c[1] / len, c[2] / len];
+                let unit = c.map(|x| x / len);
+                let p = t.map(|i| positions[usize::from(i)].map(f64::from));
                 for k in 0..3 {
                     // α = atan2(|e1 × e2|, e1 · e2), e1, e2 the edges leaving corner k.
-                    let p = to64(positions[usize::from(t[k])]);
-                    let e1 = sub3(to64(positions[usize::from(t[(k + 1) % 3])]), p);
-                    let e2 = sub3(to64(positions[usize::from(t[(k + 2) % 3])]), p);
+                    let e1 = sub3(p[(k + 1) % 3], p[k]);
+                    let e2 = sub3(p[(k + 2) % 3], p[k]);
                     let x = cross3(e1, e2);
                     let angle = libm::atan2(libm::sqrt(dot3(x, x)), dot3(e1, e2));
                     if angle.is_finite() {
-                        let w = [unit[0] * angle, unit[1] * angle, unit[2] * angle];
                         if let Some(o) = out.get_mut(map(t[k])) {
-                            add(o, w);
+                            add(o, unit.map(|u| u * angle));
                         }
                     }
                 }
@@ -235,7 +216,7 @@ fn vertex_normals_mapped(
         }
     }
     for o in out.iter_mut() {
-        *o = unit_or_zero(to64(*o));
+        *o = unit_or_zero(o.map(f64::from));
     }
     Ok(n)
 }

@@ -68,21 +68,13 @@ fn check_common(
 
 /// `p = centre + radius·n` in `f32` (`n` unit).
 fn place(centre: [f32; 3], radius: f32, n: [f32; 3]) -> [f32; 3] {
-    [
-        centre[0] + radius * n[0],
-        centre[1] + radius * n[1],
-        centre[2] + radius * n[2],
-    ]
+    core::array::from_fn(|c| centre[c] + radius * n[c])
 }
 
 /// `v / |v|` in `f64`, rounded to `f32`.
 fn unit(v: [f64; 3]) -> [f32; 3] {
     let len = libm::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    [
-        (v[0] / len) as f32,
-        (v[1] / len) as f32,
-        (v[2] / len) as f32,
-    ]
+    v.map(|c| (c / len) as f32)
 }
 
 /// The golden ratio, for the icosahedron's vertices `(0, ±1, ±φ)` and cyclic
@@ -185,11 +177,9 @@ pub fn icosphere(
             }
             let (pa, pb) = (positions[usize::from(a)], positions[usize::from(b)]);
             // m = (pa + pb)/|pa + pb|, projected onto the unit sphere
-            positions[*nv] = unit([
-                f64::from(pa[0]) + f64::from(pb[0]),
-                f64::from(pa[1]) + f64::from(pb[1]),
-                f64::from(pa[2]) + f64::from(pb[2]),
-            ]);
+            positions[*nv] = unit(core::array::from_fn(|c| {
+                f64::from(pa[c]) + f64::from(pb[c])
+            }));
             normals[*nv] = [f32::from_bits(key[0]), f32::from_bits(key[1]), 0.0];
             *nv += 1;
             (*nv - 1) as u16

@@ -1,5 +1,6 @@
 //! Per-vertex tangents for normal mapping, once at load time.
 
+use super::normals::check_indices;
 use crate::error::{check_len, finite_or, MeshError};
 use crate::num::{cross3, dot3};
 
@@ -84,35 +85,23 @@ pub(crate) fn tangents_into<T: Tangent>(
     check_len("normals", n, normals.len())?;
     check_len("uvs", n, uvs.len())?;
     check_len("out", n, out.len())?;
-    for p in positions.iter().chain(normals.iter()) {
-        for &c in p {
-            finite_or("positions/normals", c, MeshError::NotFinite)?;
-        }
+    for &c in positions.iter().chain(normals).flatten() {
+        finite_or("positions/normals", c, MeshError::NotFinite)?;
     }
-    for t in uvs {
-        for &c in t {
-            finite_or("texcoords", c, MeshError::NotFinite)?;
-        }
+    for &c in uvs.iter().flatten() {
+        finite_or("texcoords", c, MeshError::NotFinite)?;
     }
-    for (k, tri) in triangles.iter().enumerate() {
-        if let Some(&index) = tri.iter().find(|&&i| usize::from(i) >= n) {
-            return Err(MeshError::IndexOutOfRange { triangle: k, index });
-        }
-    }
+    check_indices(triangles, n)?;
     // pass 1 (validation, no writes): every referenced vertex must get a tangent
     let mut result = Ok(());
-    accumulate(positions, normals, uvs, triangles, |v, t| {
+    accumulate(positions, uvs, triangles, |v, t| {
         if result.is_ok() {
-            if let Err(e) = t {
-                result = Err(e);
-            } else if let Err(e) = finish(normals, v, t.unwrap_or_default()) {
-                result = Err(e);
-            }
+            result = t.and_then(|t| finish(normals, v, t)).map(|_| ());
         }
     });
     result?;
     // pass 2: write
-    accumulate(positions, normals, uvs, triangles, |v, t| {
+    accumulate(positions, uvs, triangles, |v, t| {
         if let (Some(o), Ok(Ok(r))) = (out.get_mut(v), t.map(|t| finish(normals, v, t))) {
             *o = T::from_f32(r);
         }
@@ -128,12 +117,10 @@ pub(crate) fn tangents_into<T: Tangent>(
 /// per block.
 fn accumulate(
     positions: &[[f32; 3]],
-    normals: &[[f32; 3]],
     uvs: &[[f32; 2]],
     triangles: &[[u16; 3]],
     mut visit: impl FnMut(usize, Result<[[f64; 3]; 2], MeshError>),
 ) {
-    let _ = normals;
     const BLOCK: usize = 64;
     let n = positions.len();
     let mut base = 0;
@@ -147,28 +134,20 @@ fn accumulate(
             if !idx.iter().any(|&i| i >= base && i < end) {
                 continue;
             }
-            let Some(d) = triangle_derivatives(positions, uvs, idx) else {
-                for &i in &idx {
-                    if i >= base && i < end {
-                        if let Some(u) = used.get_mut(i - base) {
-                            *u = true;
-                        }
-                    }
-                }
-                continue;
-            };
+            // a triangle of zero uv area marks its vertices used, not valid
+            let d = triangle_derivatives(positions, uvs, idx);
             for &i in &idx {
                 if i >= base && i < end {
                     let k = i - base;
-                    if let (Some(s), Some(u), Some(v)) =
-                        (sums.get_mut(k), used.get_mut(k), valid.get_mut(k))
-                    {
+                    if let Some(u) = used.get_mut(k) {
+                        *u = true;
+                    }
+                    if let (Some(d), Some(s), Some(v)) = (d, sums.get_mut(k), valid.get_mut(k)) {
                         for a in 0..2 {
                             for c in 0..3 {
                                 s[a][c] += d[a][c];
                             }
                         }
-                        *u = true;
                         *v = true;
                     }
                 }

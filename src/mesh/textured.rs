@@ -170,11 +170,7 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
             m.put(k, uv.point(k, V), c, t, scale);
             k += 1;
         }
-        let mut t = 0;
-        while t < T {
-            m.triangles[t] = uv.triangle(t, V);
-            t += 1;
-        }
+        uv.triangles(&mut m.triangles, V);
         m
     }
 
@@ -226,12 +222,8 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
         while i < ny {
             let mut j = 0;
             while j < nx {
-                let (a, b, c, d) = (
-                    at(nx, i, j),
-                    at(nx, i, j + 1),
-                    at(nx, i + 1, j),
-                    at(nx, i + 1, j + 1),
-                );
+                let (a, b) = (at(nx, i, j), at(nx, i, j + 1));
+                let (c, d) = (at(nx, i + 1, j), at(nx, i + 1, j + 1));
                 m.triangles[k] = [a, c, d];
                 m.triangles[k + 1] = [a, d, b];
                 k += 2;

@@ -86,8 +86,17 @@ impl Uv {
         ([u, i as f64 / self.stacks as f64], [cp, 0.0, -sp])
     }
 
+    /// The triangles of `v` vertices, as many as `out` holds.
+    pub const fn triangles(self, out: &mut [[u16; 3]], v: usize) {
+        let mut t = 0;
+        while t < out.len() {
+            out[t] = self.triangle(t, v);
+            t += 1;
+        }
+    }
+
     /// The vertices of triangle `t` of `v` vertices.
-    pub const fn triangle(self, t: usize, v: usize) -> [u16; 3] {
+    const fn triangle(self, t: usize, v: usize) -> [u16; 3] {
         let per = 2 * (self.stacks - 1);
         let (j, r) = (t / per, t % per);
         if r == 0 {

@@ -4,7 +4,7 @@ use super::bins::{self, Bins};
 use super::refine::{RefineStats, Refined};
 use super::tri::{self, ClipCorner, Resume};
 use super::vertex::{self, CachedVertex};
-use super::{BandView, DrawBand, Layout, RenderError};
+use super::{check_len, BandView, DrawBand, Layout, RenderError};
 use crate::camera::SUBPIXEL_BITS;
 use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
@@ -185,11 +185,7 @@ mod refinement {
             t: &MeshTransform<P>,
             kernel: &K,
         ) -> Result<Refined<'a, V>, RenderError> {
-            refine::build(mesh, t, kernel, self).map_err(|e| RenderError::BufferTooSmall {
-                which: e.buffer,
-                needed: e.needed,
-                got: e.got,
-            })
+            refine::build(mesh, t, kernel, self)
         }
     }
 }
@@ -265,11 +261,8 @@ impl<V: Zeroed, const NV: usize, const NB: usize, const NC: usize> Default
 /// [`Bands::render`](crate::framebuffer::Bands::render) or
 /// [`FullFrame::render`](crate::framebuffer::FullFrame::render) through [`DrawBand`].
 ///
-/// Memory, all the caller's ([`MeshMemory`] or [`MeshBuffers`]):
-/// - one [`CachedVertex`] per mesh vertex;
-/// - the bins: see [`bins_len`](super::bins_len);
-/// - the resume records: twice the largest number of triangles crossing one
-///   band boundary (none for a full frame); [`MeshDraw::new`] reports the need.
+/// Memory, all the caller's: [`MeshMemory`] (or [`MeshBuffers`]) lists it;
+/// [`MeshDraw::new`] reports the resume records a frame needs.
 ///
 /// The projection `P` comes from the transform's type:
 /// - [`Orthographic`]: values interpolated screen-linearly (exact for an
@@ -372,13 +365,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         if K::NEEDS_TANGENT && mesh.tangents().is_empty() {
             return Err(RenderError::MissingAttribute("tangents"));
         }
-        if cache.len() < mesh.vertex_count() {
-            return Err(RenderError::BufferTooSmall {
-                which: "vertex cache",
-                needed: mesh.vertex_count(),
-                got: cache.len(),
-            });
-        }
+        check_len("vertex cache", mesh.vertex_count(), cache.len())?;
         if !options.lit {
             vertex::stage(&mesh, transform, &kernel, 0, cache);
         }
@@ -501,15 +488,7 @@ impl<K: Kernel, P: Projection> Binned<'_, K, P> {
     /// [`RenderError::BufferTooSmall`] for fewer than the resume records this
     /// frame needs.
     fn check_carry(&self, got: usize) -> Result<(), RenderError> {
-        let needed = self.carry_needed();
-        if got < needed {
-            return Err(RenderError::BufferTooSmall {
-                which: "carry",
-                needed,
-                got,
-            });
-        }
-        Ok(())
+        check_len("carry", self.carry_needed(), got)
     }
 
     /// Vertex `i` of the mesh and the refinement's new vertices after it.

@@ -60,6 +60,7 @@
 //!   T-junction).
 
 use super::vertex::{self, CachedVertex};
+use super::RenderError;
 use crate::camera::{MeshTransform, Projection};
 use crate::mesh::Mesh;
 use crate::num::{at3, Zeroed};
@@ -237,13 +238,6 @@ impl<V> Refined<'_, V> {
             .binary_search_by(|r| usize::from(r[3]).cmp(&t))
             .is_ok()
     }
-}
-
-/// Why the refinement's memory does not fit the mesh.
-pub(crate) struct Short {
-    pub buffer: &'static str,
-    pub needed: usize,
-    pub got: usize,
 }
 
 /// The class of a vertex with eye-space normal `n` and eye-space position
@@ -465,17 +459,11 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
     t: &MeshTransform<P>,
     kernel: &K,
     refine: Refine<'a, K::Vertex>,
-) -> Result<Refined<'a, K::Vertex>, Short> {
+) -> Result<Refined<'a, K::Vertex>, RenderError> {
     let tau = u32::from(refine.threshold.min(16384));
     let m = refine.memory;
     let nv = mesh.vertex_count();
-    if m.vertex_words.len() < nv {
-        return Err(Short {
-            buffer: "refine vertex words",
-            needed: nv,
-            got: m.vertex_words.len(),
-        });
-    }
+    super::check_len("refine vertex words", nv, m.vertex_words.len())?;
     // the budget: every per-new-vertex slice, 4 triangles per new vertex,
     // and indices within u16
     let mut budget = m

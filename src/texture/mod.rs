@@ -4,11 +4,8 @@
 //! A [`Texture`] borrows texel data (`Rgb565` words, 8-bit grey levels, or
 //! 8-bit indices into an `Rgb565` palette) of a power-of-two size, 1 … 32 768
 //! texels a side. [`TexCoord`]s are Q16 (`1 << 16` is one whole texture), so
-//! `u = (i + ½)/w` is the centre of texel column `i`, as in OpenGL.
-//! [`Wrap::Repeat`] takes coordinates modulo the texture (any `i32`),
-//! [`Wrap::Clamp`] clamps to the edge texels (`GL_CLAMP_TO_EDGE`).
-//! [`Filter::Nearest`] returns the texel containing the point,
-//! [`Filter::Bilinear`] blends the four nearest centres with 8-bit weights.
+//! `u = (i + ½)/w` is the centre of texel column `i`, as in OpenGL; so are
+//! the [`Wrap`] modes (`Repeat` for any `i32` coordinate) and [`Filter`]s.
 //! 32-bit integers only (no division, float or table); a sample never panics
 //! and never reads outside the data.
 //!
@@ -56,7 +53,7 @@ pub enum Texels<'a> {
 }
 
 impl Texels<'_> {
-    fn len(&self) -> usize {
+    const fn len(&self) -> usize {
         match self {
             Texels::Rgb565(d) => d.len(),
             Texels::Gray8(d) => d.len(),
@@ -173,23 +170,13 @@ impl<'a> Texture<'a> {
                 log2: if log2_w > log2_h { log2_w } else { log2_h },
             });
         }
-        let needed = 1usize << (log2_w + log2_h);
-        let len = match texels {
-            Texels::Rgb565(d) => d.len(),
-            Texels::Gray8(d) => d.len(),
-            Texels::Palette8 { indices, palette } => {
-                if palette.len() > 256 {
-                    return Err(TextureError::PaletteTooLong);
-                }
-                indices.len()
+        if let Texels::Palette8 { palette, .. } = texels {
+            if palette.len() > 256 {
+                return Err(TextureError::PaletteTooLong);
             }
-        };
-        if len < needed {
-            return Err(TextureError::BufferTooSmall {
-                which: "texels",
-                needed,
-                got: len,
-            });
+        }
+        if let Err(e) = check_len("texels", 1 << (log2_w + log2_h), texels.len()) {
+            return Err(e);
         }
         Ok(Self {
             texels,
@@ -287,6 +274,14 @@ impl<'a> Texture<'a> {
             }
         }
     }
+}
+
+/// `Ok` when `got ≥ needed`, else [`TextureError::BufferTooSmall`] naming `which`.
+const fn check_len(which: &'static str, needed: usize, got: usize) -> Result<(), TextureError> {
+    if got < needed {
+        return Err(TextureError::BufferTooSmall { which, needed, got });
+    }
+    Ok(())
 }
 
 /// An `i64` texel index to `i32` keeping its value modulo 2^16 (enough for

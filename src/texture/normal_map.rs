@@ -1,7 +1,7 @@
 //! Normal maps and bump maps: per-texel tangent-space normals for
 //! [`NormalMapped`](crate::shade::NormalMapped) (see [`NormalMap`]).
 
-use super::{TexCoord, Wrap};
+use super::{check_len, TexCoord, Wrap};
 use crate::error::TextureError;
 
 /// The flat normal `(0, 0, 1)`.
@@ -111,13 +111,7 @@ impl<'a> NormalMap<'a> {
         wrap: Wrap,
     ) -> Result<Self, TextureError> {
         let needed = texel_count(w_log2, h_log2)?;
-        if texels.len() < needed {
-            return Err(TextureError::BufferTooSmall {
-                which: "texels",
-                needed,
-                got: texels.len(),
-            });
-        }
+        check_len("texels", needed, texels.len())?;
         let texels = texels.get(..needed).unwrap_or(texels);
         if let Some(index) = texels.iter().position(|&t| !is_unit_texel(t)) {
             return Err(TextureError::NotUnit {
@@ -161,11 +155,7 @@ impl<'a> NormalMap<'a> {
     /// Texel `(x, y)` (any integers: wrapped or clamped by the map's mode).
     #[inline(always)]
     pub fn texel(&self, x: i32, y: i32) -> [i16; 3] {
-        let s = self.nearest(0);
-        match self.wrap {
-            Wrap::Repeat => s.get::<true>(x, y),
-            Wrap::Clamp => s.get::<false>(x, y),
-        }
+        self.sample_fixed(x, y, 0)
     }
 
     /// The texel containing the point `c` (nearest sampling).
@@ -312,13 +302,7 @@ impl NormalMap<'_> {
     ) -> Result<(), TextureError> {
         let needed = texel_count(w_log2, h_log2)?;
         for got in [heights.len(), out.len()] {
-            if got < needed {
-                return Err(TextureError::BufferTooSmall {
-                    which: "heights or out",
-                    needed,
-                    got,
-                });
-            }
+            check_len("heights or out", needed, got)?;
         }
         if !scale.is_finite() {
             return Err(TextureError::NotFinite("scale"));
