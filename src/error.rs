@@ -199,19 +199,27 @@ pub(crate) fn finite_all<const N: usize>(
     Ok(v)
 }
 
-/// `Ok` when `got ≥ needed` (a `const fn`: [`Mesh`](crate::mesh::Mesh)'s
-/// constructors use it).
-pub(crate) const fn check_len(
-    which: &'static str,
-    needed: usize,
-    got: usize,
-) -> Result<(), MeshError> {
-    if got < needed {
-        Err(MeshError::BufferTooSmall { which, needed, got })
-    } else {
-        Ok(())
-    }
+/// `check_len(which, needed, got)`: `Ok` when `got ≥ needed`, else the
+/// error's `BufferTooSmall` naming `which` (a `const fn`:
+/// [`Mesh`](crate::mesh::Mesh)'s constructors use it).
+macro_rules! check_len {
+    ($($err:ident $(<$g:ident>)?),*) => {$(
+        impl$(<$g>)? $err$(<$g>)? {
+            pub(crate) const fn check_len(
+                which: &'static str,
+                needed: usize,
+                got: usize,
+            ) -> Result<(), Self> {
+                if got < needed {
+                    Err(Self::BufferTooSmall { which, needed, got })
+                } else {
+                    Ok(())
+                }
+            }
+        }
+    )*};
 }
+check_len!(MeshError, TextureError, RenderError<E>);
 
 /// Checks that `v` is finite and not negative.
 pub(crate) fn non_negative(name: &'static str, v: f32) -> Result<f32, ParamError> {

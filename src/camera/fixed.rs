@@ -55,7 +55,7 @@ static SIN_Q30: [i32; 129] = {
     let mut t = [0i32; 129];
     let mut k = 0;
     while k <= 128 {
-        let (s, _) = crate::mesh::sin_cos(k as f64 * core::f64::consts::PI / 256.0);
+        let (s, _) = crate::num::sin_cos(k as f64 * core::f64::consts::PI / 256.0);
         let v = s * (1u64 << 30) as f64;
         t[k] = (if v >= 0.0 { v + 0.5 } else { v - 0.5 }) as i32;
         k += 1;

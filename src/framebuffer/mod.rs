@@ -21,7 +21,6 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 
 use crate::error::RenderError;
-use crate::render::check_len;
 
 /// The largest frame width and height the renderer accepts: 1024.
 pub(crate) const MAX_SIZE: u32 = 1024;
@@ -199,7 +198,7 @@ impl<'a, C: Copy> Buffers<'a, C> {
         let needed = layout.width as usize * layout.band_rows as usize;
         let lens = [color.len(), depth.as_deref().map_or(needed, <[u16]>::len)];
         for (which, got) in names.into_iter().zip(lens) {
-            check_len(which, needed, got)?;
+            RenderError::check_len(which, needed, got)?;
         }
         Ok(Buffers {
             layout,
@@ -358,7 +357,7 @@ impl<'a, C: PixelColor> Bands<'a, C> {
     ///
     /// [`RenderError::BufferTooSmall`] for a short strip.
     pub fn with_second_strip(mut self, strip: &'a mut [C]) -> Result<Self, RenderError> {
-        check_len("second colour strip", self.buf.needed(), strip.len())?;
+        RenderError::check_len("second colour strip", self.buf.needed(), strip.len())?;
         self.spare = strip;
         Ok(self)
     }

@@ -4,7 +4,6 @@
 
 use super::compact::{round_i16, Mesh, NORMAL_ONE, TEXCOORD_FRAC};
 use super::normals::{vertex_normals_welded, Weighting};
-use crate::error::check_len;
 use crate::error::MeshError;
 use crate::texture::{Filter, TexCoord, Texture, TEX_FRAC};
 
@@ -26,7 +25,7 @@ pub(crate) fn weld_by_position(
     if n > 1 << 16 {
         return Err(MeshError::TooManyVertices { needed: n });
     }
-    check_len("out", n, out.len())?;
+    MeshError::check_len("out", n, out.len())?;
     for (i, p) in positions.iter().enumerate() {
         let r = positions.iter().position(|q| q == p).unwrap_or(i);
         if let Some(o) = out.get_mut(i) {
@@ -130,7 +129,7 @@ pub fn displace(
         ("positions", positions.len()),
         ("normals", normals.len()),
     ] {
-        check_len(which, n, got)?;
+        MeshError::check_len(which, n, got)?;
     }
     weld_by_position(mesh.positions(), weld)?;
     let weld = weld.get(..n).unwrap_or(&[]);
@@ -204,9 +203,9 @@ pub fn to_compact(
         return Err(MeshError::OutOfRange("frac"));
     }
     let n = positions.len();
-    check_len("normals", n, normals.len())?;
-    check_len("out_positions", n, out_positions.len())?;
-    check_len("out_normals", n, out_normals.len())?;
+    MeshError::check_len("normals", n, normals.len())?;
+    MeshError::check_len("out_positions", n, out_positions.len())?;
+    MeshError::check_len("out_normals", n, out_normals.len())?;
     let scale = f64::from(1u32 << frac);
     let fit = |x: f64| (-32768.5..32767.5).contains(&x);
     for (vertex, ((p, m), (op, on))) in positions

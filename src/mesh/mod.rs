@@ -40,7 +40,6 @@ mod textured;
 mod torus_knot;
 mod uv;
 
-pub(crate) use compact::sin_cos;
 pub use compact::{Mesh, MeshData, NORMAL_ONE, TEXCOORD_FRAC};
 pub use displace::{displace, to_compact};
 pub use normals::{face_normals, vertex_normals, Weighting};

@@ -1,7 +1,6 @@
 //! Face and vertex normals of an indexed triangle mesh (load-time work, `f32`
 //! storage with `f64` intermediate products).
 
-use crate::error::check_len;
 use crate::error::MeshError;
 use crate::num::{cross3, dot3, sub3};
 
@@ -74,7 +73,7 @@ pub fn face_normals(
     tris: &[[u16; 3]],
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
-    check_len("out", tris.len(), out.len())?;
+    MeshError::check_len("out", tris.len(), out.len())?;
     check_indices(tris, positions.len())?;
     for (o, &t) in out.iter_mut().zip(tris) {
         *o = unit_or_zero(face_cross(positions, t));
@@ -138,7 +137,7 @@ pub(crate) fn vertex_normals_welded(
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
     let n = positions.len();
-    check_len("weld", n, weld.len())?;
+    MeshError::check_len("weld", n, weld.len())?;
     let weld = weld.get(..n).unwrap_or(&[]);
     if let Some(&index) = weld.iter().find(|&&w| usize::from(w) >= n) {
         return Err(MeshError::IndexOutOfRange { triangle: 0, index });
@@ -165,7 +164,7 @@ fn vertex_normals_mapped(
     out: &mut [[f32; 3]],
 ) -> Result<usize, MeshError> {
     let n = positions.len();
-    check_len("out", n, out.len())?;
+    MeshError::check_len("out", n, out.len())?;
     check_indices(tris, n)?;
     let out = &mut out[..n];
     out.fill([0.0; 3]);

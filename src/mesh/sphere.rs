@@ -1,7 +1,7 @@
 //! The icosphere generator into caller-owned arrays, and the UV sphere's
 //! counts (its layout: `uv.rs`).
 
-use crate::error::{check_len, finite_or, MeshError};
+use crate::error::{finite_or, MeshError};
 
 /// The highest subdivision level [`icosphere`] accepts: 4 (2562 vertices, 5120
 /// triangles).
@@ -61,9 +61,9 @@ fn check_common(
     if counts.0 > 1 << 16 {
         return Err(MeshError::TooManyVertices { needed: counts.0 });
     }
-    check_len("positions", counts.0, positions.len())?;
-    check_len("normals", counts.0, normals.len())?;
-    check_len("triangles", counts.1, tris.len())
+    MeshError::check_len("positions", counts.0, positions.len())?;
+    MeshError::check_len("normals", counts.0, normals.len())?;
+    MeshError::check_len("triangles", counts.1, tris.len())
 }
 
 /// `p = centre + radius·n` in `f32` (`n` unit).

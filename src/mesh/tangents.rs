@@ -1,7 +1,7 @@
 //! Per-vertex tangents for normal mapping, once at load time.
 
 use super::normals::check_indices;
-use crate::error::{check_len, finite_or, MeshError};
+use crate::error::{finite_or, MeshError};
 use crate::num::{cross3, dot3};
 
 /// Per-vertex tangents from positions, unit normals, texture coordinates and
@@ -82,9 +82,9 @@ pub(crate) fn tangents_into<T: Tangent>(
     out: &mut [T],
 ) -> Result<(), MeshError> {
     let n = positions.len();
-    check_len("normals", n, normals.len())?;
-    check_len("uvs", n, uvs.len())?;
-    check_len("out", n, out.len())?;
+    MeshError::check_len("normals", n, normals.len())?;
+    MeshError::check_len("uvs", n, uvs.len())?;
+    MeshError::check_len("out", n, out.len())?;
     for &c in positions.iter().chain(normals).flatten() {
         finite_or("positions/normals", c, MeshError::NotFinite)?;
     }

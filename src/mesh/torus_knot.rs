@@ -2,7 +2,8 @@
 //! built at compile time into a [`MeshData`] (flash, no RAM, no floating
 //! point at run time).
 
-use super::compact::{round_i16, sin_cos, MeshData, NORMAL_ONE};
+use super::compact::{round_i16, MeshData, NORMAL_ONE};
+use crate::num::sin_cos;
 use core::f64::consts::PI;
 
 /// The shape of a torus knot: the curve winds `p` times around the `z` axis

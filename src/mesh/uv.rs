@@ -7,7 +7,7 @@
 //! The layouts are documented on those two functions. Per slice, the
 //! triangles run from the north fan through two per band to the south fan.
 
-use super::compact::sin_cos;
+use crate::num::sin_cos;
 use core::f64::consts::PI;
 
 /// A UV sphere's sizes and seam.

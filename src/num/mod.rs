@@ -36,6 +36,7 @@ mod q30;
 pub(crate) mod recip;
 pub(crate) use recip::div_small;
 pub(crate) mod rsqrt;
+mod trig;
 mod vector;
 pub(crate) mod wide;
 
@@ -46,6 +47,7 @@ pub(crate) use matrix::{cof3, cross3, dot3, sub3};
 pub use pow::Exponent;
 pub use q14::Q14;
 pub use q30::Q30;
+pub(crate) use trig::sin_cos;
 pub(crate) use vector::point_sub;
 pub use vector::{point_from_f32, Point3, Vec3};
 

@@ -4,7 +4,7 @@ use super::bins::{self, Bins};
 use super::refine::{RefineStats, Refined};
 use super::tri::{self, ClipCorner, Resume};
 use super::vertex::{self, CachedVertex};
-use super::{check_len, BandView, DrawBand, Layout, RenderError};
+use super::{BandView, DrawBand, Layout, RenderError};
 use crate::camera::SUBPIXEL_BITS;
 use crate::camera::{MeshTransform, Orthographic, Projection};
 use crate::mesh::Mesh;
@@ -365,7 +365,7 @@ impl<'a, K: Kernel, P: Projection> MeshDraw<'a, K, P> {
         if K::NEEDS_TANGENT && mesh.tangents().is_empty() {
             return Err(RenderError::MissingAttribute("tangents"));
         }
-        check_len("vertex cache", mesh.vertex_count(), cache.len())?;
+        RenderError::check_len("vertex cache", mesh.vertex_count(), cache.len())?;
         if !options.lit {
             vertex::stage(&mesh, transform, &kernel, 0, cache);
         }
@@ -488,7 +488,7 @@ impl<K: Kernel, P: Projection> Binned<'_, K, P> {
     /// [`RenderError::BufferTooSmall`] for fewer than the resume records this
     /// frame needs.
     fn check_carry(&self, got: usize) -> Result<(), RenderError> {
-        check_len("carry", self.carry_needed(), got)
+        RenderError::check_len("carry", self.carry_needed(), got)
     }
 
     /// Vertex `i` of the mesh and the refinement's new vertices after it.

@@ -40,11 +40,3 @@ use crate::framebuffer::{BandView, DrawBand, Layout};
 pub const fn bins_len(triangles: usize, bands: usize) -> usize {
     2 * (bands + 1) + triangles
 }
-
-/// `Ok` when `got ≥ needed`, else [`RenderError::BufferTooSmall`] naming `which`.
-pub(crate) fn check_len(which: &'static str, needed: usize, got: usize) -> Result<(), RenderError> {
-    if got < needed {
-        return Err(RenderError::BufferTooSmall { which, needed, got });
-    }
-    Ok(())
-}

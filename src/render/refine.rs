@@ -463,7 +463,7 @@ pub(crate) fn build<'a, K: Kernel, P: Projection>(
     let tau = u32::from(refine.threshold.min(16384));
     let m = refine.memory;
     let nv = mesh.vertex_count();
-    super::check_len("refine vertex words", nv, m.vertex_words.len())?;
+    RenderError::check_len("refine vertex words", nv, m.vertex_words.len())?;
     // the budget: every per-new-vertex slice, 4 triangles per new vertex,
     // and indices within u16
     let mut budget = m

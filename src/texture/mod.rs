@@ -175,7 +175,7 @@ impl<'a> Texture<'a> {
                 return Err(TextureError::PaletteTooLong);
             }
         }
-        if let Err(e) = check_len("texels", 1 << (log2_w + log2_h), texels.len()) {
+        if let Err(e) = TextureError::check_len("texels", 1 << (log2_w + log2_h), texels.len()) {
             return Err(e);
         }
         Ok(Self {
@@ -274,14 +274,6 @@ impl<'a> Texture<'a> {
             }
         }
     }
-}
-
-/// `Ok` when `got ≥ needed`, else [`TextureError::BufferTooSmall`] naming `which`.
-const fn check_len(which: &'static str, needed: usize, got: usize) -> Result<(), TextureError> {
-    if got < needed {
-        return Err(TextureError::BufferTooSmall { which, needed, got });
-    }
-    Ok(())
 }
 
 /// An `i64` texel index to `i32` keeping its value modulo 2^16 (enough for

@@ -1,7 +1,7 @@
 //! Normal maps and bump maps: per-texel tangent-space normals for
 //! [`NormalMapped`](crate::shade::NormalMapped) (see [`NormalMap`]).
 
-use super::{check_len, TexCoord, Wrap};
+use super::{TexCoord, Wrap};
 use crate::error::TextureError;
 
 /// The flat normal `(0, 0, 1)`.
@@ -111,7 +111,7 @@ impl<'a> NormalMap<'a> {
         wrap: Wrap,
     ) -> Result<Self, TextureError> {
         let needed = texel_count(w_log2, h_log2)?;
-        check_len("texels", needed, texels.len())?;
+        TextureError::check_len("texels", needed, texels.len())?;
         let texels = texels.get(..needed).unwrap_or(texels);
         if let Some(index) = texels.iter().position(|&t| !is_unit_texel(t)) {
             return Err(TextureError::NotUnit {
@@ -302,7 +302,7 @@ impl NormalMap<'_> {
     ) -> Result<(), TextureError> {
         let needed = texel_count(w_log2, h_log2)?;
         for got in [heights.len(), out.len()] {
-            check_len("heights or out", needed, got)?;
+            TextureError::check_len("heights or out", needed, got)?;
         }
         if !scale.is_finite() {
             return Err(TextureError::NotFinite("scale"));
