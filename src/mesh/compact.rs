@@ -240,11 +240,7 @@ impl<const V: usize, const T: usize> MeshData<V, T> {
             frac,
         };
         let scale = (1u32 << frac) as f64;
-        let uv = Uv {
-            stacks,
-            slices,
-            seam: false,
-        };
+        let uv = Uv::new(stacks, slices, false);
         let mut k = 0;
         while k < V {
             m.put(k, uv.point(k, V), scale);

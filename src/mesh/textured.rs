@@ -159,11 +159,7 @@ impl<const V: usize, const T: usize> TexturedMeshData<V, T> {
                 "positions of a unit sphere need frac <= 14",
             ],
         );
-        let uv = Uv {
-            stacks,
-            slices,
-            seam: true,
-        };
+        let uv = Uv::new(stacks, slices, true);
         let mut k = 0;
         while k < V {
             let (c, t) = uv.texel(k, V);

@@ -19,6 +19,15 @@ pub(crate) struct Uv {
 }
 
 impl Uv {
+    /// `stacks` × `slices`, with or without a seam of duplicated vertices.
+    pub const fn new(stacks: usize, slices: usize, seam: bool) -> Self {
+        Uv {
+            stacks,
+            slices,
+            seam,
+        }
+    }
+
     /// Vertices in the first ring (the north pole's).
     const fn ring0(self) -> usize {
         if self.seam {
@@ -139,11 +148,7 @@ mod tests {
     fn every_layout_is_a_closed_outward_sphere() {
         for (stacks, slices) in [(2, 3), (2, 4), (3, 3), (5, 7), (16, 24), (40, 3), (3, 64)] {
             for seam in [false, true] {
-                let uv = Uv {
-                    stacks,
-                    slices,
-                    seam,
-                };
+                let uv = Uv::new(stacks, slices, seam);
                 let (v, t) = if seam {
                     textured_sphere_counts(stacks, slices)
                 } else {
