@@ -43,7 +43,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         1.1,
         1.0,
         10.0,
-        Viewport::new(0, 0, SIZE as i32, SIZE as i32)?,
+        Viewport::new(0, 0, SIZE, SIZE)?,
     )?
     .with_view(Mat4::translate([0.0, 0.0, -5.0]));
     let light = DirectionalLight::<Q14>::white([-0.6, 1.0, 1.0])?;

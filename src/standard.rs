@@ -33,16 +33,10 @@ pub static SPHERE: MeshData<{ COUNTS.0 }, { COUNTS.1 }> = MeshData::uv_sphere(16
 /// The camera.
 pub fn camera() -> Result<Camera<Orthographic>, ParamError> {
     let s = 1.0 / 0.85;
-    Ok(Camera::orthographic(
-        -s,
-        s,
-        -s,
-        s,
-        1.0,
-        10.0,
-        Viewport::new(0, 0, SIZE as i32, SIZE as i32)?,
-    )?
-    .with_view(Mat4::translate([0.0, 0.0, -5.0])))
+    Ok(
+        Camera::orthographic(-s, s, -s, s, 1.0, 10.0, Viewport::new(0, 0, SIZE, SIZE)?)?
+            .with_view(Mat4::translate([0.0, 0.0, -5.0])),
+    )
 }
 
 /// The sphere's fixed-point transform (model matrix: identity).

@@ -460,7 +460,7 @@ fn mesh_object(sc: &Scene, o: &Object, frac: u8) -> MeshObject {
     let lens = sc
         .lens
         .expect("a mesh object needs the camera's parameters");
-    let vp = Viewport::new(0, 0, sc.width as i32, sc.height as i32).unwrap();
+    let vp = Viewport::new(0, 0, sc.width, sc.height).unwrap();
     let one = (1u32 << frac) as f32;
     let transform = match lens {
         Lens::Ortho([l, r, b, t, n, f]) => AnyTransform::Ortho(

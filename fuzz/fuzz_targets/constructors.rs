@@ -50,7 +50,7 @@ fn tier<S: Scalar>(inp: &mut Input) {
 fn geometry(inp: &mut Input) {
     let _ = Exponent::new("e", inp.f32());
     let _ = GammaTable::<256>::new(Transfer::Power(inp.f32()));
-    let vp = Viewport::new(inp.i32(), inp.i32(), inp.i32(), inp.i32());
+    let vp = Viewport::new(inp.i32(), inp.i32(), inp.u32(), inp.u32());
     let vp = vp.unwrap_or_else(|_| Viewport::new(0, 0, 64, 64).unwrap());
     let view = match inp.u8() % 5 {
         0 => Mat4::translate(inp.f3()),

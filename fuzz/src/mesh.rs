@@ -142,7 +142,7 @@ pub fn run(data: &[u8]) {
         cull: [Cull::None, Cull::Back, Cull::Front][usize::from(inp.u8() % 3)],
         refine: None,
     };
-    let Ok(vp) = Viewport::new(0, 0, size as i32, height as i32) else {
+    let Ok(vp) = Viewport::new(0, 0, size, height) else {
         return;
     };
     let model = matrix(&mut inp);

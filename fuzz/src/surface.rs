@@ -98,7 +98,7 @@ fn view(inp: &mut Input) -> View {
 /// perspective); nothing for a typed error.
 macro_rules! with_transform {
     ($v:expr, $mesh:expr, |$t:ident| $body:expr) => {{
-        let vp = Viewport::new(0, 0, $v.size as i32, $v.size as i32).unwrap();
+        let vp = Viewport::new(0, 0, $v.size as u32, $v.size as u32).unwrap();
         if $v.perspective {
             let cam = Camera::perspective(0.8, 1.0, 0.5, 20.0, vp)
                 .unwrap()

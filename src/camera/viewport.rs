@@ -25,17 +25,20 @@ pub struct Viewport {
 }
 
 impl Viewport {
-    /// A viewport with its top-left corner at pixel `(x0, y0)`.
+    /// A viewport with its top-left corner at pixel `(x0, y0)`: a corner is an
+    /// `i32` like embedded-graphics' `Point`, a side a `u32` like its `Size`
+    /// and [`Layout`](crate::render::Layout), so one set of `u32` screen
+    /// constants serves all three.
     ///
     /// # Errors
     ///
     /// [`ParamError::OutOfRange`] unless `1 ≤ width, height ≤ 32768` and
     /// `|x0|, |y0| ≤ 32768`.
-    pub const fn new(x0: i32, y0: i32, width: i32, height: i32) -> Result<Self, ParamError> {
-        if width < 1 || width > LIMIT {
+    pub const fn new(x0: i32, y0: i32, width: u32, height: u32) -> Result<Self, ParamError> {
+        if width < 1 || width > LIMIT as u32 {
             return Err(ParamError::OutOfRange("width"));
         }
-        if height < 1 || height > LIMIT {
+        if height < 1 || height > LIMIT as u32 {
             return Err(ParamError::OutOfRange("height"));
         }
         if x0 < -LIMIT || x0 > LIMIT {
@@ -47,8 +50,8 @@ impl Viewport {
         Ok(Self {
             x0,
             y0,
-            width,
-            height,
+            width: width as i32,
+            height: height as i32,
         })
     }
 
@@ -61,12 +64,12 @@ impl Viewport {
         self.y0
     }
     /// Width in pixels.
-    pub const fn width(&self) -> i32 {
-        self.width
+    pub const fn width(&self) -> u32 {
+        self.width as u32
     }
     /// Height in pixels.
-    pub const fn height(&self) -> i32 {
-        self.height
+    pub const fn height(&self) -> u32 {
+        self.height as u32
     }
 
     /// In `f32`: the sub-pixels per unit of normalised device coordinates

@@ -50,14 +50,7 @@ const W: u32 = 96;
 const FRAC: u8 = 8;
 
 fn camera() -> Camera<Perspective> {
-    Camera::perspective(
-        1.0,
-        1.0,
-        1.0,
-        100.0,
-        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
-    )
-    .unwrap()
+    Camera::perspective(1.0, 1.0, 1.0, 100.0, Viewport::new(0, 0, W, W).unwrap()).unwrap()
 }
 
 /// A sheet: an `n × n` grid of quads on the plane through `o` spanned by `u`,

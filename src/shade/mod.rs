@@ -160,6 +160,23 @@ impl<M: Mode<I, C>, I: Illuminate, E: core::fmt::Debug, C> core::fmt::Debug
 impl<'l, M: Mode<I, C>, I: Illuminate, E: Encoder<C>, C: OutputColor> Shader<'l, M, I, E, C> {
     /// A shader of mode `mode` lighting with `lighting`, writing pixels through
     /// `encoder`.
+    ///
+    /// The output colour `C` is inferred from the target the shader first
+    /// draws into. A shader that is built but never drawn (stored in a
+    /// `static`, returned from a function, drawn only behind a generic
+    /// parameter) has nothing to infer it from and fails with E0283
+    /// ``cannot satisfy `_: OutputColor` ``: name the colour in the type.
+    ///
+    /// ```
+    /// use fixshade::prelude::*;
+    /// use embedded_graphics_core::pixelcolor::Rgb565;
+    /// let light = DirectionalLight::<Q14>::white([1.0, 1.0, 1.0])?;
+    /// let red = MaterialDesc::classic([1.0, 0.1, 0.1], AmbientSource::Object, 0.1, 0.7, 0.6, 32.0);
+    /// let lighting = Lighting::<Q14, _, BlinnPhong>::new(light, Material::new(&red)?).eye_space();
+    /// let shader: Shader<_, _, _, Rgb565> = Shader::new(GouraudShading, &lighting, Linear);
+    /// # let _ = shader;
+    /// # Ok::<(), fixshade::error::ParamError>(())
+    /// ```
     pub fn new(mode: M, lighting: &'l I, encoder: E) -> Self {
         Shader {
             lighting,

@@ -385,7 +385,7 @@ pub fn camera(scene: &Scene) -> Camera<Orthographic> {
         0.0,
         1.0,
         20.0,
-        Viewport::new(0, 0, w as i32, h as i32).unwrap(),
+        Viewport::new(0, 0, w, h).unwrap(),
     )
     .unwrap()
 }

@@ -50,7 +50,7 @@ fn camera(side: u32, distance: f32) -> Camera<Perspective> {
         1.0,
         0.5,
         20.0,
-        Viewport::new(0, 0, side as i32, side as i32).unwrap(),
+        Viewport::new(0, 0, side, side).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.0, 0.0, -distance]))
@@ -189,7 +189,7 @@ pub fn silhouette() -> Image {
         1.0,
         0.5,
         20.0,
-        Viewport::new(0, 0, SIDE as i32, SIDE as i32).unwrap(),
+        Viewport::new(0, 0, SIDE, SIDE).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.62, -0.62, -3.6]));

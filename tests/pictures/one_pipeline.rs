@@ -182,7 +182,7 @@ impl Random {
 #[test]
 fn random_meshes_meshdraw_equals_draw_triangle_both_projections() {
     const S: u32 = 96;
-    let vp = Viewport::new(0, 0, S as i32, S as i32).unwrap();
+    let vp = Viewport::new(0, 0, S, S).unwrap();
     let ortho = Camera::orthographic(-3.0, 3.0, -3.0, 3.0, 1.0, 100.0, vp)
         .unwrap()
         .with_view(Mat4::translate([0.0, 0.0, -40.0]));
@@ -385,15 +385,9 @@ fn no_back_face_wins_over_the_front_surface() {
 #[test]
 fn no_back_face_wins_over_the_front_surface_in_perspective() {
     let blinn = standard::blinn::<Q14>().unwrap();
-    let cam = Camera::perspective(
-        1.2,
-        1.0,
-        1.0,
-        20.0,
-        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
-    )
-    .unwrap()
-    .with_view(Mat4::translate([0.2, -0.1, -1.9]));
+    let cam = Camera::perspective(1.2, 1.0, 1.0, 20.0, Viewport::new(0, 0, W, W).unwrap())
+        .unwrap()
+        .with_view(Mat4::translate([0.2, -0.1, -1.9]));
     let t = cam
         .mesh_transform(&Mat4::rotate_y(0.4).mul(&Mat4::rotate_x(0.3)), SPHERE.frac)
         .unwrap();

@@ -95,15 +95,9 @@ fn bands_equal_full_frame_bit_for_bit() {
 /// plane cuts its front (the clip-space path), in bands of `band_rows` rows.
 fn render_near<K: Kernel<Color = Rgb565>>(kernel: K, band_rows: u32) -> Vec<Rgb565> {
     let layout = Layout::banded(W, W, band_rows).unwrap();
-    let cam = Camera::perspective(
-        1.2,
-        1.0,
-        1.0,
-        20.0,
-        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
-    )
-    .unwrap()
-    .with_view(Mat4::translate([0.2, -0.1, -1.9]));
+    let cam = Camera::perspective(1.2, 1.0, 1.0, 20.0, Viewport::new(0, 0, W, W).unwrap())
+        .unwrap()
+        .with_view(Mat4::translate([0.2, -0.1, -1.9]));
     let t = cam
         .mesh_transform(
             &Mat4::rotate_y(0.4).mul(&Mat4::rotate_x(0.3)),

@@ -292,17 +292,11 @@ fn two_and_four_renderers_draw_the_frame_of_one_in_every_mode() {
 #[test]
 fn two_and_four_renderers_draw_the_frame_of_one_through_the_clipping_path() {
     let persp = |z: f32| -> MeshTransform<Perspective> {
-        Camera::perspective(
-            0.9,
-            1.0,
-            0.5,
-            20.0,
-            Viewport::new(0, 0, W as i32, W as i32).unwrap(),
-        )
-        .unwrap()
-        .with_view(Mat4::translate([0.3, -0.2, z]))
-        .mesh_transform(&Mat4::rotate_y(0.5).mul(&Mat4::rotate_x(0.4)), SPHERE.frac)
-        .unwrap()
+        Camera::perspective(0.9, 1.0, 0.5, 20.0, Viewport::new(0, 0, W, W).unwrap())
+            .unwrap()
+            .with_view(Mat4::translate([0.3, -0.2, z]))
+            .mesh_transform(&Mat4::rotate_y(0.5).mul(&Mat4::rotate_x(0.4)), SPHERE.frac)
+            .unwrap()
     };
     let ts = [persp(-1.3), persp(-3.0)];
     let blinn = standard::blinn::<Q14>().unwrap();

@@ -63,17 +63,11 @@ fn ortho() -> MeshTransform<Orthographic> {
 }
 
 fn persp() -> MeshTransform<Perspective> {
-    Camera::perspective(
-        0.7,
-        1.0,
-        1.0,
-        20.0,
-        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
-    )
-    .unwrap()
-    .with_view(Mat4::translate([0.3, -0.2, -3.2]))
-    .mesh_transform(&Mat4::rotate_y(0.5).mul(&Mat4::rotate_x(0.4)), SPHERE.frac)
-    .unwrap()
+    Camera::perspective(0.7, 1.0, 1.0, 20.0, Viewport::new(0, 0, W, W).unwrap())
+        .unwrap()
+        .with_view(Mat4::translate([0.3, -0.2, -3.2]))
+        .mesh_transform(&Mat4::rotate_y(0.5).mul(&Mat4::rotate_x(0.4)), SPHERE.frac)
+        .unwrap()
 }
 
 /// Every split of the frame, by both drawers, equals `MeshDraw`'s whole frame.

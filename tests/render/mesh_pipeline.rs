@@ -14,8 +14,8 @@ use fixshade::raster::Cull;
 use fixshade::render::{bins_len, CachedVertex, DrawOptions, MeshDraw, MeshMemory};
 use fixshade_testkit::support::{clip_corner, full, lumas, Count, Record, Tris};
 
-const W: i32 = 64;
-const H: i32 = 48;
+const W: u32 = 64;
+const H: u32 = 48;
 /// Fraction bits of the test meshes' positions.
 const FRAC: u8 = 12;
 
@@ -60,7 +60,7 @@ fn transform(near: f32) -> MeshTransform<Perspective> {
 /// Draws the mesh with the counting kernel (whole frame, no depth); returns
 /// (covered pixels, pixel writes, vertices behind the near plane).
 fn draw(t: &MeshTransform<Perspective>, m: &Owned, cull: Cull) -> (usize, u32, usize) {
-    let layout = Layout::full(W as u32, H as u32).unwrap();
+    let layout = Layout::full(W, H).unwrap();
     let mut cache = vec![CachedVertex::<()>::default(); m.pos.len()];
     let mut bins = vec![0u16; bins_len(m.tris.len(), 1)];
     let memory = MeshMemory {
@@ -80,13 +80,7 @@ fn draw(t: &MeshTransform<Perspective>, m: &Owned, cull: Cull) -> (usize, u32, u
         },
     )
     .unwrap();
-    let px = lumas(&full(
-        W as u32,
-        H as u32,
-        Gray8::BLACK,
-        false,
-        &mut [&mut d],
-    ));
+    let px = lumas(&full(W, H, Gray8::BLACK, false, &mut [&mut d]));
     let covered = px.iter().filter(|&&n| n > 0).count();
     let writes = px.iter().map(|&n| u32::from(n)).sum();
     let behind = m.pos.iter().filter(|&&p| t.project(p).is_none()).count();
@@ -194,7 +188,7 @@ fn a_triangle_cut_by_the_near_plane_covers_its_visible_part() {
         space: t.clip_space(),
         ..Tris::screen(&rec, vec![tri])
     };
-    full(W as u32, H as u32, Gray8::BLACK, false, &mut [&mut item]);
+    full(W, H, Gray8::BLACK, false, &mut [&mut item]);
     let px = rec.pixels();
     let depth: Vec<f64> = px.iter().map(|p| p.2 as f64 / 16384.0).collect();
     let nearest = depth.iter().cloned().fold(f64::INFINITY, f64::min);
@@ -218,8 +212,8 @@ fn a_triangle_cut_by_the_near_plane_covers_its_visible_part() {
     ];
     let mut drawn = vec![false; (W * H) as usize];
     for p in &px {
-        assert!(!drawn[(p.1 * W + p.0) as usize], "pixel {p:?} twice");
-        drawn[(p.1 * W + p.0) as usize] = true;
+        assert!(!drawn[(p.1 * W as i32 + p.0) as usize], "pixel {p:?} twice");
+        drawn[(p.1 * W as i32 + p.0) as usize] = true;
     }
     let area: f64 = (0..4)
         .map(|i| {

@@ -39,7 +39,7 @@ fn ortho(size: u32, model: &Mat4) -> MeshTransform<Orthographic> {
         EXTENT,
         1.0,
         10.0,
-        Viewport::new(0, 0, size as i32, size as i32).unwrap(),
+        Viewport::new(0, 0, size, size).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.0, 0.0, -5.0]))
@@ -53,7 +53,7 @@ fn persp(size: u32, model: &Mat4) -> MeshTransform<Perspective> {
         1.0,
         0.5,
         20.0,
-        Viewport::new(0, 0, size as i32, size as i32).unwrap(),
+        Viewport::new(0, 0, size, size).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.0, 0.0, -3.5]))
@@ -328,7 +328,7 @@ fn standard_sphere_outline_with_and_without_refinement() {
             extent,
             1.0,
             10.0,
-            Viewport::new(0, 0, size as i32, size as i32).unwrap(),
+            Viewport::new(0, 0, size, size).unwrap(),
         )
         .unwrap()
         .with_view(Mat4::translate([0.0, 0.0, -5.0]))

@@ -106,7 +106,7 @@ fn ortho() -> MeshTransform<Orthographic> {
         0.0,
         0.5,
         10.0,
-        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+        Viewport::new(0, 0, W, W).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.0, 0.0, -1.0]))
@@ -116,17 +116,11 @@ fn ortho() -> MeshTransform<Orthographic> {
 
 /// A perspective view of a plane tilted away (the far edge at about 3× the depth).
 fn persp(tilt: f32) -> MeshTransform<Perspective> {
-    Camera::perspective(
-        1.2,
-        1.0,
-        0.5,
-        200.0,
-        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
-    )
-    .unwrap()
-    .with_view(Mat4::translate([-32.0, 32.0, -40.0]))
-    .mesh_transform(&Mat4::rotate_x(tilt), SUBPIXEL_BITS as u8)
-    .unwrap()
+    Camera::perspective(1.2, 1.0, 0.5, 200.0, Viewport::new(0, 0, W, W).unwrap())
+        .unwrap()
+        .with_view(Mat4::translate([-32.0, 32.0, -40.0]))
+        .mesh_transform(&Mat4::rotate_x(tilt), SUBPIXEL_BITS as u8)
+        .unwrap()
 }
 
 /// A grid of `n × n` quads over `size` model units (z = 0, y down as
@@ -963,7 +957,7 @@ fn coordinate_run(cases: usize) -> CoordReport {
         1.0,
         0.5,
         100.0,
-        Viewport::new(0, 0, SIDE as i32, SIDE as i32).unwrap(),
+        Viewport::new(0, 0, SIDE, SIDE).unwrap(),
     )
     .unwrap();
     let t = cam.mesh_transform(&Mat4::IDENTITY, 9).unwrap();
@@ -1183,7 +1177,7 @@ fn extremes_never_panic() {
                         1.0,
                         0.5,
                         200.0,
-                        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+                        Viewport::new(0, 0, W, W).unwrap(),
                     )
                     .unwrap()
                     .with_view(Mat4::translate([-32.0, 32.0, -2.0]));

@@ -24,7 +24,7 @@ fn draw<K: Kernel<Color = Rgb565>>(kernel: K) -> Vec<Rgb565> {
         1.2,
         1.0,
         10.0,
-        Viewport::new(0, 0, W as i32, W as i32).unwrap(),
+        Viewport::new(0, 0, W, W).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.0, 0.0, -5.0]));

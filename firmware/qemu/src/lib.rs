@@ -280,7 +280,7 @@ pub mod rocket {
             s,
             1.0,
             10.0,
-            Viewport::new(0, 0, W as i32, W as i32).map_err(|_| Fail::Transform)?,
+            Viewport::new(0, 0, standard::SIZE, standard::SIZE).map_err(|_| Fail::Transform)?,
         )
         .map_err(|_| Fail::Transform)?
         .with_view(Mat4::translate([0.0, 0.0, -5.0])))

@@ -40,7 +40,7 @@ pub fn render_parts(parts: &[Part], model: &Mat4, side: u32) -> Vec<Rgb888> {
         1.0,
         0.5,
         20.0,
-        Viewport::new(0, 0, side as i32, side as i32).unwrap(),
+        Viewport::new(0, 0, side, side).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.0, 0.0, -4.5]));

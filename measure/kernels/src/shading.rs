@@ -208,7 +208,7 @@ fn tri_transform() -> MeshTransform<Orthographic> {
         0.0,
         0.5,
         10.0,
-        Viewport::new(0, 0, FB as i32, FB as i32).unwrap(),
+        Viewport::new(0, 0, FB as u32, FB as u32).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([0.0, 0.0, -1.0]))
@@ -565,7 +565,7 @@ unsafe fn tri_tex<M: Model>(filter: Filter, persp: bool, scale: u32, out: *mut u
         1.0,
         0.5,
         100.0,
-        Viewport::new(0, 0, FB as i32, FB as i32).unwrap(),
+        Viewport::new(0, 0, FB as u32, FB as u32).unwrap(),
     )
     .unwrap()
     .with_view(Mat4::translate([-32.0, 32.0, -32.0]));
