@@ -27,7 +27,7 @@ pub struct Viewport {
 impl Viewport {
     /// A viewport with its top-left corner at pixel `(x0, y0)`: a corner is an
     /// `i32` like embedded-graphics' `Point`, a side a `u32` like its `Size`
-    /// and [`Layout`](crate::render::Layout), so one set of `u32` screen
+    /// and [`Layout`](crate::framebuffer::Layout), so one set of `u32` screen
     /// constants serves all three.
     ///
     /// # Errors

@@ -5,11 +5,14 @@
 //!
 //! Per band, [`Bands::render`] (or [`FullFrame::render`], one band) clears the
 //! strip and depth strip, lets every item ([`DrawBand`]: the meshes of
-//! [`crate::render`]) draw into a [`BandView`], and hands the band to a
+//! [`crate::render`], and every embedded-graphics `Drawable` — text, shapes,
+//! images over or under the 3D, see [`BandView`]'s `DrawTarget`) draw into a
+//! [`BandView`], and hands the band to a
 //! [`BandSink`] (see there). Several renderers (one per core) can share a
 //! frame's bands ([`Bands::render_bands`]).
 
 mod checksum;
+mod overlay;
 
 pub use checksum::Checksum;
 
@@ -130,6 +133,32 @@ impl Layout {
 
 /// The pixels of one band while it is drawn: colour and (optional) depth rows
 /// in memory.
+///
+/// **2D over 3D**: a band is an embedded-graphics `DrawTarget` in screen
+/// coordinates, and every embedded-graphics `Drawable` (text, primitives,
+/// images) is a [`DrawBand`] item. A band's view is clipped to the band: a pixel outside its rows or the
+/// frame's width is dropped, so a drawable drawn into every band of a frame
+/// (by [`Bands::render`]) gives, bit for bit, the frame
+/// the same drawable would give drawn once over the whole picture. Items draw
+/// in the order of the slice: a drawable after the meshes is drawn over them
+/// (a label, a HUD), one before them is a background the meshes cover. 2D
+/// items write colours only: they neither test nor write depth.
+///
+/// ```
+/// use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use embedded_graphics::prelude::*;
+/// use embedded_graphics::text::Text;
+/// use fixshade::framebuffer::FullFrame;
+///
+/// let mut color = [Rgb565::BLACK; 64 * 16];
+/// let mut frame = FullFrame::new(64, 16, &mut color, None)?;
+/// let mut label = Text::new("fixshade", Point::new(2, 10), MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE));
+/// // with meshes: &mut [&mut sphere, &mut label], the label drawn over the sphere
+/// frame.render(Rgb565::BLACK, &mut [&mut label])?;
+/// assert!(frame.pixels().contains(&Rgb565::WHITE));
+/// # Ok::<(), fixshade::error::RenderError>(())
+/// ```
 #[derive(Debug)]
 pub struct BandView<'a, C> {
     pub(crate) color: &'a mut [C],
@@ -154,8 +183,9 @@ impl<'a, C> BandView<'a, C> {
 /// ([`MeshDraw`](crate::render::MeshDraw)), or anything else with the same
 /// interface (object-safe, so meshes with different shaders share one call).
 pub trait DrawBand<C> {
-    /// Draws what falls into `band`. Bands come in order, from the top, once
-    /// per frame.
+    /// Draws what falls into `band`: once per band of a frame, in the order
+    /// the renderer draws them ([`Bands::render`]: from the top;
+    /// [`Bands::render_bands`]: the order it is given).
     fn draw_band(&mut self, band: &mut BandView<'_, C>);
 
     /// Whether the item can be drawn in frames of `layout`, checked before

@@ -267,7 +267,9 @@ impl<C: PixelColor> DrawTarget for Collect<C> {
     ) -> Result<(), Self::Error> {
         let (x0, y0) = (area.top_left.x, area.top_left.y);
         let w = area.size.width as i32;
-        for (i, c) in colors.into_iter().enumerate() {
+        // the area's pixels only: `fill_solid` passes an endless iterator
+        let n = area.size.width as usize * area.size.height as usize;
+        for (i, c) in colors.into_iter().take(n).enumerate() {
             let (x, y) = (x0 + i as i32 % w.max(1), y0 + i as i32 / w.max(1));
             if (0..self.w as i32).contains(&x) && (0..self.h as i32).contains(&y) {
                 self.px[(y as u32 * self.w + x as u32) as usize] = c;

@@ -181,3 +181,92 @@ fn fast_per_pixel_kernels_same_pixels_however_the_frame_is_split() {
         Shader::new(QuadraticPhongShading, &array, Linear),
     );
 }
+
+/// 2D over 3D (issue 35, item 2): a background rectangle before the sphere,
+/// a label, a frame and a disc after it, in bands of 1, 3, 7 and 8 rows and
+/// whole, give the sphere's frame with the same drawables drawn over it by
+/// embedded-graphics into a plain display, bit for bit (the label crossing
+/// band boundaries, shapes partly off screen).
+#[test]
+fn drawables_over_and_under_the_meshes_in_any_bands() {
+    use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
+    use embedded_graphics::prelude::*;
+    use embedded_graphics::primitives::{Circle, PrimitiveStyle, Rectangle};
+    use embedded_graphics::text::Text;
+    use fixshade::framebuffer::DrawBand;
+    use fixshade_testkit::support::{banded, full, Collect};
+
+    let lighting = lighting();
+    let k = Shader::new(GouraudShading, &lighting, Linear);
+    let t = ortho();
+    let background = Rectangle::new(Point::new(-10, 100), Size::new(60, 50))
+        .into_styled(PrimitiveStyle::with_fill(Rgb565::BLUE));
+    let label = Text::new(
+        "fixshade 2D over 3D",
+        Point::new(4, 118),
+        MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE),
+    );
+    let border = Rectangle::new(Point::new(1, 1), Size::new(W - 2, W - 2))
+        .into_styled(PrimitiveStyle::with_stroke(Rgb565::YELLOW, 3));
+    let disc =
+        Circle::new(Point::new(200, 225), 30).into_styled(PrimitiveStyle::with_fill(Rgb565::GREEN));
+
+    // the expected frame: the sphere whole, the background under it (where
+    // the sphere leaves it), the others drawn over it
+    let bare = fixshade_testkit::support::mesh_frame(
+        W,
+        W,
+        W,
+        SPHERE.mesh(),
+        &t,
+        k,
+        Cull::Back,
+        false,
+        Rgb565::BLACK,
+    );
+    let mut under = Collect::new(W, W, Rgb565::BLACK);
+    background.draw(&mut under).unwrap();
+    let mut want = Collect::new(W, W, Rgb565::BLACK);
+    want.px = bare
+        .iter()
+        .zip(&under.px)
+        .map(|(s, u)| if *s == Rgb565::BLACK { *u } else { *s })
+        .collect();
+    label.draw(&mut want).unwrap();
+    border.draw(&mut want).unwrap();
+    disc.draw(&mut want).unwrap();
+    let lit = want.px.iter().filter(|p| **p == Rgb565::WHITE).count();
+    assert!(lit > 100, "the label is drawn ({lit} white pixels)");
+
+    for rows in [W, 1, 3, 7, 8] {
+        let layout = fixshade::framebuffer::Layout::banded(W, W, rows).unwrap();
+        let mesh = SPHERE.mesh();
+        let mut cache = vec![fixshade::render::CachedVertex::default(); mesh.vertex_count()];
+        let mut bins =
+            vec![0u16; fixshade::render::bins_len(mesh.triangle_count(), layout.bands() as usize)];
+        let mut carry = vec![fixshade::render::Carry::default(); 2 * mesh.triangle_count()];
+        let mut draw = fixshade::render::MeshDraw::new(
+            layout,
+            mesh,
+            &t,
+            k,
+            fixshade::render::MeshMemory {
+                vertices: &mut cache,
+                bins: &mut bins,
+                carry: &mut carry,
+            },
+            fixshade::render::DrawOptions::default(),
+        )
+        .unwrap();
+        let (mut bg, mut label, mut border, mut disc) = (background, label, border, disc);
+        let mut items: [&mut dyn DrawBand<Rgb565>; 5] =
+            [&mut bg, &mut draw, &mut label, &mut border, &mut disc];
+        let got = if rows == W {
+            full(W, W, Rgb565::BLACK, true, &mut items)
+        } else {
+            banded(W, W, rows, Rgb565::BLACK, true, &mut items)
+        };
+        let diff = (0..got.len()).filter(|&i| got[i] != want.px[i]).count();
+        assert_eq!(diff, 0, "{rows}-row bands: {diff} pixels differ from the sphere with the drawables drawn over it");
+    }
+}
