@@ -14,19 +14,24 @@
 //! the mesh renderer's pixels bit for bit); and by the f64 reference model
 //! (`<scene>_reference.png`, from the renderer's quantised inputs on its
 //! coverage). The error of each against the reference is printed beside the
-//! file names.
+//! file names. `labelled_q14.png`: the first scene with its title and a frame
+//! drawn over it by embedded-graphics in the same 8-row bands (2D over 3D).
 
 use fixshade_testkit::render;
 use fixshade_testkit::surface_scenes;
 
+use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
+use embedded_graphics::primitives::{PrimitiveStyle, Rectangle};
+use embedded_graphics::text::Text;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+use fixshade::framebuffer::{Bands, DrawBand, Layout};
 use fixshade::num::{Scalar, Q14, Q30};
 use fixshade_testkit::reference::V3;
 use fixshade_testkit::render::{
     compare, compare_mesh, reference_rgb888, render_mesh, render_reference, render_tier,
-    render_triangles, scenes, Scene,
+    render_triangles, scenes, with_draws, Scene,
 };
 use std::path::{Path, PathBuf};
 
@@ -91,6 +96,45 @@ fn diff_whole<S: Scalar>(scene: &Scene, reference: &[Option<V3>]) -> render::Dif
     )
 }
 
+/// The scene's meshes in 8-row bands with a title bar, its text and a frame
+/// drawn over them (every embedded-graphics `Drawable` is an item of the
+/// frame), straight into the simulator display.
+fn render_labelled(scene: &Scene, path: &Path) {
+    const ROWS: u32 = 8;
+    let (w, h) = (scene.width, scene.height);
+    let layout = Layout::banded(w, h, ROWS).expect("the scene's size is a layout");
+    let mut strip = vec![Rgb888::BLACK; (w * ROWS) as usize];
+    let mut depth = vec![0u16; (w * ROWS) as usize];
+    let mut bar = Rectangle::new(Point::new(0, h as i32 - 16), Size::new(w, 16))
+        .into_styled(PrimitiveStyle::with_fill(Rgb888::new(24, 32, 48)));
+    let mut title = Text::new(
+        scene.name,
+        Point::new(6, h as i32 - 5),
+        MonoTextStyle::new(&FONT_6X10, Rgb888::WHITE),
+    );
+    let mut frame = Rectangle::new(Point::zero(), Size::new(w, h))
+        .into_styled(PrimitiveStyle::with_stroke(Rgb888::new(200, 200, 210), 2));
+    let mut display = SimulatorDisplay::<Rgb888>::new(Size::new(w, h));
+    with_draws::<Q14<2>, Rgb888, _>(scene, layout, |meshes| {
+        let mut items: Vec<&mut dyn DrawBand<Rgb888>> = meshes
+            .iter_mut()
+            .map(|m| &mut **m as &mut dyn DrawBand<Rgb888>)
+            .collect();
+        items.extend([
+            &mut bar as &mut dyn DrawBand<Rgb888>,
+            &mut title,
+            &mut frame,
+        ]);
+        Bands::new(layout, &mut strip, Some(&mut depth))
+            .and_then(|mut bands| bands.render(&mut display, Rgb888::BLACK, &mut items))
+            .expect("the simulator display accepts every pixel");
+    });
+    display
+        .to_rgb_output_image(&OutputSettingsBuilder::new().build())
+        .save_png(path)
+        .expect("write PNG");
+}
+
 fn main() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("target")
@@ -141,6 +185,14 @@ fn main() {
             } else {
                 format!("{differ} pixels differ from the mesh renderer")
             }
+        );
+    }
+    if let Some(scene) = scenes().first() {
+        let path = dir.join("labelled_q14.png");
+        render_labelled(scene, &path);
+        println!(
+            "\n{}  2D over 3D: the scene's title and a frame drawn over it in the same bands",
+            path.display()
         );
     }
     println!("\nSurface detail (textures, normal and bump mapping, displacement, silhouette refinement):");
