@@ -142,16 +142,16 @@ pub(crate) fn draw_clipped<K: Kernel, const PERSP: bool>(
     more
 }
 
-/// Calls `f` with the screen triangles (a fan) of the clip-space triangle `c`
-/// clipped to the near plane (`PERSP`: a perspective clip space) and the
-/// set-up window.
+/// Calls `f` with the screen triangles of the clip-space triangle `c` clipped
+/// to the near plane (`PERSP`: a perspective clip space) and the set-up
+/// window.
 ///
 /// Rounding the cut corners to sub-pixels can bend a nearly straight corner
-/// inwards or fold a sliver over, and a fan over that overlaps (pixels written
-/// twice). So in the triangle's exact facing (from its clip coordinates) every
-/// corner that turns the other way or not at all (within a sub-pixel of the
-/// line through its neighbours) is removed, and a polygon still winding more
-/// than once (a few sub-pixels) is dropped: the fan's triangles are disjoint.
+/// inwards, and a fan over that overlaps itself (pixels written twice). So the
+/// rounded polygon is cut into triangles by ears ([`triangles`]), which keeps
+/// its outline exactly: a cut of an edge shared with a neighbouring triangle
+/// is the same point in both, so the two outlines meet along the same
+/// segments and no pixel next to them is drawn by both.
 #[inline]
 pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     c: &[ClipCorner<V>; 3],
@@ -160,95 +160,132 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
 ) {
     let tri = c.map(|k| k.c);
     let (poly, vs) = clip::clipped::<_, PERSP>(tri, &c.map(|k| k.v), interp::lerp, space);
-    let Some((s, keep, n)) = outline::<PERSP>(tri, &poly, space) else {
+    let Some((s, tris, n)) = outline::<PERSP>(tri, &poly, space) else {
         return;
     };
-    let corner = |k: usize| {
-        let i = usize::from(*keep.get(k)?);
+    let corner = |i: u8| {
+        let i = usize::from(i);
         Some(ScreenCorner {
             s: *s.get(i)?,
             v: *vs.get(i)?,
         })
     };
-    let Some(a) = corner(0) else {
-        return;
-    };
-    for k in 1..n.saturating_sub(1) {
-        if let (Some(b), Some(c)) = (corner(k), corner(k + 1)) {
+    for t in tris.iter().take(n) {
+        if let (Some(a), Some(b), Some(c)) = (corner(t[0]), corner(t[1]), corner(t[2])) {
             f(&[a, b, c]);
         }
     }
 }
 
-/// The screen positions of the clipped polygon `poly` of the triangle
-/// `tri` and the corners of its convex fan ([`convex`]); `None` for a
-/// triangle of zero area. Not generic over the values: one copy per
-/// projection.
+/// At most `MAX − 2` triangles cut a polygon of `MAX` corners.
+const PIECES: usize = clip::MAX - 2;
+
+/// The screen positions of the clipped polygon `poly` of the triangle `tri`
+/// and its triangles ([`triangles`]); `None` for a triangle of zero area. Not
+/// generic over the values: one copy per projection.
 #[inline(never)]
 fn outline<const PERSP: bool>(
     tri: [Clip; 3],
     poly: &clip::Polygon,
     space: &ClipSpace,
-) -> Option<([Screen; clip::MAX], [u8; clip::MAX], usize)> {
+) -> Option<([Screen; clip::MAX], [[u8; 3]; PIECES], usize)> {
     let front = clip::facing::<PERSP>(tri)?;
     let mut s = [Screen::default(); clip::MAX];
     let n = poly.vertices().len();
     for (q, c) in s.iter_mut().zip(poly.corners()).take(n) {
         *q = clip::screen::<PERSP>(space, *c);
     }
-    let (keep, n) = convex(&s, n, front);
-    Some((s, keep, n))
+    let (tris, m) = triangles(&s, n, front);
+    Some((s, tris, m))
 }
 
-/// The corners of the rounded polygon `s[..n]` that keep it convex in the
-/// facing `front` (see [`pieces`]), as indices into `s`, and their number (0:
-/// nothing to draw). Not generic: one copy serves every kernel.
+/// `(b − a) × (c − a)` of screen corners: positive is clockwise on the screen
+/// (y down). Corners are clamped to the window, whose sides are below 2^15
+/// sub-pixels: each product is below 2^30 and their difference fits an `i32`
+/// (no 64-bit multiply on the M0).
+fn cross(a: Screen, b: Screen, c: Screen) -> i32 {
+    const _: () = assert!(WINDOW_MAX - WINDOW_MIN < 1 << 15);
+    (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x)
+}
+
+/// The rounded polygon `s[..n]` (the facing `front`) cut into triangles, as
+/// indices into `s`, and their number (0: nothing to draw). Not generic: one
+/// copy serves every kernel.
+///
+/// Ear clipping: a corner that turns as the polygon faces and whose triangle
+/// with its neighbours holds no other corner is cut off as a triangle; a
+/// corner in line with its neighbours is dropped (it adds no pixel). The
+/// triangles tile the polygon exactly, its outline included. A rounded
+/// polygon that crosses itself (two corners a sub-pixel apart, rounded past
+/// each other) keeps the ears it has: the small loop that turns the wrong way
+/// (less than a sub-pixel wide) is not drawn, rather than drawn over a
+/// neighbour.
 #[inline(never)]
-fn convex(s: &[Screen; clip::MAX], n: usize, front: bool) -> ([u8; clip::MAX], usize) {
+fn triangles(s: &[Screen; clip::MAX], n: usize, front: bool) -> ([[u8; 3]; PIECES], usize) {
     // indices masked to the array (a power of two): no bounds checks
     const M: usize = clip::MAX - 1;
     const _: () = assert!(clip::MAX.is_power_of_two() && clip::MAX <= 256);
-    let mut keep: [u8; clip::MAX] = core::array::from_fn(|i| i as u8);
+    let mut out = [[0u8; 3]; PIECES];
     let mut n = n.min(clip::MAX);
-    let pt = |keep: &[u8; clip::MAX], k: usize| s[usize::from(keep[k & M]) & M];
-    // whether a → b → c turns as the triangle faces (A > 0: clockwise on the
-    // screen, a back face). Screen corners are clamped to the window, whose
-    // sides are below 2^15 sub-pixels: each product is below 2^30 and their
-    // difference fits an i32 (no 64-bit multiply on the M0)
-    const _: () = assert!(WINDOW_MAX - WINDOW_MIN < 1 << 15);
+    if n < 3 {
+        return (out, 0);
+    }
+    let pt = |i: u8| s[usize::from(i) & M];
     let turns = |a: Screen, b: Screen, c: Screen| {
-        let t = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+        let t = cross(a, b, c);
         if front {
             t < 0
         } else {
             t > 0
         }
     };
-    // walk round the polygon; a corner that turns the wrong way is removed and
-    // its predecessor checked again, until n corners in a row turn right
-    let (mut i, mut good) = (0, 0);
-    while n >= 3 && good < n {
+    let mut idx: [u8; clip::MAX] = core::array::from_fn(|i| i as u8);
+    let mut m = 0;
+    // `misses`: corners in a row that are not ears; n of them end the cut
+    let (mut i, mut misses) = (0, 0);
+    while n > 3 && misses < n {
         let prev = if i == 0 { n - 1 } else { i - 1 };
         let next = if i + 1 < n { i + 1 } else { 0 };
-        if turns(pt(&keep, prev), pt(&keep, i), pt(&keep, next)) {
-            good += 1;
-            i = next;
-        } else {
+        let (a, b, c) = (pt(idx[prev & M]), pt(idx[i & M]), pt(idx[next & M]));
+        let flat = cross(a, b, c) == 0;
+        let ear = !flat
+            && turns(a, b, c)
+            && (0..n).all(|k| {
+                let p = pt(idx[k & M]);
+                k == prev || k == i || k == next || !inside_or_on(a, b, c, p)
+            });
+        if flat || ear {
+            if ear && m < PIECES {
+                out[m] = [idx[prev & M], idx[i & M], idx[next & M]];
+                m += 1;
+            }
             for j in i..n - 1 {
-                keep[j & M] = keep[(j + 1) & M];
+                idx[j & M] = idx[(j + 1) & M];
             }
             n -= 1;
-            good = 0;
+            misses = 0;
             i = if prev < n { prev } else { 0 };
+        } else {
+            misses += 1;
+            i = next;
         }
     }
-    // every corner on the same side of the first edge: the fan from the first
-    // spans less than half a turn (winds once)
-    let (a, b) = (pt(&keep, 0), pt(&keep, 1));
-    if n < 3 || !(2..n).all(|k| turns(a, b, pt(&keep, k))) {
-        return (keep, 0);
+    if n == 3 {
+        let (a, b, c) = (pt(idx[0]), pt(idx[1]), pt(idx[2]));
+        if turns(a, b, c) && m < PIECES {
+            out[m] = [idx[0], idx[1], idx[2]];
+            m += 1;
+        }
     }
-    (keep, n)
+    (out, m)
+}
+
+/// Whether `p` is inside triangle `a b c` or on its outline (any winding).
+fn inside_or_on(a: Screen, b: Screen, c: Screen, p: Screen) -> bool {
+    let (d1, d2, d3) = (cross(a, b, p), cross(b, c, p), cross(c, a, p));
+    let neg = d1 < 0 || d2 < 0 || d3 < 0;
+    let pos = d1 > 0 || d2 > 0 || d3 > 0;
+    !(neg && pos)
 }
 
 /// The rows `(first, last)` of a triangle whose corners are inside the window
@@ -301,7 +338,7 @@ pub(crate) fn classify<const PERSP: bool>(
 }
 
 /// The bounding box and facing of what remains of a clip-space triangle after
-/// clipping (the rare path): exactly the fan's box under a perspective
+/// clipping (the rare path): exactly the pieces' box under a perspective
 /// projection, the window's part of the triangle's box under an orthographic
 /// one.
 #[inline(never)]
@@ -314,7 +351,7 @@ fn clipped_bounds<const PERSP: bool>(
     if !PERSP {
         // orthographic: the clipped polygon lies in the triangle's box (its
         // cuts are on the edges) and in the window, so that box clamped to the
-        // window holds it. A few bands more than the fan covers at most (they
+        // window holds it. A few bands more than the pieces cover at most (they
         // draw nothing), without clipping twice.
         let s = c.map(|c| clip::screen::<false>(&space, c));
         let (xs, ys) = (s.map(|p| p.x), s.map(|p| p.y));
@@ -327,10 +364,10 @@ fn clipped_bounds<const PERSP: bool>(
         return Some((bbox, front));
     }
     let (poly, _) = clip::clipped::<(), PERSP>(c, &[(); 3], |_, _, _, _| (), &space);
-    // the corners of the fan [`pieces`] draws
-    let (s, keep, n) = outline::<PERSP>(c, &poly, &space)?;
+    // the corners of the triangles [`pieces`] draws
+    let (s, tris, n) = outline::<PERSP>(c, &poly, &space)?;
     let mut bbox = (i32::MAX, i32::MIN, i32::MAX, i32::MIN);
-    for &k in keep.iter().take(n) {
+    for &k in tris.iter().take(n).flatten() {
         let p = s[usize::from(k) & (clip::MAX - 1)];
         bbox = (
             bbox.0.min(p.x),
@@ -339,7 +376,7 @@ fn clipped_bounds<const PERSP: bool>(
             bbox.3.max(p.y),
         );
     }
-    (n >= 3).then_some((bbox, front))
+    (n >= 1).then_some((bbox, front))
 }
 
 /// One corner of a triangle a program brings itself: its clip coordinates
