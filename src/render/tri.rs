@@ -163,22 +163,15 @@ pub(crate) fn pieces<V: Varyings, const PERSP: bool>(
     let Some((s, tris, n)) = outline::<PERSP>(tri, &poly, space) else {
         return;
     };
+    // indices masked to the arrays (a power of two): no bounds checks
     let corner = |i: u8| {
-        let i = usize::from(i);
-        Some(ScreenCorner {
-            s: *s.get(i)?,
-            v: *vs.get(i)?,
-        })
+        let i = usize::from(i) & (clip::MAX - 1);
+        ScreenCorner { s: s[i], v: vs[i] }
     };
     for t in tris.iter().take(n) {
-        if let (Some(a), Some(b), Some(c)) = (corner(t[0]), corner(t[1]), corner(t[2])) {
-            f(&[a, b, c]);
-        }
+        f(&[corner(t[0]), corner(t[1]), corner(t[2])]);
     }
 }
-
-/// At most `MAX − 2` triangles cut a polygon of `MAX` corners.
-const PIECES: usize = clip::MAX - 2;
 
 /// The screen positions of the clipped polygon `poly` of the triangle `tri`
 /// and its triangles ([`triangles`]); `None` for a triangle of zero area. Not
@@ -188,7 +181,7 @@ fn outline<const PERSP: bool>(
     tri: [Clip; 3],
     poly: &clip::Polygon,
     space: &ClipSpace,
-) -> Option<([Screen; clip::MAX], [[u8; 3]; PIECES], usize)> {
+) -> Option<([Screen; clip::MAX], [[u8; 3]; clip::MAX], usize)> {
     let front = clip::facing::<PERSP>(tri)?;
     let mut s = [Screen::default(); clip::MAX];
     let n = poly.vertices().len();
@@ -221,42 +214,32 @@ fn cross(a: Screen, b: Screen, c: Screen) -> i32 {
 /// (less than a sub-pixel wide) is not drawn, rather than drawn over a
 /// neighbour.
 #[inline(never)]
-fn triangles(s: &[Screen; clip::MAX], n: usize, front: bool) -> ([[u8; 3]; PIECES], usize) {
-    // indices masked to the array (a power of two): no bounds checks
+fn triangles(s: &[Screen; clip::MAX], n: usize, front: bool) -> ([[u8; 3]; clip::MAX], usize) {
+    // indices masked to the arrays (a power of two): no bounds checks
     const M: usize = clip::MAX - 1;
     const _: () = assert!(clip::MAX.is_power_of_two() && clip::MAX <= 256);
-    let mut out = [[0u8; 3]; PIECES];
-    let mut n = n.min(clip::MAX);
-    if n < 3 {
-        return (out, 0);
-    }
-    let pt = |i: u8| s[usize::from(i) & M];
-    let turns = |a: Screen, b: Screen, c: Screen| {
-        let t = cross(a, b, c);
-        if front {
-            t < 0
-        } else {
-            t > 0
-        }
-    };
+    let mut out = [[0u8; 3]; clip::MAX];
     let mut idx: [u8; clip::MAX] = core::array::from_fn(|i| i as u8);
-    let mut m = 0;
+    let pt = |i: u8| s[usize::from(i) & M];
     // `misses`: corners in a row that are not ears; n of them end the cut
-    let (mut i, mut misses) = (0, 0);
-    while n > 3 && misses < n {
+    // (a last triangle turning the wrong way, or a polygon crossing itself)
+    let (mut n, mut m, mut i, mut misses) = (n.min(clip::MAX), 0, 0, 0);
+    while n >= 3 && misses < n {
         let prev = if i == 0 { n - 1 } else { i - 1 };
         let next = if i + 1 < n { i + 1 } else { 0 };
-        let (a, b, c) = (pt(idx[prev & M]), pt(idx[i & M]), pt(idx[next & M]));
-        let flat = cross(a, b, c) == 0;
-        let ear = !flat
-            && turns(a, b, c)
-            && (0..n).all(|k| {
-                let p = pt(idx[k & M]);
-                k == prev || k == i || k == next || !inside_or_on(a, b, c, p)
-            });
-        if flat || ear {
-            if ear && m < PIECES {
-                out[m] = [idx[prev & M], idx[i & M], idx[next & M]];
+        let t = [idx[prev & M], idx[i & M], idx[next & M]];
+        let (a, b, c) = (pt(t[0]), pt(t[1]), pt(t[2]));
+        // negative: counter-clockwise on the screen, a front face
+        let turn = cross(a, b, c);
+        let ear = turn != 0
+            && (turn < 0) == front
+            && idx
+                .iter()
+                .take(n)
+                .all(|&k| t.contains(&k) || !inside_or_on(a, b, c, pt(k)));
+        if turn == 0 || ear {
+            if ear {
+                out[m & M] = t;
                 m += 1;
             }
             for j in i..n - 1 {
@@ -268,13 +251,6 @@ fn triangles(s: &[Screen; clip::MAX], n: usize, front: bool) -> ([[u8; 3]; PIECE
         } else {
             misses += 1;
             i = next;
-        }
-    }
-    if n == 3 {
-        let (a, b, c) = (pt(idx[0]), pt(idx[1]), pt(idx[2]));
-        if turns(a, b, c) && m < PIECES {
-            out[m] = [idx[0], idx[1], idx[2]];
-            m += 1;
         }
     }
     (out, m)

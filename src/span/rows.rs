@@ -68,10 +68,12 @@ impl Clamp for bool {
     }
 }
 
-/// [`Clamp`] as a constant.
+/// [`Clamp`] as a constant (a loop copy per case; not built for size).
+#[cfg(not(fixshade_opt_size))]
 #[derive(Clone, Copy)]
 struct Fixed<const ON: bool>;
 
+#[cfg(not(fixshade_opt_size))]
 impl<const ON: bool> Clamp for Fixed<ON> {
     #[inline(always)]
     fn on(self) -> bool {
